@@ -1,0 +1,251 @@
+// The luxel command-line tool. Thin: parse options, call the library, print one summary or one
+// error. Exit codes: 0 success, 1 error, 2 bad usage, 130 cancelled (Ctrl-C).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include "luxel/error.h"
+#include "luxel/image.h"
+#include "luxel/import.h"
+#include "luxel/render.h"
+#include "luxel/solve.h"
+#include "progress_bar.h"
+
+namespace fs = std::filesystem;
+using namespace luxel;
+
+namespace {
+
+struct RenderArgs {
+  std::string scene;
+  std::vector<std::string> outputs;
+  std::string camera;
+  std::optional<std::string> eye, target, up;
+  float fov = 0.0f;
+  std::string size = "512x512";
+  int spp = 16;
+  std::string solver = "progressive";
+  size_t elements = 0;
+  float elementSize = 0.0f;
+  int threads = 0;
+  bool quiet = false;
+  std::string statsPath;
+  std::string mode = "hq";
+  std::string toneCurve = "filmic";
+  float exposure = 0.0f;
+  double unshot = 1e-3;
+  size_t refine = 0;
+  int raysPerPair = 0;
+};
+
+Vec3 parseVec3(const std::string& text, const char* what) {
+  Vec3 v;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+      !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw Error(fmt::format("--{} '{}': expected X,Y,Z", what, text));
+  return v;
+}
+
+std::pair<int, int> parseSize(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w < 1 || h < 1 || w > 32768 || h > 32768)
+    throw Error(fmt::format("--size '{}': expected WxH with sides from 1 to 32768", text));
+  return {w, h};
+}
+
+// A camera that frames the scene's bounding box from +z when the scene defines none.
+Camera framingCamera(const Scene& scene, float fov) {
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Mesh& m : scene.meshes)
+    for (const Vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  Vec3 centre = 0.5f * (lo + hi);
+  float radius = 0.5f * glm::length(hi - lo);
+  Camera c;
+  c.name = "framing";
+  c.fovY = fov > 0.0f ? fov : 45.0f;
+  c.target = centre;
+  c.eye = centre + Vec3(0.0f, 0.0f, 1.1f * radius / std::tan(glm::radians(c.fovY) * 0.5f));
+  c.up = Vec3(0, 1, 0);
+  return c;
+}
+
+Camera chooseCamera(const Scene& scene, const RenderArgs& a) {
+  Camera cam;
+  if (!a.camera.empty()) {
+    const Camera* c = scene.findCamera(a.camera);
+    if (!c) {
+      std::string names;
+      for (const Camera& k : scene.cameras) names += (names.empty() ? "" : ", ") + k.name;
+      throw Error(fmt::format("scene '{}' has no camera '{}' (cameras: {})", scene.name, a.camera,
+                              names.empty() ? "none" : names));
+    }
+    cam = *c;
+  } else if (const Camera* d = scene.findCamera("default")) {
+    cam = *d;
+  } else if (!scene.cameras.empty()) {
+    cam = scene.cameras.front();
+  } else {
+    cam = framingCamera(scene, a.fov);
+  }
+  if (a.eye) cam.eye = parseVec3(*a.eye, "eye");
+  if (a.target) cam.target = parseVec3(*a.target, "target");
+  if (a.up) cam.up = parseVec3(*a.up, "up");
+  if (a.fov > 0.0f) cam.fovY = a.fov;
+  return cam;
+}
+
+void checkOutputs(const std::vector<std::string>& outputs) {
+  for (const std::string& o : outputs) {
+    fs::path p(o);
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+    if (ext != ".exr" && ext != ".png") throw Error(fmt::format("{}: output must end in .exr or .png", o));
+    fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    if (!fs::is_directory(dir)) throw Error(fmt::format("{}: directory '{}' does not exist", o, dir.string()));
+  }
+}
+
+double meanLuminance(const Image& img) {
+  double sum = 0.0;
+  for (const Rgb& c : img.pixels) sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+  return img.pixels.empty() ? 0.0 : sum / double(img.pixels.size());
+}
+
+int runRender(const RenderArgs& a) {
+  checkOutputs(a.outputs);
+  auto [width, height] = parseSize(a.size);
+  std::unique_ptr<tbb::global_control> threads;
+  if (a.threads > 0) threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
+
+  cli::ProgressBar bar(a.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  Scene scene = loadScene(a.scene);
+  if (!a.quiet)
+    for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
+
+  RenderOptions ro;
+  ro.camera = chooseCamera(scene, a);
+  ro.width = width, ro.height = height;
+  ro.samplesPerPixel = a.spp;
+  ro.mode = parseRenderMode(a.mode);
+  ToneMap tm;
+  tm.curve = parseToneCurve(a.toneCurve);
+  tm.exposure = a.exposure;
+
+  DiscretiseOptions dopt;
+  if (a.elementSize > 0.0f) dopt.elementSize = a.elementSize;
+  if (a.elements > 0) dopt.elementBudget = a.elements;
+  SurfaceSet surfaces = discretise(scene, dopt);
+
+  SolveOptions so;
+  so.method = parseSolveMethod(a.solver);
+  so.unshotThreshold = a.unshot;
+  so.refineBudget = a.refine;
+  if (a.raysPerPair > 0) so.formFactors.raysPerPair = a.raysPerPair;
+  Solution solution = solve(scene, surfaces, so, bar.callback());
+
+  RenderStats rs;
+  Image image = render(scene, surfaces, solution, ro, bar.callback(), &rs);
+  for (const std::string& o : a.outputs) writeImage(image, o, tm);
+  bar.finish();
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const SolveStats& s = solution.stats;
+  if (!a.statsPath.empty()) {
+    nlohmann::json j = {
+        {"scene", scene.name},
+        {"elements", s.elements},
+        {"patches", s.patches},
+        {"solver", s.method},
+        {"shots", s.shots},
+        {"iterations", s.iterations},
+        {"rays", s.rays},
+        {"rays_per_second", s.raysPerSecond()},
+        {"residual", s.residual},
+        {"unshot_fraction", s.unshotFraction},
+        {"refined_elements", s.refinedElements},
+        {"seconds", {{"setup", s.secondsSetup}, {"form_factors", s.secondsFormFactors}, {"solve", s.secondsSolve},
+                     {"solve_total", s.secondsTotal}, {"render", rs.seconds}, {"total", total}}},
+        {"energy", {{"emitted", s.emittedPower}, {"absorbed", s.absorbedPower}}},
+        {"image", {{"width", width}, {"height", height}, {"spp", a.spp}, {"mode", a.mode},
+                   {"mean_luminance", meanLuminance(image)}, {"render_rays", rs.rays}}},
+        {"threads", a.threads > 0 ? a.threads : tbb::info::default_concurrency()},
+        {"outputs", a.outputs},
+    };
+    std::ofstream out(a.statsPath);
+    out << j.dump(2) << "\n";
+    if (!out) throw Error(fmt::format("{}: cannot write statistics", a.statsPath));
+  }
+  if (!a.quiet) {
+    std::cout << fmt::format("luxel: {} — {} elements in {} patches, {} ({} shots, {} iterations), unshot {:.3f}%\n",
+                             scene.name, s.elements, s.patches, s.method, s.shots, s.iterations, 100.0 * s.unshotFraction);
+    std::cout << fmt::format("luxel: solve {:.3f} s (setup {:.3f}, form factors {:.3f}, iterate {:.3f}), {:.1f} M rays/s\n",
+                             s.secondsTotal, s.secondsSetup, s.secondsFormFactors, s.secondsSolve, s.raysPerSecond() / 1e6);
+    std::cout << fmt::format("luxel: render {}x{} at {} spp ({}) {:.3f} s; total {:.3f} s\n", width, height, a.spp,
+                             a.mode, rs.seconds, total);
+    for (const std::string& o : a.outputs) std::cout << "luxel: wrote " << o << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"luxel: radiosity global illumination"};
+  app.require_subcommand(1);
+  RenderArgs ra;
+  CLI::App* render = app.add_subcommand("render", "Solve a scene and render an image");
+  render->add_option("scene", ra.scene, "Built-in name (" + fmt::format("{}", fmt::join(builtinSceneNames(), ", ")) +
+                                            "), a scene file (.json) or a mesh file")->required();
+  render->add_option("-o,--output", ra.outputs, "Output image(s): .exr (linear radiance) or .png (tone-mapped)")->required();
+  render->add_option("--camera", ra.camera, "A named camera of the scene");
+  render->add_option("--eye", ra.eye, "Camera position X,Y,Z");
+  render->add_option("--target", ra.target, "Point the camera looks at X,Y,Z");
+  render->add_option("--up", ra.up, "Camera up vector X,Y,Z");
+  render->add_option("--fov", ra.fov, "Vertical field of view in degrees")->check(CLI::Range(0.01f, 179.0f));
+  render->add_option("--size", ra.size, "Image size WxH")->capture_default_str();
+  render->add_option("--spp", ra.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+  render->add_option("--solver", ra.solver, "progressive or gather")->capture_default_str();
+  auto* el = render->add_option("--elements", ra.elements, "Element budget (default 4000)");
+  render->add_option("--element-size", ra.elementSize, "Element edge length in scene units")->excludes(el);
+  render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  render->add_flag("-q,--quiet", ra.quiet, "Print nothing but errors");
+  render->add_option("--stats", ra.statsPath, "Write statistics as JSON");
+  render->add_option("--mode", ra.mode, "hq (exact direct light per pixel) or radiosity (the seeds' display)")->capture_default_str();
+  render->add_option("--tonemap", ra.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
+  render->add_option("--exposure", ra.exposure, "PNG exposure in stops, on top of auto exposure");
+  render->add_option("--unshot", ra.unshot, "progressive: stop below this unshot fraction")->check(CLI::Range(1e-9, 0.999))->capture_default_str();
+  render->add_option("--refine", ra.refine, "Adaptive refinement: extra elements allowed (0: off)");
+  render->add_option("--rays-per-pair", ra.raysPerPair, "Visibility rays per element-patch pair")->check(CLI::Range(1, 256));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    if (*render) return runRender(ra);
+  } catch (const Cancelled&) {
+    std::cerr << "\nluxel: cancelled\n";
+    return 130;
+  } catch (const std::exception& e) {
+    std::cerr << "\nluxel: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,167 @@
+// Terminal progress bar and log-friendly progress lines. The ETA assumes the rest of a phase runs
+// at the average rate so far: remaining = elapsed * (1 - f) / f.
+#include "progress_bar.h"
+
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+namespace luxel::cli {
+namespace {
+
+// Only lock-free atomics may be touched from a signal handler.
+std::atomic<bool> gInterrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void onSigint(int) { gInterrupted.store(true); }
+
+constexpr int kBarWidth = 20;
+constexpr double kTerminalInterval = 0.1;  // seconds between redraws: ~10 Hz, cheap and smooth
+constexpr double kLogInterval = 2.0;       // seconds between lines in a log, per phase
+constexpr double kMinEtaElapsed = 0.5;     // earlier estimates jump around too much to be useful
+
+std::string formatDuration(double seconds) {
+  if (seconds < 60.0) return fmt::format("{:.1f}s", seconds);
+  const long s = std::lround(seconds);
+  if (s < 3600) return fmt::format("{}m{:02}s", s / 60, s % 60);
+  return fmt::format("{}h{:02}m", s / 3600, (s % 3600) / 60);
+}
+
+// A fraction outside [0,1], or NaN, means the library does not know how far along it is.
+bool isKnown(double fraction) { return fraction >= 0.0; }
+
+int terminalColumns() {
+  winsize size{};
+  if (::ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+  return 80;
+}
+
+// Cuts to at most `bytes` bytes without splitting a UTF-8 sequence.
+void truncateUtf8(std::string& text, size_t bytes) {
+  if (text.size() <= bytes) return;
+  while (bytes > 0 && (static_cast<unsigned char>(text[bytes]) & 0xC0) == 0x80) --bytes;
+  text.resize(bytes);
+}
+
+}  // namespace
+
+ProgressBar::ProgressBar(bool quiet) : quiet_(quiet), terminal_(::isatty(STDERR_FILENO) == 1) {
+  gInterrupted.store(false);
+  struct sigaction action {};
+  action.sa_handler = onSigint;
+  sigemptyset(&action.sa_mask);
+  // SA_RESETHAND: a second Ctrl-C gets the default action, for when cancelling takes too long.
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  ::sigaction(SIGINT, &action, &previousSigint_);
+}
+
+ProgressBar::~ProgressBar() {
+  finish();
+  ::sigaction(SIGINT, &previousSigint_, nullptr);
+}
+
+bool ProgressBar::interrupted() { return gInterrupted.load(); }
+
+luxel::ProgressCallback ProgressBar::callback() {
+  return [this](const luxel::ProgressEvent& event) { return update(event); };
+}
+
+bool ProgressBar::update(const luxel::ProgressEvent& event) {
+  std::lock_guard lock(mutex_);
+  if (interrupted()) {
+    // End the bar so the CLI's "cancelled" message gets a line of its own.
+    finishLocked();
+    return false;
+  }
+  if (quiet_) return true;
+
+  const Clock::time_point now = Clock::now();
+  const bool newPhase = !havePhase_ || event.phase != phase_;
+  if (newPhase) {
+    finishLocked();
+    phase_ = event.phase;
+    havePhase_ = true;
+    phaseDone_ = false;
+    phaseStart_ = now;
+    lastOutput_ = now;
+  }
+  const bool done = event.fraction >= 1.0;
+  if (done && phaseDone_) return true;  // show the end of a phase once
+  const double elapsed = std::chrono::duration<double>(now - phaseStart_).count();
+  const double sinceOutput = std::chrono::duration<double>(now - lastOutput_).count();
+
+  if (terminal_) {
+    if (newPhase || done || sinceOutput >= kTerminalInterval) {
+      drawTerminal(event, elapsed, done);
+      lastOutput_ = now;
+    }
+  } else if (done || sinceOutput >= kLogInterval) {
+    printLogLine(event, elapsed, done);
+    lastOutput_ = now;
+  }
+  phaseDone_ = phaseDone_ || done;
+  return true;
+}
+
+void ProgressBar::finish() {
+  std::lock_guard lock(mutex_);
+  finishLocked();
+}
+
+void ProgressBar::finishLocked() {
+  if (lineOpen_) std::fputc('\n', stderr);
+  lineOpen_ = false;
+}
+
+// "solve [#########...........] 45% ETA 3.2s unshot 1.2%"
+void ProgressBar::drawTerminal(const luxel::ProgressEvent& event, double elapsed, bool done) {
+  std::string line;
+  if (isKnown(event.fraction)) {
+    const double f = std::min(event.fraction, 1.0);
+    const int filled = int(f * kBarWidth);
+    std::string time;
+    if (done) {
+      time = formatDuration(elapsed);
+    } else if (f > 0.0 && elapsed >= kMinEtaElapsed) {
+      time = "ETA " + formatDuration(elapsed * (1.0 - f) / f);
+    } else {
+      time = "ETA --";
+    }
+    // Percent rounds down so that 100% only ever means finished.
+    line = fmt::format("{} [{}{}] {:3d}% {}", event.phase, std::string(filled, '#'),
+                       std::string(kBarWidth - filled, '.'), int(f * 100.0), time);
+  } else {
+    line = fmt::format("{} {}", event.phase, formatDuration(elapsed));
+  }
+  if (!event.detail.empty()) line += fmt::format(" {}", event.detail);
+  // A line that wraps cannot be redrawn with '\r', so keep it inside the terminal.
+  truncateUtf8(line, size_t(std::max(terminalColumns() - 1, 1)));
+  // '\r' returns to the line start; ESC[K erases what a longer previous line left behind.
+  fmt::print(stderr, "\r{}\x1b[K", line);
+  std::fflush(stderr);
+  lineOpen_ = true;
+}
+
+// "luxel: solve 45% (eta 3.2s) unshot 1.2%"
+void ProgressBar::printLogLine(const luxel::ProgressEvent& event, double elapsed, bool done) {
+  std::string line = fmt::format("luxel: {}", event.phase);
+  if (done) {
+    line += fmt::format(" 100% ({})", formatDuration(elapsed));
+  } else if (isKnown(event.fraction)) {
+    const double f = event.fraction;
+    line += fmt::format(" {}%", int(f * 100.0));
+    if (f > 0.0) line += fmt::format(" (eta {})", formatDuration(elapsed * (1.0 - f) / f));
+  } else {
+    line += fmt::format(" ({})", formatDuration(elapsed));
+  }
+  if (!event.detail.empty()) line += fmt::format(" {}", event.detail);
+  fmt::print(stderr, "{}\n", line);
+}
+
+}  // namespace luxel::cli

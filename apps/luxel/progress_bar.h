@@ -1,0 +1,55 @@
+// Progress display for the command-line tool: a redrawn bar on a terminal, sparse log lines
+// otherwise, nothing when quiet. It also turns Ctrl-C into a clean cancel.
+#pragma once
+
+#include <signal.h>
+
+#include <chrono>
+#include <mutex>
+#include <string>
+
+#include "luxel/progress.h"
+
+namespace luxel::cli {
+
+class ProgressBar {
+ public:
+  // Installs a SIGINT handler (even when quiet) that makes update() return false, so the library
+  // stops at its next progress report and throws Cancelled. The handler resets itself after the
+  // first Ctrl-C, so a second one ends the process the usual way. The destructor restores the
+  // previous handler.
+  explicit ProgressBar(bool quiet);
+  ~ProgressBar();
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+  // Shows `event` and returns false once Ctrl-C was pressed. Safe to call from any thread.
+  bool update(const luxel::ProgressEvent& event);
+  // Ends the current terminal line, so that what is printed next starts on its own line.
+  void finish();
+  // update() wrapped for the library; the ProgressBar must outlive the returned callback.
+  luxel::ProgressCallback callback();
+
+  // True once Ctrl-C was pressed since the last ProgressBar was constructed.
+  static bool interrupted();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  void drawTerminal(const luxel::ProgressEvent& event, double elapsed, bool done);
+  void printLogLine(const luxel::ProgressEvent& event, double elapsed, bool done);
+  void finishLocked();
+
+  bool quiet_;
+  bool terminal_;
+  std::mutex mutex_;
+  std::string phase_;
+  bool havePhase_ = false;
+  bool phaseDone_ = false;  // the 100% state of this phase has been shown
+  bool lineOpen_ = false;   // terminal: a line is drawn and not yet ended
+  Clock::time_point phaseStart_;
+  Clock::time_point lastOutput_;
+  struct sigaction previousSigint_ {};
+};
+
+}  // namespace luxel::cli

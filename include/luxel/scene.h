@@ -1,0 +1,112 @@
+// The scene: meshes, materials, textures, lights and cameras, in the units the user gave.
+//
+// Units are physical and consistent: emission is radiance (W m^-2 sr^-1, or cd/m^2 when the
+// user works photometrically); a surface with emission Le has exitance pi * Le. Lengths are in
+// scene units (metres for the built-in scenes). Nothing in here is discretised yet: that is
+// SurfaceSet's job (surface.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace luxel {
+
+using Vec2 = glm::vec2;
+using Vec3 = glm::vec3;
+using Rgb = glm::vec3;  // linear RGB
+
+// A linear-RGB texture. Texels are stored bottom row first (v = 0 at row 0), as glTF and OBJ
+// texture coordinates expect after the loader's flip.
+struct Texture {
+  std::string path;  // where it came from, for error messages
+  int width = 0;
+  int height = 0;
+  std::vector<Rgb> texels;  // width * height, linear
+
+  // Bilinear lookup with wrap-around (repeat) addressing.
+  Rgb sample(Vec2 uv) const;
+  // Mean over the whole image.
+  Rgb mean() const;
+};
+
+struct Material {
+  std::string name;
+  Rgb reflectance{0.8f};       // diffuse albedo in [0,1); multiplies the texture when there is one
+  int reflectanceTexture = -1;  // index into Scene::textures, -1 for none
+  Rgb emission{0.0f};          // emitted radiance; multiplies the emission texture
+  int emissionTexture = -1;
+  // Surfaces take part in light transport through their front face only (counter-clockwise
+  // winding, geometric normal): they emit, receive and reflect there. A two-sided material gets a
+  // back face as well, with its own radiosity, so light never passes through a zero-thickness
+  // wall. Faces whose back receives more direct light than their front are turned round at
+  // discretisation (docs/algorithms.md, "Sides and winding").
+  bool twoSided = false;
+
+  bool isEmissive() const { return emission.r > 0.0f || emission.g > 0.0f || emission.b > 0.0f; }
+};
+
+// Faces are quads or triangles. A triangle repeats its last vertex (v[3] == v[2]), which is the
+// layout Embree's quad geometry accepts directly.
+struct Face {
+  std::array<uint32_t, 4> v{};
+  bool isTriangle() const { return v[3] == v[2]; }
+  int vertexCount() const { return isTriangle() ? 3 : 4; }
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Vec3> positions;
+  std::vector<Vec2> uvs;  // empty, or one per position
+  std::vector<Face> faces;
+  uint32_t material = 0;  // index into Scene::materials
+};
+
+struct Light {
+  enum class Type { Point, Spot, Directional, Sky, CieOvercastSky };
+  Type type = Type::Point;
+  std::string name;
+  Rgb color{1.0f};
+  // Point and spot: radiant intensity (W/sr, or cd). Directional: irradiance on a surface facing
+  // the light (W/m^2, or lux). Sky: radiance (uniform) or zenith radiance (CIE overcast).
+  float intensity = 1.0f;
+  Vec3 position{0.0f};
+  Vec3 direction{0.0f, -1.0f, 0.0f};  // the direction light travels (spot, directional)
+  float innerConeAngle = 0.0f;        // radians, spot: full intensity inside
+  float outerConeAngle = 0.7853982f;  // radians, spot: zero outside, smooth in between
+  float angularRadius = 0.0f;         // radians, directional: the sun's disc (0.00465 for the sun)
+
+  Rgb power() const { return color * intensity; }
+};
+
+struct Camera {
+  std::string name;
+  Vec3 eye{0.0f, 0.0f, 1.0f};
+  Vec3 target{0.0f};
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  float fovY = 45.0f;  // vertical field of view, degrees
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;
+  Vec3 up{0.0f, 1.0f, 0.0f};  // the zenith, for skies
+  std::vector<std::string> warnings;  // what loading repaired (clamped albedo, ...), for the caller to show
+
+  size_t faceCount() const;
+  size_t triangleCount() const;  // quads count as two
+  // Throws luxel::Error naming the mesh and face when indices, materials or values are invalid
+  // (out of range, NaN, negative emission, reflectance outside [0,1], empty scene).
+  void validate() const;
+  const Camera* findCamera(const std::string& name) const;
+  int findMaterial(const std::string& name) const;  // -1 when absent
+};
+
+}  // namespace luxel

@@ -1,0 +1,93 @@
+// Solving diffuse interreflection on a SurfaceSet: one interface for every solver and backend.
+//
+// The discrete system is B_e = E_e + rho_e * (H0_e + sum_p F[e <- p] B_p), where e runs over
+// elements, p over patches, B_p is the area-weighted mean radiosity of the patch's elements, and
+// H0_e is the irradiance from analytic lights. Every solver solves this same system, so they agree
+// to their convergence tolerance. Radiosity B is exitance (W/m^2); radiance is B / pi.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "luxel/progress.h"
+#include "luxel/scene.h"
+#include "luxel/surface.h"
+
+namespace luxel {
+
+struct FormFactorOptions {
+  // Visibility rays per element-patch pair; rounded down to a square (1, 4, 9, 16, ...).
+  int raysPerPair = 4;
+  // Rays for pairs closer than `nearFactor` times their summed sizes, where both the unoccluded
+  // form factor and the visibility vary most over the receiver (contacts, corners).
+  int nearRaysPerPair = 16;
+  // Rays for pairs whose source patch emits: direct light makes the sharpest shadows.
+  int emitterRaysPerPair = 16;
+  float nearFactor = 2.0f;
+  // Shadow rays per element for each analytic light (point, spot, sun, sky).
+  int lightSamples = 16;
+  uint32_t seed = 1;
+};
+
+struct SolveOptions {
+  enum class Method { Progressive, Gather };
+  Method method = Method::Progressive;
+
+  // progressive: stop when unshot power / emitted power falls below this...
+  double unshotThreshold = 1e-3;
+  // ...or after this many seconds or shots (0: no limit).
+  double timeBudget = 0.0;
+  uint64_t shotBudget = 0;
+  // Add Cohen et al.'s ambient term to the returned radiosity (display estimate of what is unshot).
+  bool ambient = true;
+
+  // gather: Gauss-Seidel (or Jacobi) until the largest relative change is below this.
+  double residualThreshold = 1e-5;
+  int maxIterations = 10000;
+  bool gaussSeidel = true;
+
+  // Adaptive refinement: split elements whose radiosity differs from a neighbour's by more than
+  // `refineThreshold` (relative) and re-solve, until `refineBudget` extra elements are used.
+  size_t refineBudget = 0;
+  float refineThreshold = 0.15f;
+  int maxRefineDepth = 3;
+
+  FormFactorOptions formFactors;
+};
+
+struct SolveStats {
+  std::string method;
+  size_t elements = 0;
+  size_t patches = 0;
+  uint64_t shots = 0;          // progressive: patches shot
+  uint64_t iterations = 0;     // gather: sweeps
+  uint64_t rays = 0;           // visibility rays traced
+  double residual = 0.0;       // gather: last relative change; progressive: unshot fraction
+  double unshotFraction = 0.0;
+  double secondsSetup = 0.0;        // BVH build, analytic lights
+  double secondsFormFactors = 0.0;  // form factors and visibility
+  double secondsSolve = 0.0;        // iterations / shooting bookkeeping
+  double secondsTotal = 0.0;
+  size_t refinedElements = 0;
+  int refinePasses = 0;
+  double emittedPower = 0.0;   // W: sum of A E plus analytic-light power reaching surfaces
+  double absorbedPower = 0.0;  // W: sum of A (1 - rho) H
+  double raysPerSecond() const { return secondsFormFactors > 0 ? double(rays) / secondsFormFactors : 0; }
+};
+
+struct Solution {
+  std::vector<Rgb> radiosity;          // B per element (exitance), ambient term included if asked
+  std::vector<Rgb> irradiance;         // H per element: all light arriving, both sides
+  std::vector<Rgb> directIrradiance;   // the part of H that comes straight from emitters and lights
+  SolveStats stats;
+};
+
+// Solves on the CPU backend (Embree + TBB). `surfaces` may be refined in place when
+// options.refineBudget > 0. Throws Error on bad options, Cancelled when `progress` says stop.
+Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options,
+               const ProgressCallback& progress = {});
+
+SolveOptions::Method parseSolveMethod(const std::string& name);  // "progressive" | "gather"
+
+}  // namespace luxel

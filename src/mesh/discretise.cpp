@@ -1,0 +1,309 @@
+// Cutting faces into patches and elements (Cohen, Greenberg, Immel, Brock 1986: substructuring).
+// Each face is cut on a regular grid in its own parameter space, so that elements of one face tile
+// it exactly and can be split again later by adaptive refinement.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "luxel/error.h"
+#include "luxel/surface.h"
+#include "mesh/orient_faces.h"
+
+namespace luxel {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+constexpr size_t kMaxElements = 50'000'000;
+// Samples per side when averaging a texture over an element.
+constexpr int kTextureSamplesPerSide = 4;
+
+struct GridCounts {
+  int patchesU = 1, patchesV = 1;    // quads: patches along s and t; triangles: patchesU only
+  int elementsU = 1, elementsV = 1;  // per patch
+};
+
+int cellsFor(float length, float size) {
+  return std::max(1, int(std::ceil(length / size - 1e-3f)));
+}
+
+GridCounts gridFor(const SurfaceFace& f, float elementSize, int perPatch) {
+  const float patchSize = elementSize * float(perPatch);
+  GridCounts g;
+  if (f.triangle) {
+    float edge = std::max({glm::length(f.corners[1] - f.corners[0]),
+                           glm::length(f.corners[2] - f.corners[1]),
+                           glm::length(f.corners[0] - f.corners[2])});
+    g.patchesU = g.patchesV = cellsFor(edge, patchSize);
+    g.elementsU = g.elementsV = cellsFor(edge / float(g.patchesU), elementSize);
+  } else {
+    float lu = std::max(glm::length(f.corners[1] - f.corners[0]),
+                        glm::length(f.corners[2] - f.corners[3]));
+    float lv = std::max(glm::length(f.corners[3] - f.corners[0]),
+                        glm::length(f.corners[2] - f.corners[1]));
+    g.patchesU = cellsFor(lu, patchSize);
+    g.patchesV = cellsFor(lv, patchSize);
+    g.elementsU = cellsFor(lu / float(g.patchesU), elementSize);
+    g.elementsV = cellsFor(lv / float(g.patchesV), elementSize);
+  }
+  return g;
+}
+
+size_t elementCount(const std::vector<SurfaceFace>& faces, float elementSize, int perPatch) {
+  size_t n = 0;
+  for (const SurfaceFace& f : faces) {
+    GridCounts g = gridFor(f, elementSize, perPatch);
+    n += f.triangle ? size_t(g.patchesU) * g.patchesU * g.elementsU * g.elementsU
+                    : size_t(g.patchesU) * g.patchesV * g.elementsU * g.elementsV;
+  }
+  return n;
+}
+
+// Regular subdivision of a parameter-space polygon into n x n cells (quads) or n^2 triangles.
+std::vector<std::array<Vec2, 4>> subdivideParams(const std::array<Vec2, 4>& p, bool triangle,
+                                                 int nu, int nv) {
+  std::vector<std::array<Vec2, 4>> cells;
+  if (triangle) {
+    const int n = nu;
+    auto at = [&](int i, int j) {
+      return p[0] + (float(i) / n) * (p[1] - p[0]) + (float(j) / n) * (p[2] - p[0]);
+    };
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i + j < n; ++i) {
+        Vec2 a = at(i, j), b = at(i + 1, j), c = at(i, j + 1);
+        cells.push_back({a, b, c, c});
+        if (i + j + 1 < n) {
+          Vec2 d = at(i + 1, j + 1);
+          cells.push_back({b, d, c, c});
+        }
+      }
+  } else {
+    auto at = [&](float s, float t) {
+      return (1 - s) * (1 - t) * p[0] + s * (1 - t) * p[1] + s * t * p[2] + (1 - s) * t * p[3];
+    };
+    for (int j = 0; j < nv; ++j)
+      for (int i = 0; i < nu; ++i) {
+        float s0 = float(i) / nu, s1 = float(i + 1) / nu, t0 = float(j) / nv, t1 = float(j + 1) / nv;
+        cells.push_back({at(s0, t0), at(s1, t0), at(s1, t1), at(s0, t1)});
+      }
+  }
+  return cells;
+}
+
+Polygon polygonFromParams(const SurfaceFace& f, const std::array<Vec2, 4>& param) {
+  Polygon poly;
+  poly.count = f.triangle ? 3 : 4;
+  for (int i = 0; i < 4; ++i) poly.v[i] = f.position(param[i]);
+  return poly;
+}
+
+// Mean of a texture over the element, by a regular grid of samples in parameter space.
+Rgb textureMean(const Texture& tex, const SurfaceFace& f, const std::array<Vec2, 4>& param) {
+  Rgb sum(0.0f);
+  int n = 0;
+  const int k = kTextureSamplesPerSide;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      float s = (i + 0.5f) / k, t = (j + 0.5f) / k;
+      Vec2 st;
+      if (f.triangle) {
+        if (s + t > 1.0f) continue;  // keep the samples inside the triangle
+        st = param[0] + s * (param[1] - param[0]) + t * (param[2] - param[0]);
+      } else {
+        st = (1 - s) * (1 - t) * param[0] + s * (1 - t) * param[1] + s * t * param[2] +
+             (1 - s) * t * param[3];
+      }
+      sum += tex.sample(f.uv(st));
+      ++n;
+    }
+  return n > 0 ? sum / float(n) : tex.sample(f.uv(param[0]));
+}
+
+// Cuts a quad whose fourth corner is off the plane of the other three into two triangles, so
+// that elements are planar and coincide with the triangles the ray tracer sees.
+std::vector<SurfaceFace> splitIfNonPlanar(const SurfaceFace& f, bool triangle, size_t& splitCount) {
+  SurfaceFace a = f;
+  a.triangle = triangle;
+  if (triangle) {
+    a.corners[3] = a.corners[2], a.uvs[3] = a.uvs[2];
+    return {a};
+  }
+  const auto& c = f.corners;
+  Vec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+  float len = glm::length(n);
+  float size = std::max({glm::length(c[1] - c[0]), glm::length(c[2] - c[1]), glm::length(c[3] - c[2]),
+                         glm::length(c[0] - c[3])});
+  bool planar = len > 0.0f && std::abs(glm::dot(n / len, c[3] - c[0])) <= 1e-5f * size;
+  // A concave or bow-tie quad cannot be cut on a bilinear grid either: every corner must turn
+  // the same way.
+  bool convex = true;
+  for (int i = 0; i < 4; ++i) {
+    Vec3 e0 = c[(i + 1) % 4] - c[i], e1 = c[(i + 2) % 4] - c[(i + 1) % 4];
+    convex &= glm::dot(glm::cross(e0, e1), n) > 0.0f;
+  }
+  if (planar && convex) return {a};
+  ++splitCount;
+  SurfaceFace t0 = f, t1 = f;
+  t0.triangle = t1.triangle = true;
+  t0.corners = {c[0], c[1], c[2], c[2]};
+  t0.uvs = {f.uvs[0], f.uvs[1], f.uvs[2], f.uvs[2]};
+  t1.corners = {c[0], c[2], c[3], c[3]};
+  t1.uvs = {f.uvs[0], f.uvs[2], f.uvs[3], f.uvs[3]};
+  return {t0, t1};
+}
+
+// Two-sided materials get a second, reversed face: the back side, with its own radiosity.
+void addTwinFaces(const Scene& scene, std::vector<SurfaceFace>& faces) {
+  const size_t n = faces.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (!scene.materials[faces[i].material].twoSided) continue;
+    SurfaceFace back = faces[i];
+    std::swap(back.corners[1], back.corners[back.triangle ? 2 : 3]);
+    std::swap(back.uvs[1], back.uvs[back.triangle ? 2 : 3]);
+    if (back.triangle) back.corners[3] = back.corners[2], back.uvs[3] = back.uvs[2];
+    back.normal = -faces[i].normal;
+    back.twin = int32_t(i);
+    faces[i].twin = int32_t(faces.size());
+    faces.push_back(back);
+  }
+}
+
+Element makeElement(const Scene& scene, const SurfaceSet& set, uint32_t faceIndex,
+                    uint32_t patchIndex, const std::array<Vec2, 4>& param, uint8_t depth) {
+  const SurfaceFace& f = set.faces[faceIndex];
+  const Material& m = scene.materials[f.material];
+  Element e;
+  e.polygon = polygonFromParams(f, param);
+  e.param = param;
+  e.centroid = e.polygon.centroid();
+  e.normal = f.normal;
+  e.area = e.polygon.area();
+  e.face = faceIndex;
+  e.patch = patchIndex;
+  e.material = f.material;
+  e.reflectance = m.reflectance;
+  if (m.reflectanceTexture >= 0)
+    e.reflectance *= textureMean(scene.textures[size_t(m.reflectanceTexture)], f, param);
+  e.exitance = kPi * m.emission;
+  if (m.emissionTexture >= 0)
+    e.exitance *= textureMean(scene.textures[size_t(m.emissionTexture)], f, param);
+  e.depth = depth;
+  return e;
+}
+
+}  // namespace
+
+float SurfaceSet::totalArea() const {
+  double a = 0.0;
+  for (const Element& e : elements) a += e.area;
+  return float(a);
+}
+
+void SurfaceSet::splitElement(uint32_t index, const Scene& scene) {
+  const Element parent = elements[index];
+  const auto& p = parent.param;
+  const bool triangle = faces[parent.face].triangle;
+  std::array<std::array<Vec2, 4>, 4> children;
+  if (triangle) {
+    Vec2 ab = 0.5f * (p[0] + p[1]), bc = 0.5f * (p[1] + p[2]), ca = 0.5f * (p[2] + p[0]);
+    children = {{{p[0], ab, ca, ca}, {ab, p[1], bc, bc}, {ca, bc, p[2], p[2]}, {ab, bc, ca, ca}}};
+  } else {
+    Vec2 m01 = 0.5f * (p[0] + p[1]), m12 = 0.5f * (p[1] + p[2]), m23 = 0.5f * (p[2] + p[3]),
+         m30 = 0.5f * (p[3] + p[0]), mid = 0.25f * (p[0] + p[1] + p[2] + p[3]);
+    children = {{{p[0], m01, mid, m30}, {m01, p[1], m12, mid}, {mid, m12, p[2], m23},
+                 {m30, mid, m23, p[3]}}};
+  }
+  const auto depth = uint8_t(parent.depth + 1);
+  elements[index] = makeElement(scene, *this, parent.face, parent.patch, children[0], depth);
+  for (int c = 1; c < 4; ++c) {
+    patches[parent.patch].elements.push_back(uint32_t(elements.size()));
+    elements.push_back(makeElement(scene, *this, parent.face, parent.patch, children[c], depth));
+  }
+}
+
+SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
+  if (!(options.elementSize >= 0.0f) || !std::isfinite(options.elementSize))
+    throw Error(fmt::format("element size {} must be a finite length >= 0", options.elementSize));
+  if (options.elementSize == 0.0f && (options.elementBudget == 0 || options.elementBudget > kMaxElements))
+    throw Error(fmt::format("element budget {} must be between 1 and {}", options.elementBudget,
+                            kMaxElements));
+  if (options.elementsPerPatchSide < 1 || options.elementsPerPatchSide > 64)
+    throw Error(fmt::format("elements per patch side {} must be between 1 and 64",
+                            options.elementsPerPatchSide));
+
+  SurfaceSet set;
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Mesh& mesh : scene.meshes)
+    for (const Vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  set.sceneExtent = glm::length(hi - lo);
+
+  const float minArea = 1e-14f * set.sceneExtent * set.sceneExtent;
+  for (uint32_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    const Mesh& mesh = scene.meshes[mi];
+    for (const Face& face : mesh.faces) {
+      SurfaceFace f;
+      f.mesh = mi;
+      f.material = mesh.material;
+      for (int i = 0; i < 4; ++i) {
+        f.corners[i] = mesh.positions[face.v[i]];
+        f.uvs[i] = mesh.uvs.empty() ? Vec2(0.0f) : mesh.uvs[face.v[i]];
+      }
+      for (SurfaceFace& piece : splitIfNonPlanar(f, face.isTriangle(), set.splitQuads)) {
+        Polygon poly{piece.corners, piece.triangle ? 3 : 4};
+        if (!(poly.area() > minArea)) continue;  // degenerate faces carry no light
+        piece.normal = poly.normal();
+        set.faces.push_back(piece);
+      }
+    }
+  }
+  if (options.orientByLight) set.flippedFaces = orientFacesByLight(scene, set.faces);
+  addTwinFaces(scene, set.faces);
+  double totalArea = 0.0;
+  for (const SurfaceFace& f : set.faces) totalArea += Polygon{f.corners, f.triangle ? 3 : 4}.area();
+  if (set.faces.empty())
+    throw Error(fmt::format("scene '{}': no face has a positive area", scene.name));
+
+  const int perPatch = options.elementsPerPatchSide;
+  float size = options.elementSize;
+  if (size == 0.0f) {
+    // Rounding each face up to whole cells overshoots the budget; correct the size a few times.
+    size = float(std::sqrt(totalArea / double(options.elementBudget)));
+    for (int i = 0; i < 4; ++i) {
+      size_t n = elementCount(set.faces, size, perPatch);
+      size *= float(std::sqrt(double(n) / double(options.elementBudget)));
+    }
+  }
+  const size_t expected = elementCount(set.faces, size, perPatch);
+  if (expected > kMaxElements)
+    throw Error(fmt::format("element size {} gives {} elements, over the limit of {}", size,
+                            expected, kMaxElements));
+  set.elementSize = size;
+  set.elements.reserve(expected);
+
+  for (uint32_t fi = 0; fi < set.faces.size(); ++fi) {
+    const SurfaceFace& f = set.faces[fi];
+    const Material& m = scene.materials[f.material];
+    GridCounts g = gridFor(f, size, perPatch);
+    std::array<Vec2, 4> whole = f.triangle
+                                    ? std::array<Vec2, 4>{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(0, 1)}
+                                    : std::array<Vec2, 4>{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+    for (const auto& patchParam : subdivideParams(whole, f.triangle, g.patchesU, g.patchesV)) {
+      Patch patch;
+      patch.polygon = polygonFromParams(f, patchParam);
+      patch.centroid = patch.polygon.centroid();
+      patch.normal = f.normal;
+      patch.area = patch.polygon.area();
+      patch.face = fi;
+      const auto patchIndex = uint32_t(set.patches.size());
+      for (const auto& param : subdivideParams(patchParam, f.triangle, g.elementsU, g.elementsV)) {
+        patch.elements.push_back(uint32_t(set.elements.size()));
+        set.elements.push_back(makeElement(scene, set, fi, patchIndex, param, 0));
+      }
+      set.patches.push_back(std::move(patch));
+    }
+  }
+  return set;
+}
+
+}  // namespace luxel

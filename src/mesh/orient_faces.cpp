@@ -1,0 +1,98 @@
+#include "mesh/orient_faces.h"
+
+#include <algorithm>
+#include <atomic>
+
+#include <tbb/parallel_for.h>
+
+#include "core/random.h"
+#include "trace/ray_tracer.h"
+#include "transport/form_factor.h"
+#include "transport/light_sampling.h"
+
+namespace luxel {
+namespace {
+
+// Emitting faces consulted, the most powerful first; sample points per face and side.
+constexpr size_t kMaxEmitters = 32;
+constexpr int kPointsPerFace = 4;
+// The back must win clearly, so that noise never flips a face that is lit about equally on both sides.
+constexpr float kFlipMargin = 1.5f;
+
+Polygon polygonOf(const SurfaceFace& f) { return Polygon{f.corners, f.triangle ? 3 : 4}; }
+
+}  // namespace
+
+size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces) {
+  std::vector<size_t> emitters;
+  for (size_t i = 0; i < faces.size(); ++i)
+    if (scene.materials[faces[i].material].isEmissive()) emitters.push_back(i);
+  auto power = [&](size_t i) {
+    const Rgb& le = scene.materials[faces[i].material].emission;
+    return polygonOf(faces[i]).area() * (le.r + le.g + le.b);
+  };
+  std::sort(emitters.begin(), emitters.end(), [&](size_t a, size_t b) { return power(a) > power(b); });
+  if (emitters.size() > kMaxEmitters) emitters.resize(kMaxEmitters);
+  if (emitters.empty() && scene.lights.empty()) return 0;
+
+  std::vector<Polygon> polygons(faces.size());
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (size_t i = 0; i < faces.size(); ++i) {
+    polygons[i] = polygonOf(faces[i]);
+    for (int c = 0; c < polygons[i].count; ++c) lo = glm::min(lo, polygons[i].v[c]), hi = glm::max(hi, polygons[i].v[c]);
+  }
+  RayTracer tracer(polygons);
+  const float offset = 1e-5f * std::max(glm::length(hi - lo), 1e-6f);
+  const Vec3 up = glm::normalize(scene.up);
+
+  std::atomic<size_t> flipped{0};
+  tbb::parallel_for(size_t(0), faces.size(), [&](size_t fi) {
+    SurfaceFace& f = faces[fi];
+    const Material& m = scene.materials[f.material];
+    if (m.twoSided || m.isEmissive()) return;
+    Rng rng(pcgHash(uint32_t(fi) * 2654435761u + 17u));
+    std::vector<RTCRay> rays;
+    std::vector<float> values;
+    std::vector<int> side;  // 0 front, 1 back
+    for (int k = 0; k < kPointsPerFace; ++k) {
+      Vec3 x = polygonPoint(polygons[fi], (float(k % 2) + rng.next()) * 0.5f, (float(k / 2) + rng.next()) * 0.5f);
+      for (int s = 0; s < 2; ++s) {
+        Vec3 n = s == 0 ? f.normal : -f.normal;
+        Vec3 xo = x + n * offset;
+        for (size_t ei : emitters) {
+          if (ei == fi) continue;
+          float ff = pointToPolygonFormFactor(x, n, polygons[ei], Sides::Front, Sides::Front);
+          if (ff <= 0.0f) continue;
+          Vec3 y = polygonPoint(polygons[ei], rng.next(), rng.next());
+          Vec3 yo = y + faces[ei].normal * offset;
+          rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
+          const Rgb& le = scene.materials[faces[ei].material].emission;
+          values.push_back(ff * (le.r + le.g + le.b));
+          side.push_back(s);
+        }
+        for (const Light& light : scene.lights) {
+          LightSample ls = sampleLight(light, x, n, Sides::Front, up, rng.next(), rng.next());
+          if (!ls.valid()) continue;
+          rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
+          values.push_back(ls.irradiance.r + ls.irradiance.g + ls.irradiance.b);
+          side.push_back(s);
+        }
+      }
+    }
+    tracer.occluded(rays);
+    float light[2] = {0.0f, 0.0f};
+    for (size_t i = 0; i < rays.size(); ++i)
+      if (!isOccluded(rays[i])) light[side[i]] += values[i];
+    if (light[1] > kFlipMargin * light[0]) {
+      std::swap(f.corners[1], f.corners[f.triangle ? 2 : 3]);
+      std::swap(f.uvs[1], f.uvs[f.triangle ? 2 : 3]);
+      if (f.triangle) f.corners[3] = f.corners[2], f.uvs[3] = f.uvs[2];
+      f.normal = -f.normal;
+      f.flipped = true;
+      ++flipped;
+    }
+  });
+  return flipped.load();
+}
+
+}  // namespace luxel

@@ -1,0 +1,28 @@
+// Per-vertex values for smooth display: each element corner takes the area-weighted mean of the
+// elements meeting there on the same smooth surface (Cohen and Wallace, "Radiosity and Realistic
+// Image Synthesis", 1993, section 9.2: nodal averaging), so values never bleed across creases or
+// material boundaries.
+#include "luxel/render.h"
+#include "mesh/corner_groups.h"
+
+namespace luxel {
+
+std::vector<Rgb> elementCornerValues(const SurfaceSet& surfaces, const std::vector<Rgb>& perElement) {
+  CornerGroups groups(surfaces, kDefaultCreaseCosine);
+  std::vector<Rgb> corners(surfaces.elements.size() * 4, Rgb(0.0f));
+  for (uint32_t e = 0; e < surfaces.elements.size(); ++e) {
+    const int count = surfaces.elements[e].polygon.count;
+    for (int c = 0; c < count; ++c) {
+      Rgb sum(0.0f);
+      float area = 0.0f;
+      for (uint32_t n : groups.at(e, c)) {
+        sum += surfaces.elements[n].area * perElement[n];
+        area += surfaces.elements[n].area;
+      }
+      corners[size_t(e) * 4 + size_t(c)] = area > 0.0f ? sum / area : perElement[e];
+    }
+  }
+  return corners;
+}
+
+}  // namespace luxel

@@ -1,0 +1,75 @@
+#include "render/direct_light.h"
+
+#include <algorithm>
+
+#include "transport/light_sampling.h"
+
+namespace luxel {
+namespace {
+
+// Up to this many emitters are all sampled at every point; beyond, kSampledEmitters are drawn by power.
+constexpr size_t kMaxExplicitEmitters = 16;
+constexpr int kSampledEmitters = 4;
+
+}  // namespace
+
+DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
+    : scene_(scene), up_(glm::normalize(scene.up)) {
+  std::vector<bool> faceDone(surfaces.faces.size(), false);
+  for (const Element& e : surfaces.elements) {
+    if (e.exitance.r + e.exitance.g + e.exitance.b <= 0.0f) continue;
+    const Material& m = scene.materials[e.material];
+    const Sides sides = Sides::Front;
+    if (m.emissionTexture < 0) {
+      if (faceDone[e.face]) continue;
+      faceDone[e.face] = true;
+      const SurfaceFace& f = surfaces.faces[e.face];
+      emitters_.push_back({Polygon{f.corners, f.triangle ? 3 : 4}, e.exitance, sides});
+    } else {
+      emitters_.push_back({e.polygon, e.exitance, sides});
+    }
+  }
+  float total = 0.0f;
+  for (const Emitter& em : emitters_) {
+    total += em.polygon.area() * (em.exitance.r + em.exitance.g + em.exitance.b);
+    cdf_.push_back(total);
+  }
+  for (float& c : cdf_) c /= total > 0.0f ? total : 1.0f;
+}
+
+void DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Sides sides, Rng& rng,
+                                float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
+  float f = pointToPolygonFormFactor(x, n, em.polygon, sides, em.sides);
+  if (f <= 0.0f) return;
+  Vec3 y = polygonPoint(em.polygon, rng.next(), rng.next());
+  Vec3 d = y - x;
+  Vec3 pn = em.polygon.normal();
+  Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
+  Vec3 yo = y + pn * (glm::dot(pn, d) <= 0.0f ? rayOffset : -rayOffset);
+  rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
+  values.push_back(em.exitance * (f * weight));
+}
+
+void DirectLight::sample(Vec3 x, Vec3 n, Sides sides, Rng& rng, float rayOffset,
+                         std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
+  if (emitters_.size() <= kMaxExplicitEmitters) {
+    for (const Emitter& em : emitters_) sampleEmitter(em, 1.0f, x, n, sides, rng, rayOffset, rays, values);
+  } else {
+    for (int i = 0; i < kSampledEmitters; ++i) {
+      size_t k = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.next()) - cdf_.begin());
+      k = std::min(k, emitters_.size() - 1);
+      float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
+      if (p <= 0.0f) continue;
+      sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, sides, rng, rayOffset, rays, values);
+    }
+  }
+  for (const Light& light : scene_.lights) {
+    LightSample ls = sampleLight(light, x, n, sides, up_, rng.next(), rng.next());
+    if (!ls.valid()) continue;
+    Vec3 xo = x + n * (glm::dot(n, ls.direction) >= 0.0f ? rayOffset : -rayOffset);
+    rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
+    values.push_back(ls.irradiance);
+  }
+}
+
+}  // namespace luxel

@@ -1,0 +1,40 @@
+// Direct light at a surface point, for per-pixel shading: emitting polygons by their exact
+// unoccluded form factor times a shadow ray (Baum et al. 1989), analytic lights by sampleLight().
+// Emitting faces with uniform emission are used whole; faces with an emission texture are used
+// element by element so the texture's variation is kept.
+#pragma once
+
+#include <vector>
+
+#include "core/random.h"
+#include "luxel/scene.h"
+#include "luxel/surface.h"
+#include "trace/ray_tracer.h"
+#include "transport/form_factor.h"
+
+namespace luxel {
+
+class DirectLight {
+ public:
+  DirectLight(const Scene& scene, const SurfaceSet& surfaces);
+
+  // Appends one sample's shadow rays and the irradiance each brings if unoccluded.
+  void sample(Vec3 x, Vec3 n, Sides sides, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
+              std::vector<Rgb>& values) const;
+
+ private:
+  struct Emitter {
+    Polygon polygon;
+    Rgb exitance;
+    Sides sides;
+  };
+  void sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Sides sides, Rng& rng,
+                     float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values) const;
+
+  const Scene& scene_;
+  Vec3 up_;
+  std::vector<Emitter> emitters_;
+  std::vector<float> cdf_;  // by power, for scenes with many emitters
+};
+
+}  // namespace luxel

@@ -1,0 +1,199 @@
+// Rendering a solution: ray-cast primary visibility against the elements, radiance
+// L = Le + rho(x) / pi * H(x) with H interpolated smoothly from element corners (nodal averaging),
+// and, in high-quality mode, the direct part of H evaluated per pixel with shadow rays (the
+// "final gather of direct light" of two-pass methods, e.g. Chen et al., SIGGRAPH 1991).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/random.h"
+#include "luxel/error.h"
+#include "luxel/render.h"
+#include "render/direct_light.h"
+#include "trace/ray_tracer.h"
+#include "transport/light_sampling.h"
+
+namespace luxel {
+namespace {
+
+constexpr float kInvPi = std::numbers::inv_pi_v<float>;
+constexpr int kTile = 16;
+constexpr int kMaxImageSide = 32768;
+
+struct CameraFrame {
+  Vec3 eye, forward, right, up;
+  float tanHalfY, aspect;
+
+  CameraFrame(const Camera& c, int width, int height) {
+    eye = c.eye;
+    forward = glm::normalize(c.target - c.eye);
+    right = glm::normalize(glm::cross(forward, c.up));
+    up = glm::cross(right, forward);
+    tanHalfY = std::tan(glm::radians(c.fovY) * 0.5f);
+    aspect = float(width) / float(height);
+  }
+  // (sx, sy) in [0,1]^2, y down.
+  Vec3 direction(float sx, float sy) const {
+    return glm::normalize(forward + right * ((2.0f * sx - 1.0f) * tanHalfY * aspect) +
+                          up * ((1.0f - 2.0f * sy) * tanHalfY));
+  }
+};
+
+void validate(const Scene& scene, const RenderOptions& o) {
+  if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
+    throw Error(fmt::format("image size {}x{} must be between 1 and {} a side", o.width, o.height, kMaxImageSide));
+  if (o.samplesPerPixel < 1 || o.samplesPerPixel > 65536)
+    throw Error(fmt::format("samples per pixel {} must be between 1 and 65536", o.samplesPerPixel));
+  const Camera& c = o.camera;
+  if (!(c.fovY > 0.0f && c.fovY < 180.0f))
+    throw Error(fmt::format("camera '{}': field of view {} must be in (0, 180) degrees", c.name, c.fovY));
+  Vec3 f = c.target - c.eye;
+  if (!(glm::length(f) > 0.0f) || !(glm::length(glm::cross(f, c.up)) > 0.0f))
+    throw Error(fmt::format("camera '{}': eye, target and up must span a frame", c.name));
+  (void)scene;
+}
+
+template <typename T>
+T interpolate(const T* c, int count, float u, float v) {
+  if (count == 3) return (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
+  return (1.0f - u) * (1.0f - v) * c[0] + u * (1.0f - v) * c[1] + u * v * c[2] + (1.0f - u) * v * c[3];
+}
+
+}  // namespace
+
+RenderOptions::Mode parseRenderMode(const std::string& name) {
+  if (name == "radiosity") return RenderOptions::Mode::Radiosity;
+  if (name == "hq" || name == "high-quality") return RenderOptions::Mode::HighQuality;
+  throw Error(fmt::format("unknown render mode '{}' (expected hq or radiosity)", name));
+}
+
+Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& solution,
+             const RenderOptions& options, const ProgressCallback& progress, RenderStats* stats) {
+  validate(scene, options);
+  if (solution.irradiance.size() != surfaces.elements.size())
+    throw Error(fmt::format("the solution has {} elements but the surfaces have {}",
+                            solution.irradiance.size(), surfaces.elements.size()));
+  const auto start = std::chrono::steady_clock::now();
+  const bool hq = options.mode == RenderOptions::Mode::HighQuality;
+
+  // The irradiance field to interpolate: all of it, or only the indirect part in HQ mode.
+  std::vector<Rgb> field = solution.irradiance;
+  if (hq)
+    for (size_t e = 0; e < field.size(); ++e)
+      field[e] = glm::max(field[e] - solution.directIrradiance[e], Rgb(0.0f));
+  const std::vector<Rgb> corners = elementCornerValues(surfaces, field);
+
+  std::vector<Polygon> polygons(surfaces.elements.size());
+  for (size_t e = 0; e < polygons.size(); ++e) polygons[e] = surfaces.elements[e].polygon;
+  RayTracer tracer(polygons);
+  DirectLight direct(scene, surfaces);
+  const float rayOffset = 1e-5f * std::max(surfaces.sceneExtent, 1e-6f);
+  const Vec3 up = glm::normalize(scene.up);
+
+  // Background: the sky where there is one.
+  std::vector<const Light*> skies;
+  for (const Light& l : scene.lights)
+    if (l.type == Light::Type::Sky || l.type == Light::Type::CieOvercastSky) skies.push_back(&l);
+
+  Image image(options.width, options.height);
+  const CameraFrame cam(options.camera, options.width, options.height);
+  const int tilesX = (options.width + kTile - 1) / kTile, tilesY = (options.height + kTile - 1) / kTile;
+  const int tileCount = tilesX * tilesY;
+  const int spp = options.samplesPerPixel;
+  std::atomic<int> tilesDone{0};
+  std::atomic<bool> cancelled{false};
+
+  tbb::parallel_for(0, tileCount, [&](int tile) {
+    if (cancelled.load(std::memory_order_relaxed)) return;
+    const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+    const int x1 = std::min(x0 + kTile, options.width), y1 = std::min(y0 + kTile, options.height);
+    std::vector<RTCRayHit> hits;
+    std::vector<Rgb> sums(size_t(kTile * kTile), Rgb(0.0f));
+    std::vector<RTCRay> shadowRays;
+    std::vector<Rgb> shadowValues;
+    std::vector<Rgb*> shadowTargets;
+    std::vector<Rgb> weights;  // rho(x) / pi per primary hit, for the direct light
+    for (int s = 0; s < spp; ++s) {
+      hits.clear();
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          Rng rng(hashCombine(hashCombine(options.seed, uint32_t(y * options.width + x)), uint32_t(s)));
+          float sx = (float(x) + rng.next()) / float(options.width);
+          float sy = (float(y) + rng.next()) / float(options.height);
+          Vec3 d = cam.direction(sx, sy);
+          RTCRayHit rh;
+          rh.ray = makeRay(cam.eye, d, 0.0f, std::numeric_limits<float>::infinity());
+          hits.push_back(rh);
+        }
+      tracer.intersect(hits);
+
+      shadowRays.clear();
+      shadowValues.clear();
+      shadowTargets.clear();
+      size_t i = 0;
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, ++i) {
+          Rgb& sum = sums[size_t((y - y0) * kTile + (x - x0))];
+          const RTCRayHit& rh = hits[i];
+          Vec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+          if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+            for (const Light* sky : skies) sum += skyRadiance(*sky, dir, up);
+            continue;
+          }
+          const uint32_t e = rh.hit.primID;
+          const Element& el = surfaces.elements[e];
+          const SurfaceFace& face = surfaces.faces[el.face];
+          const Material& m = scene.materials[el.material];
+          const float u = rh.hit.u, v = rh.hit.v;
+          const int count = el.polygon.count;
+          const bool front = glm::dot(el.normal, dir) < 0.0f;
+          if (!front) continue;  // the back of a one-sided surface takes no part in transport
+
+          Vec2 uv = face.uv(interpolate(el.param.data(), count, u, v));
+          Rgb rho = m.reflectance;
+          if (m.reflectanceTexture >= 0) rho *= scene.textures[size_t(m.reflectanceTexture)].sample(uv);
+          Rgb le = m.emission;
+          if (m.emissionTexture >= 0 && m.isEmissive()) le *= scene.textures[size_t(m.emissionTexture)].sample(uv);
+          sum += le;
+          sum += rho * (kInvPi * interpolate(&corners[size_t(e) * 4], count, u, v));
+
+          if (hq) {
+            Vec3 p = cam.eye + dir * rh.ray.tfar;
+            Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, uint32_t(y * options.width + x)), uint32_t(s)));
+            const size_t before = shadowRays.size();
+            direct.sample(p, el.normal, Sides::Front, rng, rayOffset,
+                          shadowRays, shadowValues);
+            for (size_t k = before; k < shadowRays.size(); ++k) {
+              shadowValues[k] *= rho * kInvPi;
+              shadowTargets.push_back(&sum);
+            }
+          }
+        }
+      tracer.occluded(shadowRays);
+      for (size_t k = 0; k < shadowRays.size(); ++k)
+        if (!isOccluded(shadowRays[k])) *shadowTargets[k] += shadowValues[k];
+    }
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) image.at(x, y) = sums[size_t((y - y0) * kTile + (x - x0))] / float(spp);
+
+    int done = ++tilesDone;
+    if (progress && (done % 16 == 0 || done == tileCount)) {
+      if (!progress(ProgressEvent{"render", double(done) / tileCount, {}})) cancelled = true;
+    }
+  });
+  if (cancelled) throw Cancelled();
+
+  if (stats) {
+    stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->rays = tracer.raysTraced();
+  }
+  return image;
+}
+
+}  // namespace luxel

@@ -1,0 +1,512 @@
+// Importing mesh files through Assimp (OBJ/MTL, glTF 2.0, FBX, PLY, COLLADA, ...): geometry with
+// node transforms applied, diffuse materials, KHR_lights_punctual lights and cameras.
+//
+// We walk the node graph ourselves instead of using aiProcess_PreTransformVertices: that step
+// double-translates glTF cameras in Assimp 5.2 (their importer copies the node translation into
+// aiCamera::mPosition as well) and does not fix the winding of mirrored instances.
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <system_error>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "luxel/error.h"
+#include "luxel/import.h"
+#include "scene/import/gltf_extras.h"
+#include "scene/import/quads.h"
+#include "scene/import/transform.h"
+#include "scene/texture_decode.h"
+
+namespace luxel {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Reflectance is kept below 1 so that every bounce loses energy and the solvers converge.
+constexpr float kMaxReflectance = 0.99f;
+constexpr float kPi = 3.14159265358979f;
+
+enum class Format { Gltf, Collada, Fbx, Other };
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+Format formatOf(const fs::path& path) {
+  std::string ext = lower(path.extension().string());
+  if (ext == ".gltf" || ext == ".glb") return Format::Gltf;
+  if (ext == ".dae") return Format::Collada;
+  if (ext == ".fbx") return Format::Fbx;
+  return Format::Other;
+}
+
+glm::mat4 toGlm(const aiMatrix4x4& m) {
+  // aiMatrix4x4 is row-major (a1..a4 is the first row); glm is column-major.
+  glm::mat4 r;
+  for (unsigned row = 0; row < 4; ++row)
+    for (unsigned col = 0; col < 4; ++col) r[int(col)][int(row)] = m[row][col];
+  return r;
+}
+
+glm::mat4 globalTransform(const aiNode* node) {
+  glm::mat4 m(1.0f);
+  for (; node; node = node->mParent) m = toGlm(node->mTransformation) * m;
+  return m;
+}
+
+Vec3 toVec3(const aiVector3D& v) { return Vec3(v.x, v.y, v.z); }
+bool finite(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Percent-decoding for glTF URIs ("my%20texture.png"); returns the input when it is not encoded.
+std::string percentDecode(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit((unsigned char)s[i + 1]) &&
+        std::isxdigit((unsigned char)s[i + 2])) {
+      out += char(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
+// Finds a texture the material refers to. Models authored on Windows use backslashes and get the
+// case of file names wrong (Dabrovic Sponza asks for SP_LUK.JPG and ships sp_luk.JPG), so after
+// the exact name we try a case-insensitive match in the same folder.
+fs::path resolveTexturePath(const fs::path& folder, std::string ref) {
+  std::replace(ref.begin(), ref.end(), '\\', '/');
+  if (ref.rfind("file://", 0) == 0) ref = ref.substr(7);
+  std::error_code ec;
+  for (const std::string& candidate : {ref, percentDecode(ref)}) {
+    fs::path p = fs::path(candidate).is_absolute() ? fs::path(candidate) : folder / candidate;
+    if (fs::is_regular_file(p, ec)) return p;
+    fs::path dir = p.parent_path();
+    std::string want = lower(p.filename().string());
+    if (fs::is_directory(dir, ec)) {
+      for (const fs::directory_entry& e : fs::directory_iterator(dir, ec))
+        if (lower(e.path().filename().string()) == want && e.is_regular_file(ec)) return e.path();
+    }
+  }
+  fs::path p = fs::path(ref).is_absolute() ? fs::path(ref) : folder / ref;
+  return p.lexically_normal();
+}
+
+class AssimpImport {
+ public:
+  AssimpImport(const fs::path& path, const aiScene& ai)
+      : path_(path), file_(path.string()), ai_(ai), format_(formatOf(path)) {
+    scene_.name = path.stem().string();
+    scene_.up = Vec3(0.0f, 1.0f, 0.0f);
+    if (format_ == Format::Gltf) gltf_ = readGltfExtras(path);
+  }
+
+  Scene run() {
+    importMaterials();
+    std::vector<int> uses(ai_.mNumMeshes, 0);
+    importNode(ai_.mRootNode, glm::mat4(1.0f), uses);
+    if (scene_.triangleCount() == 0) throw Error(fmt::format("{}: contains no triangles", file_));
+    importLights();
+    importCameras();
+    return std::move(scene_);
+  }
+
+ private:
+  std::string materialName(unsigned index) const {
+    aiString name;
+    if (ai_.mMaterials[index]->Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0)
+      return name.C_Str();
+    return fmt::format("{}#material{}", path_.filename().string(), index);
+  }
+
+  // Only materials that some triangle mesh uses are kept (OBJ files get an unused
+  // "DefaultMaterial"; glTF files an unused default), in Assimp's order.
+  void importMaterials() {
+    std::vector<bool> used(ai_.mNumMaterials, false);
+    for (unsigned i = 0; i < ai_.mNumMeshes; ++i) {
+      const aiMesh* m = ai_.mMeshes[i];
+      if ((m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) && m->mMaterialIndex < used.size())
+        used[m->mMaterialIndex] = true;
+    }
+    materialMap_.assign(ai_.mNumMaterials, -1);
+    for (unsigned i = 0; i < ai_.mNumMaterials; ++i) {
+      if (!used[i]) continue;
+      materialMap_[i] = int(scene_.materials.size());
+      scene_.materials.push_back(importMaterial(i));
+    }
+  }
+
+  Material importMaterial(unsigned index) {
+    const aiMaterial& am = *ai_.mMaterials[index];
+    Material mat;
+    mat.name = materialName(index);
+
+    // glTF gives baseColorFactor (Assimp copies it into the diffuse colour as well); OBJ Kd,
+    // FBX and COLLADA give the diffuse colour.
+    aiColor4D base(0.8f, 0.8f, 0.8f, 1.0f);
+    bool haveBase = am.Get(AI_MATKEY_BASE_COLOR, base) == AI_SUCCESS;
+    if (!haveBase) am.Get(AI_MATKEY_COLOR_DIFFUSE, base);
+    Rgb reflectance(base.r, base.g, base.b);
+    Rgb clamped;
+    for (int c = 0; c < 3; ++c)
+      clamped[c] = std::isfinite(reflectance[c]) ? std::clamp(reflectance[c], 0.0f, kMaxReflectance)
+                                                 : 0.0f;
+    if (clamped != reflectance)
+      scene_.warnings.push_back(fmt::format(
+          "{}: material '{}': reflectance ({}, {}, {}) clamped to [0, {}]", file_, mat.name,
+          reflectance.x, reflectance.y, reflectance.z, kMaxReflectance));
+    mat.reflectance = clamped;
+
+    aiColor4D emissive(0.0f, 0.0f, 0.0f, 1.0f);
+    am.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
+    Rgb emissiveFactor(emissive.r, emissive.g, emissive.b);
+    if (format_ == Format::Fbx && emissiveFactor == Rgb(0.0f)) {
+      // FBX files may carry only the legacy "Emissive" (EmissiveColor * EmissiveFactor, as
+      // Assimp's own FBX exporter writes it); Assimp maps EmissiveColor alone and passes the
+      // rest through as "$raw." properties.
+      aiColor3D legacy(0.0f, 0.0f, 0.0f);
+      if (am.Get("$raw.Emissive", 0, 0, legacy) == AI_SUCCESS)
+        emissiveFactor = Rgb(legacy.r, legacy.g, legacy.b);
+    }
+    float strength = 1.0f;
+    if (am.Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) != AI_SUCCESS) {
+      strength = 1.0f;
+      if (gltf_) {
+        bool ambiguous = false;
+        strength = gltfEmissiveStrength(*gltf_, haveMaterialName(am) ? mat.name : std::string(),
+                                        emissiveFactor, Rgb(base.r, base.g, base.b), ambiguous);
+        if (ambiguous)
+          scene_.warnings.push_back(fmt::format(
+              "{}: material '{}': several glTF materials match with different "
+              "KHR_materials_emissive_strength; used {}",
+              file_, mat.name, strength));
+      }
+    }
+    Rgb emission = emissiveFactor * strength;
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(emission[c]) || emission[c] < 0.0f) {
+        scene_.warnings.push_back(fmt::format(
+            "{}: material '{}': emission ({}, {}, {}) is negative or not finite; set to 0", file_,
+            mat.name, emission.x, emission.y, emission.z));
+        emission = Rgb(0.0f);
+        break;
+      }
+    }
+    mat.emission = emission;
+
+    int twoSided = 0;
+    if (am.Get(AI_MATKEY_TWOSIDED, twoSided) == AI_SUCCESS) mat.twoSided = twoSided != 0;
+
+    mat.reflectanceTexture = materialTexture(am, mat.name, {aiTextureType_BASE_COLOR,
+                                                            aiTextureType_DIFFUSE});
+    // glTF's emissive factor defaults to black, and black times the texture is black: skip the
+    // decode unless the material emits.
+    if (mat.isEmissive()) mat.emissionTexture = materialTexture(am, mat.name, {aiTextureType_EMISSIVE});
+    return mat;
+  }
+
+  static bool haveMaterialName(const aiMaterial& am) {
+    aiString name;
+    return am.Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0;
+  }
+
+  // The first texture of the first type present, decoded from sRGB (base colour and emissive
+  // textures are sRGB-encoded in glTF, and in practice in every other format).
+  int materialTexture(const aiMaterial& am, const std::string& matName,
+                      std::initializer_list<aiTextureType> types) {
+    aiString ref;
+    bool found = false;
+    for (aiTextureType t : types) {
+      if (am.GetTextureCount(t) > 0 && am.GetTexture(t, 0, &ref) == AI_SUCCESS && ref.length > 0) {
+        found = true;
+        break;
+      }
+    }
+    if (!found) return -1;
+    const std::string refStr = ref.C_Str();
+    constexpr bool kSrgb = true;
+
+    if (const aiTexture* embedded = ai_.GetEmbeddedTexture(refStr.c_str())) {
+      std::string key = "embedded:" + refStr;
+      if (auto it = textureIndex_.find(key); it != textureIndex_.end()) return it->second;
+      std::string name = fmt::format("{}#{}", file_, refStr);
+      Texture tex;
+      try {
+        tex = decodeEmbedded(*embedded, name, kSrgb);
+      } catch (const Error& e) {
+        throw Error(fmt::format("{}: material '{}': {}", file_, matName, e.what()));
+      }
+      return addTexture(key, std::move(tex));
+    }
+
+    fs::path resolved = resolveTexturePath(path_.parent_path(), refStr);
+    std::string key = "file:" + resolved.string();
+    if (auto it = textureIndex_.find(key); it != textureIndex_.end()) return it->second;
+    std::error_code ec;
+    if (!fs::is_regular_file(resolved, ec))
+      throw Error(fmt::format("{}: material '{}': texture '{}' not found (looked for '{}')", file_,
+                              matName, refStr, resolved.string()));
+    try {
+      return addTexture(key, loadTexture(resolved, kSrgb));
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: material '{}': {}", file_, matName, e.what()));
+    }
+  }
+
+  int addTexture(const std::string& key, Texture tex) {
+    int index = int(scene_.textures.size());
+    scene_.textures.push_back(std::move(tex));
+    textureIndex_[key] = index;
+    return index;
+  }
+
+  static Texture decodeEmbedded(const aiTexture& t, const std::string& name, bool srgb) {
+    if (t.mHeight == 0) {
+      // Compressed (PNG, JPEG, ...): mWidth is the size in bytes.
+      return decodeTexture(reinterpret_cast<const unsigned char*>(t.pcData), t.mWidth, srgb, name);
+    }
+    // Raw BGRA8 texels, top row first like every image format.
+    Texture tex;
+    tex.path = name;
+    tex.width = int(t.mWidth);
+    tex.height = int(t.mHeight);
+    tex.texels.resize(size_t(t.mWidth) * size_t(t.mHeight));
+    for (unsigned y = 0; y < t.mHeight; ++y) {
+      for (unsigned x = 0; x < t.mWidth; ++x) {
+        const aiTexel& px = t.pcData[size_t(t.mHeight - 1 - y) * t.mWidth + x];
+        Rgb c(px.r / 255.0f, px.g / 255.0f, px.b / 255.0f);
+        if (srgb) c = Rgb(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
+        tex.texels[size_t(y) * t.mWidth + x] = c;
+      }
+    }
+    return tex;
+  }
+
+  void importNode(const aiNode* node, const glm::mat4& parent, std::vector<int>& uses) {
+    if (!node) return;
+    glm::mat4 global = parent * toGlm(node->mTransformation);
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      unsigned index = node->mMeshes[k];
+      if (index >= ai_.mNumMeshes) continue;
+      importMesh(index, global, uses[index]++);
+    }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) importNode(node->mChildren[c], global, uses);
+  }
+
+  void importMesh(unsigned index, const glm::mat4& transform, int instance) {
+    const aiMesh& am = *ai_.mMeshes[index];
+    if (!(am.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) return;  // points and lines
+    Mesh mesh;
+    mesh.name = am.mName.length > 0 ? std::string(am.mName.C_Str())
+                                    : fmt::format("{}#{}", path_.filename().string(), index);
+    if (instance > 0) mesh.name += fmt::format("#{}", instance);  // the same mesh placed again
+
+    mesh.positions.resize(am.mNumVertices);
+    for (unsigned v = 0; v < am.mNumVertices; ++v) mesh.positions[v] = toVec3(am.mVertices[v]);
+    if (am.HasTextureCoords(0)) {
+      mesh.uvs.resize(am.mNumVertices);
+      for (unsigned v = 0; v < am.mNumVertices; ++v)
+        mesh.uvs[v] = Vec2(am.mTextureCoords[0][v].x, am.mTextureCoords[0][v].y);
+    }
+
+    std::vector<std::array<uint32_t, 3>> triangles;
+    triangles.reserve(am.mNumFaces);
+    for (unsigned f = 0; f < am.mNumFaces; ++f) {
+      const aiFace& face = am.mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      std::array<uint32_t, 3> t{face.mIndices[0], face.mIndices[1], face.mIndices[2]};
+      for (uint32_t v : t)
+        if (v >= am.mNumVertices)
+          throw Error(fmt::format("{}: mesh '{}': face {} references vertex {} of {}", file_,
+                                  mesh.name, f, v, am.mNumVertices));
+      triangles.push_back(t);
+    }
+    if (triangles.empty()) return;
+    mesh.faces = recoverQuads(mesh.positions, triangles);
+
+    int material = am.mMaterialIndex < materialMap_.size() ? materialMap_[am.mMaterialIndex] : -1;
+    if (material < 0)
+      throw Error(fmt::format("{}: mesh '{}': material index {} out of range", file_, mesh.name,
+                              am.mMaterialIndex));
+    mesh.material = uint32_t(material);
+
+    checkFinite(mesh, "");
+    transformMesh(mesh, transform);
+    checkFinite(mesh, " after its node transform");
+    scene_.meshes.push_back(std::move(mesh));
+  }
+
+  void checkFinite(const Mesh& mesh, const char* when) const {
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      Vec3 p = mesh.positions[v];
+      if (!finite(p))
+        throw Error(fmt::format("{}: mesh '{}': vertex {} is not finite ({}, {}, {}){}", file_,
+                                mesh.name, v, p.x, p.y, p.z, when));
+    }
+  }
+
+  glm::mat4 nodeTransform(const aiString& name) const {
+    const aiNode* node = name.length > 0 ? ai_.mRootNode->FindNode(name) : nullptr;
+    return node ? globalTransform(node) : glm::mat4(1.0f);
+  }
+
+  // Assimp stores glTF's color * intensity in mColorDiffuse. We split it as colour = c / max(c),
+  // intensity = max(c): for glTF lights whose colour peaks at 1 (the usual case) that gives back
+  // the file's colour and intensity (candela for point and spot lights, lux for directional), and
+  // in every case Light::power() equals what the file says.
+  void importLights() {
+    for (unsigned i = 0; i < ai_.mNumLights; ++i) {
+      const aiLight& al = *ai_.mLights[i];
+      std::string name = al.mName.length > 0 ? std::string(al.mName.C_Str())
+                                             : fmt::format("{}#light{}", path_.filename().string(), i);
+      Light light;
+      light.name = name;
+      switch (al.mType) {
+        case aiLightSource_POINT: light.type = Light::Type::Point; break;
+        case aiLightSource_SPOT: light.type = Light::Type::Spot; break;
+        case aiLightSource_DIRECTIONAL: light.type = Light::Type::Directional; break;
+        default:
+          scene_.warnings.push_back(fmt::format(
+              "{}: light '{}': ambient, area and undefined lights are not supported; skipped",
+              file_, name));
+          continue;
+      }
+      Rgb c(al.mColorDiffuse.r, al.mColorDiffuse.g, al.mColorDiffuse.b);
+      float peak = std::max({c.x, c.y, c.z});
+      if (!finite(c) || c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) {
+        scene_.warnings.push_back(fmt::format(
+            "{}: light '{}': colour ({}, {}, {}) is negative or not finite; skipped", file_, name,
+            c.x, c.y, c.z));
+        continue;
+      }
+      light.color = peak > 0.0f ? c / peak : Rgb(1.0f);
+      light.intensity = peak;
+      light.position = toVec3(al.mPosition);
+      Vec3 dir = toVec3(al.mDirection);
+      if (light.type != Light::Type::Point) {
+        if (!(glm::length(dir) > 0.0f) || !finite(dir)) dir = Vec3(0.0f, 0.0f, -1.0f);
+        light.direction = glm::normalize(dir);
+      }
+      if (light.type == Light::Type::Spot) {
+        // glTF's innerConeAngle/outerConeAngle are angles from the axis; Assimp copies them
+        // unchanged, and luxel uses the same convention.
+        float inner = al.mAngleInnerCone, outer = al.mAngleOuterCone;
+        if (!std::isfinite(outer) || outer <= 0.0f || outer > 0.5f * kPi) outer = 0.25f * kPi;
+        if (!std::isfinite(inner) || inner < 0.0f) inner = 0.0f;
+        light.outerConeAngle = outer;
+        light.innerConeAngle = std::min(inner, outer);
+      }
+      transformLight(light, nodeTransform(al.mName));
+      scene_.lights.push_back(light);
+    }
+  }
+
+  void importCameras() {
+    for (unsigned i = 0; i < ai_.mNumCameras; ++i) {
+      const aiCamera& ac = *ai_.mCameras[i];
+      Camera cam;
+      cam.name = ac.mName.length > 0 ? std::string(ac.mName.C_Str())
+                                     : fmt::format("{}#camera{}", path_.filename().string(), i);
+      if (ac.mHorizontalFOV <= 0.0f && ac.mOrthographicWidth > 0.0f) {
+        scene_.warnings.push_back(fmt::format(
+            "{}: camera '{}': orthographic cameras are not supported; skipped", file_, cam.name));
+        continue;
+      }
+      std::optional<float> fovY = verticalFov(ac);
+      if (!fovY) {
+        scene_.warnings.push_back(fmt::format(
+            "{}: camera '{}': field of view {} rad is unusable; using {} degrees", file_, cam.name,
+            ac.mHorizontalFOV, cam.fovY));
+      } else {
+        cam.fovY = *fovY;
+      }
+      // glTF cameras sit at their node's origin; Assimp 5.2 also copies the node translation
+      // into mPosition, which would count it twice.
+      Vec3 position = format_ == Format::Gltf ? Vec3(0.0f) : toVec3(ac.mPosition);
+      Vec3 look = toVec3(ac.mLookAt);
+      if (!(glm::length(look) > 0.0f) || !finite(look)) look = Vec3(0.0f, 0.0f, -1.0f);
+      Vec3 up = toVec3(ac.mUp);
+      if (!(glm::length(up) > 0.0f) || !finite(up)) up = Vec3(0.0f, 1.0f, 0.0f);
+      cam.eye = position;
+      cam.target = position + glm::normalize(look);
+      cam.up = glm::normalize(up);
+      transformCamera(cam, nodeTransform(ac.mName));
+      scene_.cameras.push_back(cam);
+    }
+  }
+
+  // The vertical field of view in degrees. aiCamera documents mHorizontalFOV as the half angle
+  // ("the angle between the center line of the screen and the left or right border",
+  // assimp/camera.h), but importers disagree: COLLADA and FBX store their full horizontal angle
+  // (xfov, FieldOfView) as is, and glTF is read from the file (see gltf_extras.h). With the
+  // half-width h = tan(half horizontal angle), the half-height is h / aspect.
+  std::optional<float> verticalFov(const aiCamera& ac) const {
+    float aspect = ac.mAspect > 0.0f && std::isfinite(ac.mAspect) ? ac.mAspect : 1.0f;
+    float fovY = 0.0f;  // radians
+    if (format_ == Format::Gltf) {
+      std::optional<float> yfov = gltf_ ? gltfCameraYFov(*gltf_, ac.mName.C_Str()) : std::nullopt;
+      fovY = yfov ? *yfov : ac.mHorizontalFOV / aspect;  // Assimp 5.2 stores yfov * aspect
+    } else {
+      float half = format_ == Format::Other ? ac.mHorizontalFOV : 0.5f * ac.mHorizontalFOV;
+      if (!(half > 0.0f) || !(half < 0.5f * kPi)) return std::nullopt;
+      fovY = 2.0f * std::atan(std::tan(half) / aspect);
+    }
+    if (!(fovY > 0.0f) || !(fovY < kPi)) return std::nullopt;
+    return fovY * 180.0f / kPi;
+  }
+
+  fs::path path_;
+  std::string file_;
+  const aiScene& ai_;
+  Format format_;
+  std::optional<GltfExtras> gltf_;
+  Scene scene_;
+  std::vector<int> materialMap_;             // Assimp material index -> scene material, -1 unused
+  std::map<std::string, int> textureIndex_;  // each image decoded once
+};
+
+bool hasPolygons(const aiScene& ai) {
+  for (unsigned i = 0; i < ai.mNumMeshes; ++i) {
+    const aiMesh* m = ai.mMeshes[i];
+    for (unsigned f = 0; m && f < m->mNumFaces; ++f)
+      if (m->mFaces[f].mNumIndices >= 3) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Scene importMeshFile(const fs::path& path) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", file));
+  if (!fs::is_regular_file(path, ec)) throw Error(fmt::format("{}: not a regular file", file));
+
+  Assimp::Importer importer;
+  // Read without post-processing first: validation would reject a file without faces as
+  // "Mesh contains no faces", and "contains no triangles" says what is wrong.
+  const aiScene* ai = importer.ReadFile(file, 0);
+  if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
+  if (!ai->mRootNode || !hasPolygons(*ai)) throw Error(fmt::format("{}: contains no triangles", file));
+  // Points and lines carry no area: drop them rather than get meshes of them. Validation runs
+  // first among the steps, so the others only see indices that are in range.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  ai = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                                    aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
+  if (ai->mNumMeshes == 0) throw Error(fmt::format("{}: contains no triangles", file));
+  return AssimpImport(path, *ai).run();
+}
+
+}  // namespace luxel

@@ -1,0 +1,144 @@
+// Reading the glTF 2.0 JSON that Assimp 5.2 does not pass on (see gltf_extras.h). Specification:
+// https://registry.khronos.org/glTF/specs/2.0/glTF-2.0.html (GLB layout, section 4.4) and
+// KHR_materials_emissive_strength.
+#include "scene/import/gltf_extras.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include <nlohmann/json.hpp>
+
+namespace luxel {
+namespace {
+
+using nlohmann::json;
+
+constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
+constexpr uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
+constexpr float kFactorTolerance = 1e-5f;
+
+uint32_t readU32(const std::vector<char>& b, size_t at) {
+  uint32_t v = 0;
+  std::memcpy(&v, b.data() + at, 4);  // GLB is little-endian, as are the machines we build for
+  return v;
+}
+
+Rgb readColor(const json& j, const char* key, Rgb fallback) {
+  auto it = j.find(key);
+  if (it == j.end() || !it->is_array() || it->size() < 3) return fallback;
+  Rgb c = fallback;
+  for (int i = 0; i < 3; ++i)
+    if ((*it)[size_t(i)].is_number()) c[i] = (*it)[size_t(i)].get<float>();
+  return c;
+}
+
+bool near(Rgb a, Rgb b) {
+  for (int i = 0; i < 3; ++i)
+    if (std::fabs(a[i] - b[i]) > kFactorTolerance * std::max(1.0f, std::fabs(a[i]))) return false;
+  return true;
+}
+
+}  // namespace
+
+std::optional<GltfExtras> readGltfExtras(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  json doc;
+  if (bytes.size() >= 20 && readU32(bytes, 0) == kGlbMagic) {
+    // Header (magic, version, length), then the JSON chunk (length, type, data).
+    uint32_t chunkLength = readU32(bytes, 12);
+    if (readU32(bytes, 16) != kGlbJsonChunk || size_t(chunkLength) > bytes.size() - 20)
+      return std::nullopt;
+    doc = json::parse(bytes.begin() + 20, bytes.begin() + 20 + ptrdiff_t(chunkLength), nullptr,
+                      false);
+  } else {
+    doc = json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  }
+  if (doc.is_discarded() || !doc.is_object()) return std::nullopt;
+  auto asset = doc.find("asset");
+  if (asset == doc.end() || !asset->is_object() || !asset->contains("version") ||
+      !(*asset)["version"].is_string() || (*asset)["version"].get<std::string>().rfind("2", 0) != 0)
+    return std::nullopt;
+
+  GltfExtras extras;
+  if (auto mats = doc.find("materials"); mats != doc.end() && mats->is_array()) {
+    for (const json& m : *mats) {
+      if (!m.is_object()) continue;
+      GltfExtras::MaterialInfo info;
+      if (m.contains("name") && m["name"].is_string()) info.name = m["name"].get<std::string>();
+      info.emissiveFactor = readColor(m, "emissiveFactor", Rgb(0.0f));
+      if (auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end() && pbr->is_object())
+        info.baseColorFactor = readColor(*pbr, "baseColorFactor", Rgb(1.0f));
+      const json* strength = nullptr;
+      if (auto ext = m.find("extensions"); ext != m.end() && ext->is_object()) {
+        if (auto es = ext->find("KHR_materials_emissive_strength");
+            es != ext->end() && es->is_object()) {
+          if (auto s = es->find("emissiveStrength"); s != es->end() && s->is_number())
+            strength = &*s;
+        }
+      }
+      if (strength) info.emissiveStrength = strength->get<float>();
+      extras.materials.push_back(std::move(info));
+    }
+  }
+
+  auto cameras = doc.find("cameras");
+  auto nodes = doc.find("nodes");
+  if (cameras != doc.end() && cameras->is_array() && nodes != doc.end() && nodes->is_array()) {
+    for (size_t i = 0; i < nodes->size(); ++i) {
+      const json& n = (*nodes)[i];
+      if (!n.is_object() || !n.contains("camera") || !n["camera"].is_number_unsigned()) continue;
+      size_t c = n["camera"].get<size_t>();
+      if (c >= cameras->size() || !(*cameras)[c].is_object()) continue;
+      const json& cam = (*cameras)[c];
+      auto persp = cam.find("perspective");
+      if (persp == cam.end() || !persp->is_object() || !persp->contains("yfov") ||
+          !(*persp)["yfov"].is_number())
+        continue;
+      float yfov = (*persp)["yfov"].get<float>();
+      if (n.contains("name") && n["name"].is_string()) {
+        extras.cameraNodes.push_back({n["name"].get<std::string>(), yfov});
+      } else {
+        // Assimp names unnamed nodes after their index: "nodes_3" in 5.2, "nodes[3]" later.
+        extras.cameraNodes.push_back({"nodes_" + std::to_string(i), yfov});
+        extras.cameraNodes.push_back({"nodes[" + std::to_string(i) + "]", yfov});
+      }
+    }
+  }
+  return extras;
+}
+
+float gltfEmissiveStrength(const GltfExtras& extras, const std::string& name, Rgb emissiveFactor,
+                           Rgb baseColorFactor, bool& ambiguous) {
+  ambiguous = false;
+  std::optional<float> found;
+  for (const GltfExtras::MaterialInfo& m : extras.materials) {
+    if (m.name != name || !near(m.emissiveFactor, emissiveFactor) ||
+        !near(m.baseColorFactor, baseColorFactor))
+      continue;
+    if (!found) {
+      found = m.emissiveStrength;
+    } else if (*found != m.emissiveStrength) {
+      ambiguous = true;
+    }
+  }
+  return found.value_or(1.0f);
+}
+
+std::optional<float> gltfCameraYFov(const GltfExtras& extras, const std::string& nodeName) {
+  std::optional<float> found;
+  for (const GltfExtras::CameraNode& c : extras.cameraNodes) {
+    if (c.nodeName != nodeName) continue;
+    if (found && *found != c.yfov) return std::nullopt;
+    found = c.yfov;
+  }
+  return found;
+}
+
+}  // namespace luxel

@@ -1,0 +1,50 @@
+// What Assimp 5.2 drops or garbles when it imports glTF 2.0, read from the file's JSON directly:
+// KHR_materials_emissive_strength (not supported before Assimp 5.3) and camera yfov (stored in
+// aiCamera::mHorizontalFOV as yfov * aspect by 5.2, as a full horizontal angle by later versions,
+// while aiCamera documents a half angle).
+//
+// Assimp loads glTF objects lazily in the order the node graph references them, so aiScene
+// indices do not follow the file's arrays: materials are matched by name and factors, and cameras
+// by the name of the node that holds them (which Assimp gives the aiCamera).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "luxel/scene.h"
+
+namespace luxel {
+
+struct GltfExtras {
+  struct MaterialInfo {
+    std::string name;
+    Rgb emissiveFactor{0.0f};
+    Rgb baseColorFactor{1.0f};
+    float emissiveStrength = 1.0f;
+  };
+  struct CameraNode {
+    std::string nodeName;  // as Assimp names the node: "name", or "nodes_<i>" without one
+    float yfov = 0.0f;     // radians, full vertical angle
+  };
+  std::vector<MaterialInfo> materials;
+  std::vector<CameraNode> cameraNodes;  // perspective cameras only
+};
+
+// Reads the JSON of a .gltf file or the JSON chunk of a .glb file. Returns nullopt when the file is
+// not glTF 2.0 JSON; the caller has already imported it through Assimp, so that only means there
+// is nothing extra to read.
+std::optional<GltfExtras> readGltfExtras(const std::filesystem::path& path);
+
+// The emissive strength of the glTF material that Assimp turned into a material with this name and
+// these factors; 1 when none matches. `ambiguous` is set when several match with different
+// strengths (the first is returned).
+float gltfEmissiveStrength(const GltfExtras& extras, const std::string& name, Rgb emissiveFactor,
+                           Rgb baseColorFactor, bool& ambiguous);
+
+// The yfov (radians) of the camera held by the node with this name; nullopt when no node or more
+// than one node with different cameras matches.
+std::optional<float> gltfCameraYFov(const GltfExtras& extras, const std::string& nodeName);
+
+}  // namespace luxel

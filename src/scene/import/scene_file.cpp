@@ -1,0 +1,512 @@
+// luxel scene files: JSON that places mesh files, overrides and adds materials, and adds lights
+// and cameras. The format is documented in docs/scene-format.md; keep the two in step.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+#include <utility>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "luxel/error.h"
+#include "luxel/import.h"
+#include "scene/import/transform.h"
+
+namespace luxel {
+namespace {
+
+namespace fs = std::filesystem;
+// ordered_json keeps the file's key order, so added materials appear in the order written.
+using Json = nlohmann::ordered_json;
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kMaxReflectance = 0.99f;  // as the mesh importer: every bounce must lose energy
+
+float radians(float degrees) { return degrees * kPi / 180.0f; }
+
+// JSON Pointer (RFC 6901) escaping for keys that become part of an error's path.
+std::string escapeKey(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+std::string join(std::initializer_list<std::string_view> names) {
+  std::string out;
+  for (std::string_view n : names) {
+    if (!out.empty()) out += ", ";
+    out += n;
+  }
+  return out;
+}
+
+// Reads typed values out of the document, naming the file and the JSON path of anything wrong.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& ptr, const std::string& what) const {
+    throw Error(fmt::format("{}: {}: {}", file_, ptr.empty() ? "/" : ptr, what));
+  }
+
+  static std::string child(const std::string& ptr, std::string_view key) {
+    return ptr + "/" + escapeKey(key);
+  }
+  static std::string child(const std::string& ptr, size_t index) {
+    return ptr + "/" + std::to_string(index);
+  }
+
+  void expectType(const Json& j, const std::string& ptr, bool ok, std::string_view expected) const {
+    if (!ok) fail(ptr, fmt::format("expected {}, got {}", expected, typeName(j)));
+  }
+
+  const Json& object(const Json& j, const std::string& ptr) const {
+    expectType(j, ptr, j.is_object(), "an object");
+    return j;
+  }
+
+  const Json& array(const Json& j, const std::string& ptr) const {
+    expectType(j, ptr, j.is_array(), "an array");
+    return j;
+  }
+
+  void keys(const Json& obj, const std::string& ptr,
+            std::initializer_list<std::string_view> allowed) const {
+    for (const auto& [key, value] : obj.items()) {
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+        fail(child(ptr, key), fmt::format("unknown key '{}' (expected {})", key, join(allowed)));
+    }
+  }
+
+  float number(const Json& j, const std::string& ptr) const {
+    expectType(j, ptr, j.is_number(), "a number");
+    double v = j.get<double>();
+    if (!std::isfinite(v) || std::fabs(v) > 3.0e38) fail(ptr, "number out of range");
+    return float(v);
+  }
+
+  float nonNegative(const Json& j, const std::string& ptr) const {
+    float v = number(j, ptr);
+    if (v < 0.0f) fail(ptr, fmt::format("must not be negative, got {}", v));
+    return v;
+  }
+
+  bool boolean(const Json& j, const std::string& ptr) const {
+    expectType(j, ptr, j.is_boolean(), "true or false");
+    return j.get<bool>();
+  }
+
+  std::string string(const Json& j, const std::string& ptr) const {
+    expectType(j, ptr, j.is_string(), "a string");
+    return j.get<std::string>();
+  }
+
+  Vec3 vec3(const Json& j, const std::string& ptr) const {
+    expectType(j, ptr, j.is_array() && j.size() == 3, "an array of 3 numbers");
+    return Vec3(number(j[0], child(ptr, 0)), number(j[1], child(ptr, 1)),
+                number(j[2], child(ptr, 2)));
+  }
+
+  Vec3 direction(const Json& j, const std::string& ptr) const {
+    Vec3 d = vec3(j, ptr);
+    if (!(glm::length(d) > 0.0f)) fail(ptr, "direction must not be zero");
+    return glm::normalize(d);
+  }
+
+  // A colour is [r, g, b] or one number for grey; components must not be negative.
+  Rgb color(const Json& j, const std::string& ptr) const {
+    if (j.is_number()) return Rgb(nonNegative(j, ptr));
+    expectType(j, ptr, j.is_array() && j.size() == 3, "a number or an array of 3 numbers");
+    return Rgb(nonNegative(j[0], child(ptr, 0)), nonNegative(j[1], child(ptr, 1)),
+               nonNegative(j[2], child(ptr, 2)));
+  }
+
+  const std::string& file() const { return file_; }
+
+ private:
+  static std::string typeName(const Json& j) {
+    if (j.is_array()) return fmt::format("an array of {}", j.size());
+    return j.type_name();
+  }
+
+  std::string file_;
+};
+
+class SceneFileLoader {
+ public:
+  SceneFileLoader(const fs::path& path, std::string file)
+      : path_(path), folder_(path.parent_path()), in_(std::move(file)) {}
+
+  Scene load(const Json& doc) {
+    in_.object(doc, "");
+    in_.keys(doc, "", {"name", "builtin", "up", "meshes", "materials", "lights", "cameras"});
+
+    if (auto it = doc.find("builtin"); it != doc.end()) loadBuiltin(*it, "/builtin");
+    scene_.name = path_.stem().string();
+    if (auto it = doc.find("name"); it != doc.end()) scene_.name = in_.string(*it, "/name");
+
+    // "material" on a mesh entry is applied after /materials, which may define it.
+    std::vector<MaterialAssignment> assignments;
+    if (auto it = doc.find("meshes"); it != doc.end()) {
+      const Json& meshes = in_.array(*it, "/meshes");
+      for (size_t i = 0; i < meshes.size(); ++i) {
+        size_t first = scene_.meshes.size();
+        std::optional<MaterialAssignment> a = addMeshFile(meshes[i], Reader::child("/meshes", i));
+        if (a) {
+          a->firstMesh = first;
+          a->endMesh = scene_.meshes.size();
+          assignments.push_back(*a);
+        }
+      }
+    }
+    if (auto it = doc.find("materials"); it != doc.end()) {
+      const Json& materials = in_.object(*it, "/materials");
+      for (const auto& [name, spec] : materials.items())
+        applyMaterial(name, spec, Reader::child("/materials", name));
+    }
+    for (const MaterialAssignment& a : assignments) {
+      int index = scene_.findMaterial(a.material);
+      if (index < 0)
+        in_.fail(a.ptr, fmt::format("no material named '{}' (define it under /materials or use "
+                                    "one from the mesh files)",
+                                    a.material));
+      for (size_t m = a.firstMesh; m < a.endMesh; ++m) scene_.meshes[m].material = uint32_t(index);
+    }
+    if (auto it = doc.find("lights"); it != doc.end()) {
+      const Json& lights = in_.array(*it, "/lights");
+      for (size_t i = 0; i < lights.size(); ++i)
+        scene_.lights.push_back(readLight(lights[i], Reader::child("/lights", i), i));
+    }
+    if (auto it = doc.find("cameras"); it != doc.end()) {
+      const Json& cameras = in_.array(*it, "/cameras");
+      for (size_t i = 0; i < cameras.size(); ++i) {
+        Camera cam = readCamera(cameras[i], Reader::child("/cameras", i), i);
+        auto same = std::find_if(scene_.cameras.begin(), scene_.cameras.end(),
+                                 [&](const Camera& c) { return c.name == cam.name; });
+        if (same != scene_.cameras.end()) *same = cam;  // a file's camera redefined by name
+        else scene_.cameras.push_back(cam);
+      }
+    }
+    if (auto it = doc.find("up"); it != doc.end()) scene_.up = in_.direction(*it, "/up");
+    return std::move(scene_);
+  }
+
+ private:
+  struct MaterialAssignment {
+    std::string material;
+    std::string ptr;  // where it was asked for, for the error when it does not exist
+    size_t firstMesh = 0, endMesh = 0;
+  };
+
+  void loadBuiltin(const Json& j, const std::string& ptr) {
+    std::string name = in_.string(j, ptr);
+    if (!isBuiltinScene(name)) {
+      std::string names;
+      for (const std::string& n : builtinSceneNames()) names += (names.empty() ? "" : ", ") + n;
+      in_.fail(ptr, fmt::format("unknown built-in scene '{}' (expected {})", name, names));
+    }
+    try {
+      scene_ = builtinScene(name);
+    } catch (const Error& e) {
+      in_.fail(ptr, e.what());
+    }
+  }
+
+  fs::path resolve(const std::string& relative) const {
+    fs::path p(relative);
+    return p.is_absolute() ? p : (folder_ / p).lexically_normal();
+  }
+
+  // Returns the material to assign to all of the file's meshes, when the entry names one.
+  std::optional<MaterialAssignment> addMeshFile(const Json& j, const std::string& ptr) {
+    in_.object(j, ptr);
+    in_.keys(j, ptr, {"file", "translate", "rotate", "scale", "material"});
+    if (!j.contains("file")) in_.fail(ptr, "missing key 'file'");
+    fs::path file = resolve(in_.string(j["file"], Reader::child(ptr, "file")));
+    Scene part;
+    try {
+      part = importMeshFile(file);
+    } catch (const Error& e) {
+      in_.fail(Reader::child(ptr, "file"), e.what());
+    }
+    glm::mat4 m = readTransform(j, ptr);
+    for (Mesh& mesh : part.meshes) transformMesh(mesh, m);
+    for (Light& light : part.lights) transformLight(light, m);
+    for (Camera& cam : part.cameras) transformCamera(cam, m);
+    merge(std::move(part));
+
+    if (!j.contains("material")) return std::nullopt;
+    MaterialAssignment a;
+    a.ptr = Reader::child(ptr, "material");
+    a.material = in_.string(j["material"], a.ptr);
+    return a;
+  }
+
+  // translate * rotate * scale: scale first, about the file's origin.
+  glm::mat4 readTransform(const Json& j, const std::string& ptr) const {
+    glm::mat4 m(1.0f);
+    if (auto it = j.find("translate"); it != j.end())
+      m = glm::translate(m, in_.vec3(*it, Reader::child(ptr, "translate")));
+    if (auto it = j.find("rotate"); it != j.end()) m = m * readRotation(*it, Reader::child(ptr, "rotate"));
+    if (auto it = j.find("scale"); it != j.end()) {
+      std::string p = Reader::child(ptr, "scale");
+      Vec3 s = it->is_number() ? Vec3(in_.number(*it, p)) : in_.vec3(*it, p);
+      if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) in_.fail(p, "scale must not be zero");
+      m = glm::scale(m, s);
+    }
+    return m;
+  }
+
+  // [x, y, z] Euler angles in degrees, applied about X, then Y, then Z (fixed axes); or
+  // {"axis": [x, y, z], "angle": degrees}, counter-clockwise looking down the axis.
+  glm::mat4 readRotation(const Json& j, const std::string& ptr) const {
+    if (j.is_array()) {
+      Vec3 e = in_.vec3(j, ptr);
+      glm::mat4 r(1.0f);
+      r = glm::rotate(r, radians(e.z), Vec3(0.0f, 0.0f, 1.0f));
+      r = glm::rotate(r, radians(e.y), Vec3(0.0f, 1.0f, 0.0f));
+      r = glm::rotate(r, radians(e.x), Vec3(1.0f, 0.0f, 0.0f));
+      return r;
+    }
+    in_.expectType(j, ptr, j.is_object(), "[x, y, z] degrees or {\"axis\": [x, y, z], \"angle\": degrees}");
+    in_.keys(j, ptr, {"axis", "angle"});
+    if (!j.contains("axis") || !j.contains("angle")) in_.fail(ptr, "needs both 'axis' and 'angle'");
+    Vec3 axis = in_.direction(j["axis"], Reader::child(ptr, "axis"));
+    float angle = in_.number(j["angle"], Reader::child(ptr, "angle"));
+    return glm::rotate(glm::mat4(1.0f), radians(angle), axis);
+  }
+
+  // Appends another scene's contents. Materials keep their names even when another file has a
+  // material of the same name: both stay, and a /materials override applies to both.
+  void merge(Scene part) {
+    uint32_t materialBase = uint32_t(scene_.materials.size());
+    int textureBase = int(scene_.textures.size());
+    for (Material& m : part.materials) {
+      if (m.reflectanceTexture >= 0) m.reflectanceTexture += textureBase;
+      if (m.emissionTexture >= 0) m.emissionTexture += textureBase;
+      scene_.materials.push_back(std::move(m));
+    }
+    for (Texture& t : part.textures) scene_.textures.push_back(std::move(t));
+    for (Mesh& mesh : part.meshes) {
+      mesh.material += materialBase;
+      scene_.meshes.push_back(std::move(mesh));
+    }
+    for (Light& l : part.lights) scene_.lights.push_back(std::move(l));
+    for (Camera& c : part.cameras) scene_.cameras.push_back(std::move(c));
+    for (std::string& w : part.warnings) scene_.warnings.push_back(std::move(w));
+  }
+
+  void applyMaterial(const std::string& name, const Json& spec, const std::string& ptr) {
+    in_.object(spec, ptr);
+    in_.keys(spec, ptr, {"reflectance", "emission", "emissionStrength", "twoSided", "texture",
+                         "emissionTexture"});
+    std::vector<size_t> targets;
+    for (size_t i = 0; i < scene_.materials.size(); ++i)
+      if (scene_.materials[i].name == name) targets.push_back(i);
+    if (targets.empty()) {
+      Material added;
+      added.name = name;
+      targets.push_back(scene_.materials.size());
+      scene_.materials.push_back(added);
+    }
+
+    std::optional<Rgb> reflectance, emission;
+    std::optional<float> strength;
+    std::optional<bool> twoSided;
+    std::optional<int> texture, emissionTexture;  // -1 removes
+    if (auto it = spec.find("reflectance"); it != spec.end()) {
+      std::string p = Reader::child(ptr, "reflectance");
+      Rgb r = in_.color(*it, p);
+      if (r.x > 1.0f || r.y > 1.0f || r.z > 1.0f)
+        in_.fail(p, fmt::format("reflectance ({}, {}, {}) is above 1", r.x, r.y, r.z));
+      Rgb clamped = glm::min(r, Rgb(kMaxReflectance));
+      if (clamped != r)
+        scene_.warnings.push_back(fmt::format("{}: {}: reflectance clamped to {}", in_.file(), p,
+                                              kMaxReflectance));
+      reflectance = clamped;
+    }
+    if (auto it = spec.find("emission"); it != spec.end())
+      emission = in_.color(*it, Reader::child(ptr, "emission"));
+    if (auto it = spec.find("emissionStrength"); it != spec.end())
+      strength = in_.nonNegative(*it, Reader::child(ptr, "emissionStrength"));
+    if (auto it = spec.find("twoSided"); it != spec.end())
+      twoSided = in_.boolean(*it, Reader::child(ptr, "twoSided"));
+    if (auto it = spec.find("texture"); it != spec.end())
+      texture = readTexture(*it, Reader::child(ptr, "texture"));
+    if (auto it = spec.find("emissionTexture"); it != spec.end())
+      emissionTexture = readTexture(*it, Reader::child(ptr, "emissionTexture"));
+
+    for (size_t i : targets) {
+      Material& m = scene_.materials[i];
+      if (reflectance) m.reflectance = *reflectance;
+      if (emission) m.emission = *emission;
+      if (strength) m.emission *= *strength;
+      if (twoSided) m.twoSided = *twoSided;
+      if (texture) m.reflectanceTexture = *texture;
+      if (emissionTexture) m.emissionTexture = *emissionTexture;
+    }
+  }
+
+  // A path relative to the scene file, decoded from sRGB; null removes the texture.
+  int readTexture(const Json& j, const std::string& ptr) {
+    if (j.is_null()) return -1;
+    fs::path file = resolve(in_.string(j, ptr));
+    std::string key = file.string();
+    if (auto it = textures_.find(key); it != textures_.end()) return it->second;
+    Texture tex;
+    try {
+      tex = loadTexture(file, true);
+    } catch (const Error& e) {
+      in_.fail(ptr, e.what());
+    }
+    int index = int(scene_.textures.size());
+    scene_.textures.push_back(std::move(tex));
+    textures_[key] = index;
+    return index;
+  }
+
+  Light readLight(const Json& j, const std::string& ptr, size_t index) const {
+    in_.object(j, ptr);
+    if (!j.contains("type")) in_.fail(ptr, "missing key 'type'");
+    std::string typePtr = Reader::child(ptr, "type");
+    std::string type = in_.string(j["type"], typePtr);
+    Light light;
+    if (type == "point") {
+      light.type = Light::Type::Point;
+      in_.keys(j, ptr, {"type", "name", "color", "intensity", "position"});
+    } else if (type == "spot") {
+      light.type = Light::Type::Spot;
+      in_.keys(j, ptr, {"type", "name", "color", "intensity", "position", "direction", "target",
+                        "innerConeAngle", "outerConeAngle"});
+    } else if (type == "directional") {
+      light.type = Light::Type::Directional;
+      in_.keys(j, ptr, {"type", "name", "color", "intensity", "direction", "angularRadius"});
+    } else if (type == "sky") {
+      light.type = Light::Type::Sky;
+      in_.keys(j, ptr, {"type", "name", "color", "intensity"});
+    } else if (type == "cie-overcast") {
+      light.type = Light::Type::CieOvercastSky;
+      in_.keys(j, ptr, {"type", "name", "color", "intensity"});
+    } else {
+      in_.fail(typePtr, fmt::format("unknown light type '{}' (expected point, spot, directional, "
+                                    "sky, cie-overcast)",
+                                    type));
+    }
+
+    light.name = fmt::format("light{}", index);
+    if (auto it = j.find("name"); it != j.end()) light.name = in_.string(*it, Reader::child(ptr, "name"));
+    if (auto it = j.find("color"); it != j.end()) light.color = in_.color(*it, Reader::child(ptr, "color"));
+    if (auto it = j.find("intensity"); it != j.end())
+      light.intensity = in_.nonNegative(*it, Reader::child(ptr, "intensity"));
+
+    auto require = [&](const char* key) -> const Json& {
+      if (!j.contains(key)) in_.fail(ptr, fmt::format("a {} light needs '{}'", type, key));
+      return j[key];
+    };
+    if (light.type == Light::Type::Point || light.type == Light::Type::Spot)
+      light.position = in_.vec3(require("position"), Reader::child(ptr, "position"));
+    if (light.type == Light::Type::Directional)
+      light.direction = in_.direction(require("direction"), Reader::child(ptr, "direction"));
+    if (light.type == Light::Type::Spot) {
+      bool hasDir = j.contains("direction"), hasTarget = j.contains("target");
+      if (hasDir == hasTarget) in_.fail(ptr, "a spot light needs exactly one of 'direction' and 'target'");
+      if (hasDir) {
+        light.direction = in_.direction(j["direction"], Reader::child(ptr, "direction"));
+      } else {
+        std::string p = Reader::child(ptr, "target");
+        Vec3 d = in_.vec3(j["target"], p) - light.position;
+        if (!(glm::length(d) > 0.0f)) in_.fail(p, "target is at the light's position");
+        light.direction = glm::normalize(d);
+      }
+      float inner = 0.0f, outer = 45.0f;  // degrees, from the axis to the cone's edge
+      if (auto it = j.find("innerConeAngle"); it != j.end())
+        inner = in_.nonNegative(*it, Reader::child(ptr, "innerConeAngle"));
+      if (auto it = j.find("outerConeAngle"); it != j.end())
+        outer = in_.nonNegative(*it, Reader::child(ptr, "outerConeAngle"));
+      if (!(outer > 0.0f) || outer > 90.0f)
+        in_.fail(Reader::child(ptr, "outerConeAngle"),
+                 fmt::format("must be in (0, 90] degrees, got {}", outer));
+      if (inner > outer)
+        in_.fail(Reader::child(ptr, "innerConeAngle"),
+                 fmt::format("{} degrees is wider than outerConeAngle ({})", inner, outer));
+      light.innerConeAngle = radians(inner);
+      light.outerConeAngle = radians(outer);
+    }
+    if (light.type == Light::Type::Directional) {
+      if (auto it = j.find("angularRadius"); it != j.end()) {
+        std::string p = Reader::child(ptr, "angularRadius");
+        float r = in_.nonNegative(*it, p);
+        if (r >= 90.0f) in_.fail(p, fmt::format("must be below 90 degrees, got {}", r));
+        light.angularRadius = radians(r);
+      }
+    }
+    return light;
+  }
+
+  Camera readCamera(const Json& j, const std::string& ptr, size_t index) const {
+    in_.object(j, ptr);
+    in_.keys(j, ptr, {"name", "eye", "target", "up", "fov"});
+    Camera cam;
+    cam.name = fmt::format("camera{}", index);
+    if (auto it = j.find("name"); it != j.end()) cam.name = in_.string(*it, Reader::child(ptr, "name"));
+    for (const char* key : {"eye", "target"})
+      if (!j.contains(key)) in_.fail(ptr, fmt::format("a camera needs '{}'", key));
+    cam.eye = in_.vec3(j["eye"], Reader::child(ptr, "eye"));
+    cam.target = in_.vec3(j["target"], Reader::child(ptr, "target"));
+    if (!(glm::length(cam.target - cam.eye) > 0.0f))
+      in_.fail(Reader::child(ptr, "target"), "target is at the eye");
+    if (auto it = j.find("up"); it != j.end()) cam.up = in_.direction(*it, Reader::child(ptr, "up"));
+    if (glm::length(glm::cross(glm::normalize(cam.target - cam.eye), cam.up)) < 1e-6f)
+      in_.fail(Reader::child(ptr, "up"), "up is parallel to the viewing direction");
+    if (auto it = j.find("fov"); it != j.end()) {
+      std::string p = Reader::child(ptr, "fov");
+      cam.fovY = in_.number(*it, p);
+      if (!(cam.fovY > 0.0f) || !(cam.fovY < 180.0f))
+        in_.fail(p, fmt::format("vertical field of view must be in (0, 180) degrees, got {}",
+                                cam.fovY));
+    }
+    return cam;
+  }
+
+  fs::path path_;
+  fs::path folder_;
+  Reader in_;
+  Scene scene_;
+  std::map<std::string, int> textures_;      // textures this file loaded, by path
+};
+
+}  // namespace
+
+Scene loadSceneFile(const fs::path& path) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw Error(fmt::format("{}: no such file", file));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("{}: cannot open file", file));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  Json doc;
+  try {
+    doc = Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const Json::parse_error& e) {
+    // what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ...".
+    std::string what = e.what();
+    if (size_t close = what.find("] "); what.rfind("[json.exception", 0) == 0 && close != std::string::npos)
+      what = what.substr(close + 2);
+    throw Error(fmt::format("{}: invalid JSON at byte {}: {}", file, e.byte, what));
+  }
+  return SceneFileLoader(path, file).load(doc);
+}
+
+}  // namespace luxel

@@ -1,0 +1,89 @@
+#include "luxel/scene.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "luxel/error.h"
+
+namespace luxel {
+namespace {
+
+bool finite(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+size_t Scene::faceCount() const {
+  size_t n = 0;
+  for (const Mesh& m : meshes) n += m.faces.size();
+  return n;
+}
+
+size_t Scene::triangleCount() const {
+  size_t n = 0;
+  for (const Mesh& m : meshes)
+    for (const Face& f : m.faces) n += f.isTriangle() ? 1 : 2;
+  return n;
+}
+
+const Camera* Scene::findCamera(const std::string& cameraName) const {
+  for (const Camera& c : cameras)
+    if (c.name == cameraName) return &c;
+  return nullptr;
+}
+
+int Scene::findMaterial(const std::string& materialName) const {
+  for (size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == materialName) return int(i);
+  return -1;
+}
+
+void Scene::validate() const {
+  if (faceCount() == 0) throw Error(fmt::format("scene '{}': contains no faces", name));
+  for (const Material& m : materials) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(m.reflectance[c]) || m.reflectance[c] < 0.0f || m.reflectance[c] > 1.0f)
+        throw Error(fmt::format("scene '{}': material '{}': reflectance {} is outside [0,1]", name,
+                                m.name, m.reflectance[c]));
+      if (!std::isfinite(m.emission[c]) || m.emission[c] < 0.0f)
+        throw Error(fmt::format("scene '{}': material '{}': emission {} is negative or not finite",
+                                name, m.name, m.emission[c]));
+    }
+    for (int t : {m.reflectanceTexture, m.emissionTexture})
+      if (t >= int(textures.size()))
+        throw Error(fmt::format("scene '{}': material '{}': texture index {} out of range", name,
+                                m.name, t));
+  }
+  for (const Mesh& mesh : meshes) {
+    if (mesh.material >= materials.size())
+      throw Error(fmt::format("scene '{}': mesh '{}': material index {} out of range ({} materials)",
+                              name, mesh.name, mesh.material, materials.size()));
+    if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
+      throw Error(fmt::format("scene '{}': mesh '{}': {} uvs for {} positions", name, mesh.name,
+                              mesh.uvs.size(), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+      if (!finite(mesh.positions[i]))
+        throw Error(fmt::format("scene '{}': mesh '{}': vertex {} is not finite", name, mesh.name, i));
+    for (size_t f = 0; f < mesh.faces.size(); ++f)
+      for (uint32_t v : mesh.faces[f].v)
+        if (v >= mesh.positions.size())
+          throw Error(fmt::format("scene '{}': mesh '{}': face {} references vertex {} of {}", name,
+                                  mesh.name, f, v, mesh.positions.size()));
+  }
+  for (const Light& l : lights) {
+    if (!finite(l.color) || !std::isfinite(l.intensity) || l.intensity < 0.0f ||
+        l.color.r < 0.0f || l.color.g < 0.0f || l.color.b < 0.0f)
+      throw Error(fmt::format("scene '{}': light '{}': colour or intensity is negative or not finite",
+                              name, l.name));
+    if (!finite(l.position) || !finite(l.direction))
+      throw Error(fmt::format("scene '{}': light '{}': position or direction is not finite", name,
+                              l.name));
+    bool directed = l.type == Light::Type::Spot || l.type == Light::Type::Directional;
+    if (directed && glm::length(l.direction) < 1e-12f)
+      throw Error(fmt::format("scene '{}': light '{}': direction is zero", name, l.name));
+  }
+  if (glm::length(up) < 1e-12f || !finite(up))
+    throw Error(fmt::format("scene '{}': up vector is zero or not finite", name));
+}
+
+}  // namespace luxel

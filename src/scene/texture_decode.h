@@ -1,0 +1,21 @@
+// Decoding image bytes into a Texture: shared by loadTexture (files) and the Assimp importer
+// (textures embedded in glTF/GLB and FBX files).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "luxel/scene.h"
+
+namespace luxel {
+
+// Decodes PNG, JPEG, TGA, BMP, HDR, ... bytes (whatever stb_image reads) into a linear-RGB
+// texture stored bottom row first. 8- and 16-bit images are decoded from sRGB when `srgb`; HDR
+// images are linear already. `path` names the image in the texture and in errors. Throws
+// Error("texture '<path>': <reason>") when the bytes cannot be decoded.
+Texture decodeTexture(const unsigned char* data, size_t size, bool srgb, const std::string& path);
+
+// The sRGB transfer function inverted (IEC 61966-2-1), for one 8-bit channel value / 255.
+float srgbToLinear(float encoded);
+
+}  // namespace luxel

@@ -1,0 +1,144 @@
+// Progressive refinement radiosity: Cohen, Chen, Wallace and Greenberg, "A Progressive Refinement
+// Approach to Fast Radiosity Image Generation", SIGGRAPH 1988. The patch with the most unshot
+// power shoots it into every element; the ambient term of the same paper estimates, for display,
+// the light not yet shot. Columns of form factors are cached, so a patch that shoots again (its
+// elements received more light) costs no rays.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "solve/radiosity_system.h"
+
+namespace luxel {
+namespace {
+
+// Form-factor columns are kept while they fit in this much memory.
+constexpr size_t kColumnCacheBytes = size_t(2) << 30;
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+}  // namespace
+
+Solution solveProgressive(const RadiositySystem& sys, Transport& transport, const SolveOptions& options,
+                          const ProgressCallback& progress, double& formFactorSeconds) {
+  const size_t ne = sys.elementCount(), np = sys.patchCount();
+  const auto& patches = sys.surfaces.patches;
+  const auto start = Clock::now();
+
+  std::vector<Rgb> radiosity(ne), unshot(ne), irradiance(sys.analytic);
+  for (size_t e = 0; e < ne; ++e) radiosity[e] = unshot[e] = sys.emission[e] + sys.reflectance[e] * sys.analytic[e];
+
+  // Unshot power per patch, and the patch's mean unshot radiosity.
+  std::vector<Rgb> patchUnshot(np);
+  auto updatePatchUnshot = [&] {
+    tbb::parallel_for(size_t(0), np, [&](size_t p) {
+      Rgb sum(0.0f);
+      for (uint32_t e : patches[p].elements) sum += sys.area[e] * unshot[e];
+      patchUnshot[p] = sum;
+    });
+  };
+  updatePatchUnshot();
+
+  const double sourcePower = sys.sourcePower();
+  std::vector<std::vector<float>> cache(np);
+  size_t cachedBytes = 0;
+  std::vector<float> scratch(ne);
+  auto column = [&](uint32_t p) -> const std::vector<float>& {
+    if (!cache[p].empty()) return cache[p];
+    const auto t = Clock::now();
+    const bool keep = cachedBytes + ne * sizeof(float) <= kColumnCacheBytes;
+    std::vector<float>& out = keep ? cache[p] : scratch;
+    out.resize(ne);
+    transport.columns({&p, 1}, out);
+    if (keep) cachedBytes += ne * sizeof(float);
+    formFactorSeconds += secondsSince(t);
+    return out;
+  };
+
+  Solution sol;
+  double unshotFraction = 1.0;
+  uint64_t shots = 0;
+  double lastReported = -1.0;
+  while (true) {
+    double total = 0.0;
+    uint32_t shooter = 0;
+    double best = -1.0;
+    for (size_t p = 0; p < np; ++p) {
+      double power = channelSum(patchUnshot[p]);
+      total += power;
+      if (power > best) best = power, shooter = uint32_t(p);
+    }
+    unshotFraction = sourcePower > 0.0 ? total / sourcePower : 0.0;
+    if (unshotFraction <= options.unshotThreshold || best <= 0.0) break;
+    if (options.shotBudget && shots >= options.shotBudget) break;
+    if (options.timeBudget > 0.0 && secondsSince(start) >= options.timeBudget) break;
+
+    // Progress is logarithmic in the unshot fraction: each decade takes about as long.
+    double fraction = std::clamp(std::log(unshotFraction) / std::log(options.unshotThreshold), 0.0, 1.0);
+    if (fraction - lastReported >= 0.01) {
+      reportProgress(progress, "solve", fraction, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction));
+      lastReported = fraction;
+    }
+
+    const std::vector<float>& f = column(shooter);
+    const Rgb shot = patchUnshot[shooter] / sys.patchArea[shooter];
+    for (uint32_t e : patches[shooter].elements) unshot[e] = Rgb(0.0f);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 1024), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t e = r.begin(); e < r.end(); ++e) {
+        if (f[e] == 0.0f) continue;
+        Rgb dh = f[e] * shot;
+        Rgb db = sys.reflectance[e] * dh;
+        irradiance[e] += dh;
+        radiosity[e] += db;
+        unshot[e] += db;
+      }
+    });
+    updatePatchUnshot();
+    ++shots;
+  }
+  reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction));
+
+  if (options.ambient) {
+    // Ambient term (Cohen et al. 1988, section 4): the unshot radiosity, spread uniformly and
+    // multiplied by the interreflection factor 1 / (1 - mean reflectance).
+    double totalArea = 0.0;
+    Rgb meanRho(0.0f), unshotSum(0.0f);
+    for (size_t e = 0; e < ne; ++e) {
+      totalArea += sys.area[e];
+      meanRho += sys.area[e] * sys.reflectance[e];
+      unshotSum += sys.area[e] * unshot[e];
+    }
+    if (totalArea > 0.0) {
+      meanRho /= float(totalArea);
+      Rgb ambient = unshotSum / float(totalArea) / glm::max(Rgb(1.0f) - meanRho, Rgb(1e-3f));
+      for (size_t e = 0; e < ne; ++e) {
+        irradiance[e] += ambient;
+        radiosity[e] += sys.reflectance[e] * ambient;
+      }
+    }
+  }
+
+  // Direct irradiance: the analytic lights plus one bounce from emitting patches.
+  const std::vector<Rgb> patchEmission = sys.patchMeans(sys.emission);
+  sol.directIrradiance = sys.analytic;
+  for (uint32_t p = 0; p < np; ++p) {
+    if (channelSum(patchEmission[p]) <= 0.0) continue;
+    const std::vector<float>& f = column(p);
+    for (size_t e = 0; e < ne; ++e) sol.directIrradiance[e] += f[e] * patchEmission[p];
+  }
+
+  sol.radiosity = std::move(radiosity);
+  sol.irradiance = std::move(irradiance);
+  sol.stats.method = "progressive";
+  sol.stats.shots = shots;
+  sol.stats.unshotFraction = unshotFraction;
+  sol.stats.residual = unshotFraction;
+  return sol;
+}
+
+}  // namespace luxel

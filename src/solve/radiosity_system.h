@@ -1,0 +1,40 @@
+// The discrete radiosity system that every solver solves (see include/luxel/solve.h):
+//   B_e = E_e + rho_e * (H0_e + sum_p F[e <- p] B_p),  B_p = sum_{e in p} A_e B_e / A_p.
+#pragma once
+
+#include <vector>
+
+#include "luxel/solve.h"
+#include "transport/transport.h"
+
+namespace luxel {
+
+struct RadiositySystem {
+  const SurfaceSet& surfaces;
+  std::vector<Rgb> emission;     // E_e, exitance
+  std::vector<Rgb> reflectance;  // rho_e
+  std::vector<Rgb> analytic;     // H0_e, irradiance from analytic lights
+  std::vector<float> area;       // A_e
+  std::vector<float> patchArea;  // A_p, the sum of its elements' areas
+
+  RadiositySystem(const SurfaceSet& surfaces, std::vector<Rgb> analyticIrradiance);
+
+  size_t elementCount() const { return area.size(); }
+  size_t patchCount() const { return patchArea.size(); }
+  // Area-weighted mean of a per-element quantity over each patch.
+  std::vector<Rgb> patchMeans(const std::vector<Rgb>& perElement) const;
+  // Power entering the system: sum A_e (E_e + rho_e H0_e), summed over channels.
+  double sourcePower() const;
+};
+
+// Each solver fills radiosity, irradiance and stats.shots/iterations/residual; the caller times
+// the phases and fills the rest. `formFactorSeconds` accumulates time spent in the transport.
+Solution solveProgressive(const RadiositySystem& system, Transport& transport,
+                          const SolveOptions& options, const ProgressCallback& progress,
+                          double& formFactorSeconds);
+Solution solveGather(const RadiositySystem& system, Transport& transport, const SolveOptions& options,
+                     const ProgressCallback& progress, double& formFactorSeconds);
+
+inline double channelSum(const Rgb& c) { return double(c.r) + double(c.g) + double(c.b); }
+
+}  // namespace luxel

@@ -1,0 +1,96 @@
+#include "trace/ray_tracer.h"
+
+#include <mutex>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "luxel/error.h"
+
+namespace luxel {
+namespace {
+
+std::string& lastEmbreeError() {
+  static std::string message;
+  return message;
+}
+
+void onEmbreeError(void*, RTCError code, const char* message) {
+  lastEmbreeError() = fmt::format("Embree error {}: {}", int(code), message ? message : "");
+}
+
+// One Embree device for the process: creating a device spins up its own task system.
+RTCDevice device() {
+  static std::once_flag once;
+  static RTCDevice dev = nullptr;
+  std::call_once(once, [] {
+    dev = rtcNewDevice(nullptr);
+    if (dev) rtcSetDeviceErrorFunction(dev, onEmbreeError, nullptr);
+  });
+  if (!dev) throw Error("could not create an Embree device (unsupported CPU?)");
+  return dev;
+}
+
+}  // namespace
+
+RayTracer::RayTracer(std::span<const Polygon> polygons) {
+  RTCDevice dev = device();
+  scene_ = rtcNewScene(dev);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_QUAD);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), polygons.size() * 4));
+  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(uint32_t), polygons.size()));
+  if (!vertices || !indices) {
+    rtcReleaseGeometry(geom);
+    rtcReleaseScene(scene_);
+    throw Error(fmt::format("Embree could not allocate buffers for {} polygons: {}",
+                            polygons.size(), lastEmbreeError()));
+  }
+  for (size_t i = 0; i < polygons.size(); ++i) {
+    const Polygon& p = polygons[i];
+    for (int c = 0; c < 4; ++c) {
+      // Triangles repeat their last corner, which Embree's quad geometry treats as a triangle.
+      const Vec3& v = p.v[size_t(c < p.count ? c : p.count - 1)];
+      vertices[12 * i + 3 * c + 0] = v.x;
+      vertices[12 * i + 3 * c + 1] = v.y;
+      vertices[12 * i + 3 * c + 2] = v.z;
+      indices[4 * i + c] = uint32_t(4 * i + c);
+    }
+  }
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene_, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene_);
+  if (rtcGetDeviceError(dev) != RTC_ERROR_NONE)
+    throw Error(fmt::format("Embree could not build the scene: {}", lastEmbreeError()));
+}
+
+RayTracer::~RayTracer() {
+  if (scene_) rtcReleaseScene(scene_);
+}
+
+void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
+  if (rays.empty()) return;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  rtcOccluded1M(scene_, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
+  rays_.fetch_add(rays.size(), std::memory_order_relaxed);
+}
+
+void RayTracer::intersect(std::span<RTCRayHit> hits, bool coherent) const {
+  if (hits.empty()) return;
+  for (RTCRayHit& h : hits) {
+    h.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  rtcIntersect1M(scene_, &context, hits.data(), unsigned(hits.size()), sizeof(RTCRayHit));
+  rays_.fetch_add(hits.size(), std::memory_order_relaxed);
+}
+
+}  // namespace luxel

@@ -1,0 +1,52 @@
+// Embree behind a small batch interface: closest hits and occlusion for arrays of rays.
+// Callers fill RTCRay / RTCRayHit arrays and hand them over in one call (Embree ray streams),
+// which lets Embree trace them as packets on the calling TBB thread.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "luxel/surface.h"
+
+namespace luxel {
+
+class RayTracer {
+ public:
+  // Builds a BVH over the polygons. Primitive i of a hit is polygons[i].
+  explicit RayTracer(std::span<const Polygon> polygons);
+  ~RayTracer();
+  RayTracer(const RayTracer&) = delete;
+  RayTracer& operator=(const RayTracer&) = delete;
+
+  // Occlusion: on return, rays[i].tfar is -inf where something lies between tnear and tfar.
+  void occluded(std::span<RTCRay> rays, bool coherent = false) const;
+  // Closest hit: on return, hits[i].hit.geomID is RTC_INVALID_GEOMETRY_ID on a miss; otherwise
+  // hit.primID is the polygon and hit.u, hit.v its parameters (quads: bilinear from corner 0
+  // along 0->1 and 0->3; triangles: barycentric towards corners 1 and 2).
+  void intersect(std::span<RTCRayHit> hits, bool coherent = true) const;
+
+  uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
+  void resetRayCount() { rays_.store(0, std::memory_order_relaxed); }
+
+ private:
+  RTCScene scene_ = nullptr;
+  mutable std::atomic<uint64_t> rays_{0};
+};
+
+// A ray from `org` along `dir` (not necessarily unit) over [tnear, tfar].
+inline RTCRay makeRay(Vec3 org, Vec3 dir, float tnear, float tfar) {
+  RTCRay r;
+  r.org_x = org.x, r.org_y = org.y, r.org_z = org.z;
+  r.dir_x = dir.x, r.dir_y = dir.y, r.dir_z = dir.z;
+  r.tnear = tnear, r.tfar = tfar;
+  r.time = 0.0f, r.mask = 0xFFFFFFFFu, r.id = 0, r.flags = 0;
+  return r;
+}
+
+inline bool isOccluded(const RTCRay& r) { return r.tfar < 0.0f; }
+
+}  // namespace luxel

@@ -1,0 +1,214 @@
+#include "transport/cpu_transport.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "core/random.h"
+#include "transport/form_factor.h"
+#include "transport/light_sampling.h"
+
+namespace luxel {
+namespace {
+
+// Pairs handed to Embree in one stream: large enough to amortise the call, small enough to stay
+// in cache.
+constexpr size_t kPairsPerBatch = 128;
+// Rays start this fraction of the scene's extent off their surfaces, so that they do not hit the
+// surface they leave or arrive at.
+constexpr float kRayOffsetFraction = 1e-5f;
+
+std::vector<Polygon> facePolygons(const SurfaceSet& set) {
+  std::vector<Polygon> polys(set.faces.size());
+  for (size_t i = 0; i < set.faces.size(); ++i) {
+    const SurfaceFace& f = set.faces[i];
+    polys[i].count = f.triangle ? 3 : 4;
+    polys[i].v = f.corners;
+  }
+  return polys;
+}
+
+int squareCount(int n) { return std::clamp(int(std::sqrt(float(n)) + 1e-3f), 1, 16); }
+
+// A random permutation of 0..m-1 (m <= 256), to pair strata of two domains without correlation.
+void shuffledStrata(Rng& rng, int m, int* out) {
+  for (int i = 0; i < m; ++i) out[i] = i;
+  for (int i = m - 1; i > 0; --i) std::swap(out[i], out[rng.nextUint() % uint32_t(i + 1)]);
+}
+
+}  // namespace
+
+struct CpuTransport::Workspace {
+  std::vector<RTCRay> rays;
+  std::vector<float> weights;
+  std::vector<float*> targets;
+};
+
+struct CpuTransport::ThreadLocal {
+  tbb::enumerable_thread_specific<Workspace> workspaces;
+};
+
+CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
+                           const FormFactorOptions& options)
+    : scene_(scene),
+      surfaces_(surfaces),
+      options_(options),
+      tracer_(facePolygons(surfaces)),
+      threadLocal_(std::make_unique<ThreadLocal>()) {
+  rayOffset_ = kRayOffsetFraction * std::max(surfaces.sceneExtent, 1e-6f);
+  patchRadius_.resize(surfaces.patches.size());
+  patchEmits_.resize(surfaces.patches.size());
+  for (size_t p = 0; p < surfaces.patches.size(); ++p) {
+    const Patch& patch = surfaces.patches[p];
+    float r = 0.0f;
+    for (int i = 0; i < patch.polygon.count; ++i)
+      r = std::max(r, glm::length(patch.polygon.v[i] - patch.centroid));
+    patchRadius_[p] = r;
+    bool emits = false;
+    for (uint32_t e : patch.elements) {
+      const Rgb& x = surfaces.elements[e].exitance;
+      emits |= (x.r + x.g + x.b) > 0.0f;
+    }
+    patchEmits_[p] = emits;
+  }
+}
+
+CpuTransport::~CpuTransport() = default;
+
+CpuTransport::Workspace& CpuTransport::workspace() { return threadLocal_->workspaces.local(); }
+
+void CpuTransport::computePairs(std::span<const Pair> pairs) {
+  Workspace& ws = workspace();
+  ws.rays.clear();
+  ws.weights.clear();
+  ws.targets.clear();
+
+  for (const Pair& pair : pairs) {
+    *pair.out = 0.0f;
+    const Element& e = surfaces_.elements[pair.element];
+    const Patch& p = surfaces_.patches[pair.patch];
+    if (e.face == p.face) continue;  // a flat face does not see itself
+    // Every element and patch is one-sided: two-sided materials have a twin face for the back.
+    const Sides receiverSides = Sides::Front, sourceSides = Sides::Front;
+
+    // Element "radius" from its area: cheap and adequate for the near-field test.
+    const float elementRadius = 0.75f * std::sqrt(e.area);
+    const float distance = glm::length(e.centroid - p.centroid);
+    const bool nearField = distance < options_.nearFactor * (elementRadius + patchRadius_[pair.patch]);
+    int wanted = patchEmits_[pair.patch] ? options_.emitterRaysPerPair
+                 : nearField              ? options_.nearRaysPerPair
+                                          : options_.raysPerPair;
+    if (nearField) wanted = std::max(wanted, options_.nearRaysPerPair);
+    const int k = squareCount(wanted);
+    const int m = k * k;
+
+    // Far from the source the unoccluded factor hardly varies over the receiver: evaluate it once.
+    float centreFactor = 0.0f;
+    if (!nearField) {
+      centreFactor = pointToPolygonFormFactor(e.centroid, e.normal, p.polygon, receiverSides, sourceSides);
+      if (centreFactor <= 0.0f) continue;
+    }
+
+    // Deterministic per pair, so a row and a column compute the same number.
+    Rng rng(hashCombine(hashCombine(options_.seed, pair.element), pair.patch));
+    int permutation[256];
+    shuffledStrata(rng, m, permutation);
+
+    const float weight = 1.0f / float(m);
+    for (int i = 0; i < m; ++i) {
+      float s = (float(i % k) + rng.next()) / float(k), t = (float(i / k) + rng.next()) / float(k);
+      Vec3 x = polygonPoint(e.polygon, s, t);
+      float f = nearField ? pointToPolygonFormFactor(x, e.normal, p.polygon, receiverSides, sourceSides)
+                          : centreFactor;
+      if (f <= 0.0f) continue;
+      const int j = permutation[i];
+      float su = (float(j % k) + rng.next()) / float(k), sv = (float(j / k) + rng.next()) / float(k);
+      Vec3 y = polygonPoint(p.polygon, su, sv);
+      Vec3 d = y - x;
+      Vec3 xo = x + e.normal * (glm::dot(e.normal, d) >= 0.0f ? rayOffset_ : -rayOffset_);
+      Vec3 yo = y + p.normal * (glm::dot(p.normal, d) <= 0.0f ? rayOffset_ : -rayOffset_);
+      ws.rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
+      ws.weights.push_back(f * weight);
+      ws.targets.push_back(pair.out);
+    }
+  }
+
+  tracer_.occluded(ws.rays);
+  for (size_t i = 0; i < ws.rays.size(); ++i)
+    if (!isOccluded(ws.rays[i])) *ws.targets[i] += ws.weights[i];
+}
+
+void CpuTransport::columns(std::span<const uint32_t> patches, std::span<float> out) {
+  const size_t n = surfaces_.elements.size();
+  for (size_t c = 0; c < patches.size(); ++c) {
+    float* column = out.data() + c * n;
+    const uint32_t patch = patches[c];
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kPairsPerBatch), [&](const tbb::blocked_range<size_t>& r) {
+      Pair batch[kPairsPerBatch];
+      size_t count = 0;
+      for (size_t e = r.begin(); e < r.end(); ++e) {
+        batch[count++] = Pair{uint32_t(e), patch, column + e};
+        if (count == kPairsPerBatch) computePairs({batch, count}), count = 0;
+      }
+      if (count) computePairs({batch, count});
+    });
+  }
+}
+
+void CpuTransport::rows(std::span<const uint32_t> elements, std::span<float> out) {
+  const size_t np = surfaces_.patches.size();
+  const size_t total = elements.size() * np;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, total, kPairsPerBatch), [&](const tbb::blocked_range<size_t>& r) {
+    Pair batch[kPairsPerBatch];
+    size_t count = 0;
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      batch[count++] = Pair{elements[i / np], uint32_t(i % np), out.data() + i};
+      if (count == kPairsPerBatch) computePairs({batch, count}), count = 0;
+    }
+    if (count) computePairs({batch, count});
+  });
+}
+
+void CpuTransport::analyticIrradiance(std::span<Rgb> out) {
+  std::fill(out.begin(), out.end(), Rgb(0.0f));
+  if (scene_.lights.empty()) return;
+  const Vec3 up = glm::normalize(scene_.up);
+  const int k = squareCount(options_.lightSamples);
+  const int m = k * k;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces_.elements.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<RTCRay> rays;
+    std::vector<Rgb> values;
+    for (size_t ei = r.begin(); ei < r.end(); ++ei) {
+      const Element& e = surfaces_.elements[ei];
+      const Sides sides = Sides::Front;
+      rays.clear();
+      values.clear();
+      for (size_t li = 0; li < scene_.lights.size(); ++li) {
+        Rng rng(hashCombine(hashCombine(options_.seed ^ 0xA5A5A5A5u, uint32_t(ei)), uint32_t(li)));
+        int permutation[256];
+        shuffledStrata(rng, m, permutation);
+        for (int i = 0; i < m; ++i) {
+          float s = (float(i % k) + rng.next()) / float(k), t = (float(i / k) + rng.next()) / float(k);
+          Vec3 x = polygonPoint(e.polygon, s, t);
+          // Light samples are stratified independently of the point strata (shuffled index).
+          float u1 = (float(permutation[i]) + rng.next()) / float(m), u2 = rng.next();
+          LightSample ls = sampleLight(scene_.lights[li], x, e.normal, sides, up, u1, u2);
+          if (!ls.valid()) continue;
+          Vec3 xo = x + e.normal * (glm::dot(e.normal, ls.direction) >= 0.0f ? rayOffset_ : -rayOffset_);
+          rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
+          values.push_back(ls.irradiance / float(m));
+        }
+      }
+      tracer_.occluded(rays);
+      Rgb sum(0.0f);
+      for (size_t i = 0; i < rays.size(); ++i)
+        if (!isOccluded(rays[i])) sum += values[i];
+      out[ei] = sum;
+    }
+  });
+}
+
+}  // namespace luxel

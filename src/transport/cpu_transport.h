@@ -1,0 +1,52 @@
+// The CPU backend: exact unoccluded form factors times a visibility fraction from stratified,
+// jittered Embree rays, in the manner of Wallace, Elmquist and Haines, "A Ray Tracing Algorithm
+// for Progressive Radiosity" (SIGGRAPH 1989), with the analytic point-to-polygon factor of
+// Baum et al. 1989 in place of the disc approximation.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "luxel/solve.h"
+#include "trace/ray_tracer.h"
+#include "transport/transport.h"
+
+namespace luxel {
+
+class CpuTransport final : public Transport {
+ public:
+  CpuTransport(const Scene& scene, const SurfaceSet& surfaces, const FormFactorOptions& options);
+  ~CpuTransport() override;
+
+  void columns(std::span<const uint32_t> patches, std::span<float> out) override;
+  void rows(std::span<const uint32_t> elements, std::span<float> out) override;
+  void analyticIrradiance(std::span<Rgb> out) override;
+  uint64_t raysTraced() const override { return tracer_.raysTraced(); }
+
+  const RayTracer& tracer() const { return tracer_; }
+
+  // One element-patch pair, written to *out.
+  struct Pair {
+    uint32_t element;
+    uint32_t patch;
+    float* out;
+  };
+  // Computes a batch of pairs on the calling thread: one ray stream for the whole batch.
+  void computePairs(std::span<const Pair> pairs);
+
+ private:
+  struct Workspace;
+  Workspace& workspace();
+
+  const Scene& scene_;
+  const SurfaceSet& surfaces_;
+  FormFactorOptions options_;
+  RayTracer tracer_;
+  float rayOffset_ = 0.0f;
+  std::vector<float> patchRadius_;
+  std::vector<uint8_t> patchEmits_;
+  struct ThreadLocal;
+  std::unique_ptr<ThreadLocal> threadLocal_;
+};
+
+}  // namespace luxel

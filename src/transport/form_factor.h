@@ -1,0 +1,34 @@
+// Analytic form factors: the exact differential-area-to-polygon form factor (Lambert 1760, in the
+// contour-integral form of Baum, Rushmeier and Winget, "Improving Radiosity Solutions Through the
+// Use of Analytically Determined Form-Factors", SIGGRAPH 1989), with the polygon clipped to the
+// receiver's hemisphere so that it stays exact when the source crosses the receiver's plane.
+#pragma once
+
+#include <span>
+
+#include "luxel/surface.h"
+
+namespace luxel {
+
+// Which sides of a surface take part in an exchange.
+enum class Sides { Front, Both };
+
+// Form factor from a differential area at `p` with unit normal `n` to the polygon `poly`
+// (unoccluded). With Sides::Both the receiver gathers from both hemispheres (|cos|).
+// `sourceSides` == Front means the polygon radiates only from its front face.
+float pointToPolygonFormFactor(Vec3 p, Vec3 n, const Polygon& poly, Sides receiverSides,
+                               Sides sourceSides);
+
+// Area-to-area form factor F(receiver -> source), the point form factor integrated over the
+// receiver with a regular k x k (quads) or k^2 (triangles) midpoint rule.
+double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source, int k,
+                                  Sides receiverSides = Sides::Front,
+                                  Sides sourceSides = Sides::Front);
+
+// Solid angle of a polygon seen from `p` (Van Oosterom and Strackee 1983, per fan triangle).
+float polygonSolidAngle(Vec3 p, const Polygon& poly);
+
+// A point on the polygon from (s,t) in [0,1)^2: bilinear on quads, folded barycentric on triangles.
+Vec3 polygonPoint(const Polygon& poly, float s, float t);
+
+}  // namespace luxel

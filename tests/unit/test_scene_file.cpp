@@ -1,0 +1,336 @@
+// luxel scene files (docs/scene-format.md): paths, transforms, materials, lights, cameras, errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "luxel/error.h"
+#include "luxel/import.h"
+
+namespace fs = std::filesystem;
+using luxel::Error;
+using luxel::Light;
+using luxel::Rgb;
+using luxel::Scene;
+using luxel::Vec3;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+fs::path tmpDir(const std::string& name) {
+  fs::path dir = fs::path(LUXEL_TEST_TMP) / "scene-file" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+template <class F>
+std::string errorOf(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "threw a non-luxel exception: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "did not throw";
+  return {};
+}
+
+void expectVec(Vec3 got, Vec3 want, float tol = 1e-5f) {
+  EXPECT_NEAR(got.x, want.x, tol);
+  EXPECT_NEAR(got.y, want.y, tol);
+  EXPECT_NEAR(got.z, want.z, tol);
+}
+
+// A unit quad in the xy plane facing +z, material `mat` (reflectance 0.5, emission 0).
+void writeQuad(const fs::path& obj, const std::string& mat) {
+  std::string mtl = obj.stem().string() + ".mtl";
+  writeFile(obj, "mtllib " + mtl + "\no quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl " + mat +
+                     "\nf 1 2 3 4\n");
+  writeFile(obj.parent_path() / mtl, "newmtl " + mat + "\nKd 0.5 0.5 0.5\n");
+}
+
+Vec3 faceNormal(const luxel::Mesh& m, size_t f) {
+  const auto& v = m.faces[f].v;
+  return glm::normalize(
+      glm::cross(m.positions[v[1]] - m.positions[v[0]], m.positions[v[2]] - m.positions[v[0]]));
+}
+
+// Writes `json` as scene.json in a fresh folder with a quad at models/quad.obj, and loads it.
+Scene loadWithQuad(const std::string& test, const std::string& json) {
+  fs::path dir = tmpDir(test);
+  writeQuad(dir / "models" / "quad.obj", "paint");
+  writeFile(dir / "scene.json", json);
+  return luxel::loadSceneFile(dir / "scene.json");
+}
+
+// Expects loading `json` to fail with a message naming scene.json and containing each of `parts`.
+void expectError(const std::string& test, const std::string& json,
+                 std::initializer_list<std::string> parts) {
+  fs::path dir = tmpDir(test);
+  writeQuad(dir / "models" / "quad.obj", "paint");
+  writeFile(dir / "scene.json", json);
+  std::string msg = errorOf([&] { luxel::loadSceneFile(dir / "scene.json"); });
+  EXPECT_NE(msg.find("scene.json"), std::string::npos) << msg;
+  for (const std::string& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << msg;
+}
+
+}  // namespace
+
+TEST(SceneFile, ResolvesMeshPathsRelativeToTheFile) {
+  fs::path dir = tmpDir("relative");
+  writeQuad(dir / "models" / "quad.obj", "paint");
+  writeFile(dir / "scenes" / "scene.json", R"({ "meshes": [ { "file": "../models/quad.obj" } ] })");
+  // The working directory is not the file's folder.
+  Scene s = luxel::loadSceneFile(dir / "scenes" / "scene.json");
+  EXPECT_EQ(s.name, "scene");
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.faceCount(), 1u);
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].name, "paint");
+  expectVec(s.up, Vec3(0, 1, 0));
+}
+
+TEST(SceneFile, TransformsScaleThenRotateThenTranslate) {
+  // Vertex (1, 0, 0) -> scale 2 -> (2, 0, 0) -> 90 degrees about +y -> (0, 0, -2) -> translate
+  // (10, 0, 0) -> (10, 0, -2).
+  Scene s = loadWithQuad("transform", R"({ "meshes": [ { "file": "models/quad.obj",
+      "scale": 2, "rotate": { "axis": [0, 1, 0], "angle": 90 }, "translate": [10, 0, 0] } ] })");
+  ASSERT_EQ(s.meshes.size(), 1u);
+  expectVec(s.meshes[0].positions[0], Vec3(10, 0, 0));
+  expectVec(s.meshes[0].positions[1], Vec3(10, 0, -2));
+  expectVec(s.meshes[0].positions[2], Vec3(10, 2, -2));
+  expectVec(faceNormal(s.meshes[0], 0), Vec3(1, 0, 0));  // +z turned to +x
+
+  // Euler [90, 90, 0]: about x first ((1,0,0) stays, (0,1,0) -> (0,0,1)), then about y
+  // ((1,0,0) -> (0,0,-1), (0,0,1) -> (1,0,0)).
+  s = loadWithQuad("euler", R"({ "meshes": [ { "file": "models/quad.obj", "rotate": [90, 90, 0] } ] })");
+  expectVec(s.meshes[0].positions[1], Vec3(0, 0, -1));
+  expectVec(s.meshes[0].positions[3], Vec3(1, 0, 0));
+
+  // Non-uniform scale.
+  s = loadWithQuad("scale3", R"({ "meshes": [ { "file": "models/quad.obj", "scale": [2, 3, 4] } ] })");
+  expectVec(s.meshes[0].positions[2], Vec3(2, 3, 0));
+}
+
+TEST(SceneFile, MirroringKeepsFacesFacingTheSameWayInTheMirror) {
+  // A mirror in x keeps the +z normal; without reversing the winding it would flip to -z.
+  Scene s = loadWithQuad("mirror", R"({ "meshes": [ { "file": "models/quad.obj", "scale": [-1, 1, 1] } ] })");
+  expectVec(faceNormal(s.meshes[0], 0), Vec3(0, 0, 1));
+  expectVec(s.meshes[0].positions[1], Vec3(-1, 0, 0));
+}
+
+TEST(SceneFile, OverridesAndAddsMaterialsByName) {
+  fs::path dir = tmpDir("materials");
+  writeQuad(dir / "a" / "quad.obj", "paint");
+  writeQuad(dir / "b" / "quad.obj", "paint");
+  writeFile(dir / "tex.ppm", "P6\n1 1\n255\n\xff\xff\xff");
+  writeFile(dir / "scene.json", R"({
+    // Comments are allowed.
+    "meshes": [
+      { "file": "a/quad.obj" },
+      { "file": "b/quad.obj", "translate": [0, 0, 1] },
+      { "file": "a/quad.obj", "translate": [0, 0, 2], "material": "lamp" }
+    ],
+    "materials": {
+      "paint": { "reflectance": [0.2, 0.3, 0.4], "twoSided": true, "texture": "tex.ppm" },
+      "lamp": { "emission": [1, 2, 3], "emissionStrength": 10, "reflectance": 0.0 }
+    }
+  })");
+  Scene s = luxel::loadSceneFile(dir / "scene.json");
+  ASSERT_EQ(s.meshes.size(), 3u);
+  // Three files' "paint" stay separate materials; the override reaches all of them.
+  ASSERT_EQ(s.materials.size(), 4u);
+  int paintCount = 0;
+  for (const luxel::Material& m : s.materials) {
+    if (m.name != "paint") continue;
+    ++paintCount;
+    expectVec(m.reflectance, Vec3(0.2f, 0.3f, 0.4f));
+    EXPECT_TRUE(m.twoSided);
+    ASSERT_GE(m.reflectanceTexture, 0);
+    EXPECT_EQ(s.textures[size_t(m.reflectanceTexture)].width, 1);
+  }
+  EXPECT_EQ(paintCount, 3);
+  EXPECT_NE(s.meshes[0].material, s.meshes[1].material);
+  EXPECT_EQ(s.textures.size(), 1u);  // loaded once
+  const luxel::Material& lamp = s.materials[s.meshes[2].material];
+  EXPECT_EQ(lamp.name, "lamp");
+  expectVec(lamp.emission, Vec3(10, 20, 30));
+  expectVec(lamp.reflectance, Vec3(0));
+}
+
+TEST(SceneFile, EmissionStrengthScalesAnImportedEmission) {
+  fs::path dir = tmpDir("strength");
+  writeFile(dir / "lamp.obj", "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl light\nf 1 2 3\n");
+  writeFile(dir / "lamp.mtl", "newmtl light\nKd 0.5 0.5 0.5\nKe 17 12 4\n");
+  writeFile(dir / "scene.json", R"({ "meshes": [ { "file": "lamp.obj" } ],
+                                     "materials": { "light": { "emissionStrength": 0.5 } } })");
+  Scene s = luxel::loadSceneFile(dir / "scene.json");
+  expectVec(s.materials[0].emission, Vec3(8.5f, 6.0f, 2.0f));
+}
+
+TEST(SceneFile, EveryLightType) {
+  Scene s = loadWithQuad("lights", R"({
+    "meshes": [ { "file": "models/quad.obj" } ],
+    "lights": [
+      { "type": "point", "name": "bulb", "position": [1, 2, 3], "color": [1, 0.5, 0.25],
+        "intensity": 100 },
+      { "type": "spot", "position": [0, 3, 0], "target": [0, 0, 0], "innerConeAngle": 20,
+        "outerConeAngle": 30, "intensity": 50 },
+      { "type": "spot", "position": [0, 3, 0], "direction": [1, 0, 0] },
+      { "type": "directional", "name": "sun", "direction": [0, -2, 0], "intensity": 100000,
+        "angularRadius": 0.2665 },
+      { "type": "sky", "intensity": 5000, "color": 0.9 },
+      { "type": "cie-overcast", "intensity": 8000 }
+    ],
+    "up": [0, 0, 2]
+  })");
+  ASSERT_EQ(s.lights.size(), 6u);
+  const Light& point = s.lights[0];
+  EXPECT_EQ(point.type, Light::Type::Point);
+  EXPECT_EQ(point.name, "bulb");
+  expectVec(point.position, Vec3(1, 2, 3));
+  expectVec(point.color, Vec3(1, 0.5f, 0.25f));
+  EXPECT_FLOAT_EQ(point.intensity, 100.0f);
+
+  const Light& spot = s.lights[1];
+  EXPECT_EQ(spot.type, Light::Type::Spot);
+  EXPECT_EQ(spot.name, "light1");
+  expectVec(spot.direction, Vec3(0, -1, 0));
+  EXPECT_NEAR(spot.innerConeAngle, 20.0f * kPi / 180.0f, 1e-6f);
+  EXPECT_NEAR(spot.outerConeAngle, 30.0f * kPi / 180.0f, 1e-6f);
+  expectVec(s.lights[2].direction, Vec3(1, 0, 0));
+  EXPECT_NEAR(s.lights[2].outerConeAngle, kPi / 4.0f, 1e-6f);  // default 45 degrees
+
+  const Light& sun = s.lights[3];
+  EXPECT_EQ(sun.type, Light::Type::Directional);
+  expectVec(sun.direction, Vec3(0, -1, 0));
+  EXPECT_NEAR(sun.angularRadius, 0.00465f, 1e-5f);
+
+  EXPECT_EQ(s.lights[4].type, Light::Type::Sky);
+  expectVec(s.lights[4].color, Vec3(0.9f));
+  EXPECT_EQ(s.lights[5].type, Light::Type::CieOvercastSky);
+  EXPECT_FLOAT_EQ(s.lights[5].intensity, 8000.0f);
+  expectVec(s.up, Vec3(0, 0, 1));
+}
+
+TEST(SceneFile, Cameras) {
+  Scene s = loadWithQuad("cameras", R"({
+    "meshes": [ { "file": "models/quad.obj" } ],
+    "cameras": [
+      { "name": "front", "eye": [278, 273, -800], "target": [278, 273, 0], "fov": 39.3077 },
+      { "eye": [0, 0, 5], "target": [0, 0, 0], "up": [1, 0, 0] }
+    ]
+  })");
+  ASSERT_EQ(s.cameras.size(), 2u);
+  const luxel::Camera* front = s.findCamera("front");
+  ASSERT_NE(front, nullptr);
+  expectVec(front->eye, Vec3(278, 273, -800));
+  expectVec(front->target, Vec3(278, 273, 0));
+  EXPECT_FLOAT_EQ(front->fovY, 39.3077f);
+  expectVec(front->up, Vec3(0, 1, 0));
+  EXPECT_EQ(s.cameras[1].name, "camera1");
+  expectVec(s.cameras[1].up, Vec3(1, 0, 0));
+  EXPECT_FLOAT_EQ(s.cameras[1].fovY, 45.0f);
+}
+
+TEST(SceneFile, BuiltinBase) {
+  if (!luxel::isBuiltinScene("cornell")) GTEST_SKIP() << "no built-in scene 'cornell'";
+  Scene base = luxel::builtinScene("cornell");
+  Scene s = loadWithQuad("builtin", R"({ "builtin": "cornell",
+      "meshes": [ { "file": "models/quad.obj", "translate": [0, 0, 3] } ] })");
+  EXPECT_EQ(s.meshes.size(), base.meshes.size() + 1);
+  EXPECT_EQ(s.materials.size(), base.materials.size() + 1);
+  EXPECT_EQ(s.meshes.back().material, base.materials.size());  // remapped past the built-in's
+  EXPECT_EQ(s.lights.size(), base.lights.size());
+
+  expectError("builtin-bad", R"({ "builtin": "cornel" })", {"/builtin", "cornel", "cornell"});
+}
+
+TEST(SceneFile, LoadSceneDispatchesJson) {
+  fs::path dir = tmpDir("load-scene");
+  writeQuad(dir / "quad.obj", "paint");
+  writeFile(dir / "s.JSON", R"({ "meshes": [ { "file": "quad.obj" } ] })");
+  EXPECT_EQ(luxel::loadScene((dir / "s.JSON").string()).faceCount(), 1u);
+}
+
+// ---- errors name the file and the JSON path ----------------------------------------------------
+
+TEST(SceneFileErrors, UnknownLightType) {
+  expectError("light-type", R"({ "lights": [ {"type": "point", "position": [0,0,0]},
+      {"type": "sky"}, {"type": "spto"} ] })",
+              {"/lights/2/type", "unknown light type 'spto'",
+               "point, spot, directional, sky, cie-overcast"});
+}
+
+TEST(SceneFileErrors, UnknownKeys) {
+  expectError("key-top", R"({ "mesh": [] })", {"/mesh", "unknown key 'mesh'"});
+  expectError("key-camera", R"({ "cameras": [ { "eye": [0,0,1], "target": [0,0,0], "fob": 40 } ] })",
+              {"/cameras/0/fob", "unknown key 'fob'"});
+  // A key that belongs to another light type.
+  expectError("key-light", R"({ "lights": [ { "type": "directional", "direction": [0,-1,0],
+      "position": [0,0,0] } ] })",
+              {"/lights/0/position", "unknown key"});
+  expectError("key-material", R"({ "materials": { "a/b": { "colour": [1,1,1] } } })",
+              {"/materials/a~1b/colour", "unknown key 'colour'"});
+}
+
+TEST(SceneFileErrors, WrongTypes) {
+  expectError("type-intensity", R"({ "lights": [ { "type": "sky", "intensity": "bright" } ] })",
+              {"/lights/0/intensity", "expected a number, got string"});
+  expectError("type-vec", R"({ "cameras": [ { "eye": [0, 0], "target": [0,0,0] } ] })",
+              {"/cameras/0/eye", "expected an array of 3 numbers"});
+  expectError("type-lights", R"({ "lights": { "type": "sky" } })", {"/lights", "expected an array"});
+  expectError("type-root", R"([1, 2])", {"/:", "expected an object"});
+  expectError("type-bool", R"({ "materials": { "m": { "twoSided": 1 } } })",
+              {"/materials/m/twoSided", "expected true or false"});
+  expectError("type-component", R"({ "up": [0, "1", 0] })", {"/up/1", "expected a number"});
+}
+
+TEST(SceneFileErrors, BadValues) {
+  expectError("negative", R"({ "lights": [ { "type": "sky", "intensity": -1 } ] })",
+              {"/lights/0/intensity", "negative"});
+  expectError("missing", R"({ "lights": [ { "type": "point" } ] })",
+              {"/lights/0", "needs 'position'"});
+  expectError("cone", R"({ "lights": [ { "type": "spot", "position": [0,1,0], "direction": [0,-1,0],
+      "innerConeAngle": 50, "outerConeAngle": 40 } ] })",
+              {"/lights/0/innerConeAngle"});
+  expectError("fov", R"({ "cameras": [ { "eye": [0,0,1], "target": [0,0,0], "fov": 180 } ] })",
+              {"/cameras/0/fov"});
+  expectError("zero-dir", R"({ "up": [0, 0, 0] })", {"/up", "zero"});
+  expectError("reflectance", R"({ "materials": { "m": { "reflectance": [1.5, 0, 0] } } })",
+              {"/materials/m/reflectance", "above 1"});
+  expectError("assign", R"({ "meshes": [ { "file": "models/quad.obj", "material": "nope" } ] })",
+              {"/meshes/0/material", "'nope'"});
+  expectError("scale", R"({ "meshes": [ { "file": "models/quad.obj", "scale": [1, 0, 1] } ] })",
+              {"/meshes/0/scale"});
+  expectError("rotate", R"({ "meshes": [ { "file": "models/quad.obj", "rotate": { "axis": [0,1,0] } } ] })",
+              {"/meshes/0/rotate", "angle"});
+}
+
+TEST(SceneFileErrors, MissingFilesNameBoth) {
+  expectError("mesh-missing", R"({ "meshes": [ { "file": "models/absent.obj" } ] })",
+              {"/meshes/0/file", "absent.obj", "no such file"});
+  expectError("texture-missing", R"({ "materials": { "m": { "texture": "img/absent.png" } } })",
+              {"/materials/m/texture", "absent.png"});
+  std::string msg = errorOf([] { luxel::loadSceneFile("/no/such/place/scene.json"); });
+  EXPECT_NE(msg.find("scene.json"), std::string::npos) << msg;
+}
+
+TEST(SceneFileErrors, BadJsonGivesBytePosition) {
+  // The stray comma is the 24th byte (nlohmann counts from 1).
+  expectError("json", "{ \"lights\": [ {\"type\": , \"sky\"} ] }",
+              {"invalid JSON at byte 24", "line 1, column 24"});
+  expectError("json-empty", "", {"invalid JSON"});
+}
