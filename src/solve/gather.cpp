@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -75,10 +76,15 @@ Solution solveGather(const RadiositySystem& sys, Transport& transport, const Sol
   double residual = 1.0;
   int iteration = 0;
   const auto& patchOf = sys.surfaces.elements;
+  double best = std::numeric_limits<double>::max();
+  int sinceBest = 0;
   while (iteration < options.maxIterations) {
     ++iteration;
     double maxDelta = 0.0, maxB = 0.0;
     if (options.gaussSeidel) {
+      // Patch means are updated in place during a sweep; recomputing them at its start keeps
+      // float rounding from accumulating over many sweeps.
+      refreshPatches();
       for (size_t e = 0; e < ne; ++e) {
         Rgb h = sys.analytic[e] + gatherRow(matrix.data() + e * np, pr, pg, pb);
         Rgb b = sys.emission[e] + sys.reflectance[e] * h;
@@ -114,6 +120,13 @@ Solution solveGather(const RadiositySystem& sys, Transport& transport, const Sol
                    std::clamp(std::log(std::max(residual, 1e-30)) / std::log(options.residualThreshold), 0.0, 1.0),
                    fmt::format("residual {:.2e}", residual));
     if (residual <= options.residualThreshold) break;
+    // Float rounding bounds how small the residual can get; stop once it no longer falls.
+    if (residual < best * 0.99) {
+      best = residual;
+      sinceBest = 0;
+    } else if (++sinceBest >= 8) {
+      break;
+    }
   }
 
   // Direct irradiance: the analytic lights plus one bounce from emitting patches.

@@ -44,6 +44,8 @@ class CpuTransport final : public Transport {
   RayTracer tracer_;
   float rayOffset_ = 0.0f;
   std::vector<float> patchRadius_;
+  std::vector<float> elementRadius_;
+  std::vector<uint8_t> elementQuadrature_;  // receiver midpoint rule: k x k points
   std::vector<uint8_t> patchEmits_;
   struct ThreadLocal;
   std::unique_ptr<ThreadLocal> threadLocal_;

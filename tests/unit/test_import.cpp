@@ -54,9 +54,9 @@ fs::path cornellPath() {
   return fs::path(LUXEL_TEST_SCENES) / "mcguire-cornell-box" / "CornellBox-Original.obj";
 }
 
-#define SKIP_IF_MISSING(path)                                                              \
-  if (!fs::exists(path)) GTEST_SKIP() << (path).string()                                   \
-                                      << " is missing: unzip ../shared/scenes/*.zip there"
+#define SKIP_IF_MISSING(path) \
+  if (!fs::exists(path))      \
+  GTEST_SKIP() << (path).string() << " is missing: unzip ../shared/scenes/*.zip there"
 
 // Runs `f`, expects luxel::Error, and returns its message.
 template <class F>
@@ -110,16 +110,15 @@ uint32_t crc32(const std::string& data) {
   return c ^ 0xFFFFFFFFu;
 }
 
-std::string be32(uint32_t v) {
-  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
-}
+std::string be32(uint32_t v) { return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; }
 
 // An 8-bit RGB PNG with one stored (uncompressed) deflate block, top row first.
 std::string png(int w, int h, const std::vector<std::array<uint8_t, 3>>& px) {
   std::string raw;
   for (int y = 0; y < h; ++y) {
     raw += '\0';  // filter: none
-    for (int x = 0; x < w; ++x) raw.append(reinterpret_cast<const char*>(px[size_t(y * w + x)].data()), 3);
+    for (int x = 0; x < w; ++x)
+      raw.append(reinterpret_cast<const char*>(px[size_t(y * w + x)].data()), 3);
   }
   uint32_t a = 1, b = 0;
   for (unsigned char c : raw) {
@@ -214,9 +213,7 @@ TEST(Texture, WrapsAround) {
   EXPECT_TRUE(std::isfinite(nan.x));
 }
 
-TEST(Texture, Mean) {
-  expectRgb(twoByTwo().mean(), Rgb(0.25f, 0.25f, 0.25f));
-}
+TEST(Texture, Mean) { expectRgb(twoByTwo().mean(), Rgb(0.25f, 0.25f, 0.25f)); }
 
 TEST(Texture, LoadsPpmFlippedAndDecodesSrgb) {
   fs::path dir = tmpDir("texture");
@@ -319,7 +316,8 @@ TEST(ImportObj, CornellBoxOriginal) {
     ASSERT_EQ(m.faces.size(), 1u);
     ASSERT_FALSE(m.faces[0].isTriangle());
     const auto& v = m.faces[0].v;
-    Vec3 n = glm::cross(m.positions[v[1]] - m.positions[v[0]], m.positions[v[2]] - m.positions[v[0]]);
+    Vec3 n =
+        glm::cross(m.positions[v[1]] - m.positions[v[0]], m.positions[v[2]] - m.positions[v[0]]);
     EXPECT_LT(n.y, 0.0f);
     for (uint32_t i : v) EXPECT_NEAR(m.positions[i].y, 1.98f, 1e-6f);
   }
@@ -337,7 +335,8 @@ TEST_P(ImportFormat, CornellBoxRoundTrip) {
   Assimp::Exporter exporter;
   const aiExportFormatDesc* desc = nullptr;
   for (size_t i = 0; i < exporter.GetExportFormatCount(); ++i)
-    if (id == exporter.GetExportFormatDescription(i)->id) desc = exporter.GetExportFormatDescription(i);
+    if (id == exporter.GetExportFormatDescription(i)->id)
+      desc = exporter.GetExportFormatDescription(i);
   if (!desc) GTEST_SKIP() << "this Assimp build has no '" << id << "' exporter";
 
   Assimp::Importer importer;
@@ -350,7 +349,8 @@ TEST_P(ImportFormat, CornellBoxRoundTrip) {
   // range"); that is Assimp's limit, not ours, so skip rather than fail when it cannot.
   Assimp::Importer check;
   if (!check.ReadFile(out.string(), 0))
-    GTEST_SKIP() << "Assimp cannot read back its own '" << id << "' export: " << check.GetErrorString();
+    GTEST_SKIP() << "Assimp cannot read back its own '" << id
+                 << "' export: " << check.GetErrorString();
 
   Scene s = luxel::importMeshFile(out);
   EXPECT_EQ(s.triangleCount(), 36u) << out;
@@ -375,11 +375,13 @@ namespace {
 
 // One unit quad (two triangles) in node "quadnode" at z = 5; a camera node at (1, 2, 3) turned
 // 90 degrees about +y (so it looks down -x); a spot light at (0, 4, 0) turned -90 degrees about
-// +x (so it points down -y). The material's base colour texture is a 2x1 PNG in a data URI.
+// +x (so it points down -y). The material's base colour texture is a 2x2 PNG in a data URI: top
+// row red, green; bottom row blue, white. The quad's glTF uvs equal its (x, y).
 nlohmann::json gltfDoc(const std::string& bufferUri, size_t bufferBytes) {
   using nlohmann::json;
   const float s = std::sqrt(0.5f);
-  std::string texture = "data:image/png;base64," + base64(png(2, 1, {{255, 0, 0}, {0, 0, 255}}));
+  std::string texture = "data:image/png;base64," +
+                        base64(png(2, 2, {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 255}}));
   json g = {
       {"asset", {{"version", "2.0"}}},
       {"extensionsUsed", {"KHR_lights_punctual", "KHR_materials_emissive_strength"}},
@@ -406,7 +408,9 @@ nlohmann::json gltfDoc(const std::string& bufferUri, size_t bufferBytes) {
       {"meshes",
        {{{"name", "quad"},
          {"primitives",
-          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 2}}}, {"indices", 1}, {"material", 0}}}}}}},
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 2}}},
+            {"indices", 1},
+            {"material", 0}}}}}}},
       {"materials",
        {{{"name", "glow"},
          {"doubleSided", true},
@@ -422,8 +426,12 @@ nlohmann::json gltfDoc(const std::string& bufferUri, size_t bufferBytes) {
         {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 12}},
         {{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 32}}}},
       {"accessors",
-       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-         {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {0, 0, 0}},
+         {"max", {1, 1, 0}}},
         {{"bufferView", 1}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}},
         {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}}}}};
   if (!bufferUri.empty()) g["buffers"][0]["uri"] = bufferUri;
@@ -448,6 +456,12 @@ void checkGltfScene(const Scene& s) {
   ASSERT_EQ(s.faceCount(), 1u);  // the two triangles were one quad
   for (const Vec3& p : s.meshes[0].positions) EXPECT_NEAR(p.z, 5.0f, 1e-6f);
   ASSERT_EQ(s.meshes[0].uvs.size(), 4u);
+  // glTF puts uv (0, 0) at the image's top-left, luxel (like OBJ) at the bottom-left: Assimp flips
+  // v, and the texture is stored bottom row first, so the same texel comes back.
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(s.meshes[0].uvs[i].x, s.meshes[0].positions[i].x, 1e-6f);
+    EXPECT_NEAR(s.meshes[0].uvs[i].y, 1.0f - s.meshes[0].positions[i].y, 1e-6f);
+  }
 
   ASSERT_EQ(s.materials.size(), 1u);
   const luxel::Material& m = s.materials[0];
@@ -458,9 +472,12 @@ void checkGltfScene(const Scene& s) {
   ASSERT_GE(m.reflectanceTexture, 0);
   const Texture& t = s.textures[size_t(m.reflectanceTexture)];
   ASSERT_EQ(t.width, 2);
-  ASSERT_EQ(t.height, 1);
-  expectRgb(t.texels[0], Rgb(1, 0, 0));
-  expectRgb(t.texels[1], Rgb(0, 0, 1));
+  ASSERT_EQ(t.height, 2);
+  expectRgb(t.texels[0], Rgb(0, 0, 1));  // bottom-left
+  expectRgb(t.texels[2], Rgb(1, 0, 0));  // top-left
+  // glTF uv (0.25, 0.25) is the image's top-left texel (red); in luxel's convention (0.25, 0.75).
+  expectRgb(t.sample(Vec2(0.25f, 0.75f)), Rgb(1, 0, 0));
+  expectRgb(t.sample(Vec2(0.75f, 0.25f)), Rgb(1, 1, 1));
 
   ASSERT_EQ(s.lights.size(), 1u);
   const luxel::Light& l = s.lights[0];
@@ -532,7 +549,8 @@ TEST(ImportCollada, CameraFieldOfView) {
           <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
         </accessor></technique_common></source>
       <vertices id="tri-vtx"><input semantic="POSITION" source="#tri-pos"/></vertices>
-      <triangles count="1"><input semantic="VERTEX" source="#tri-vtx" offset="0"/><p>0 1 2</p></triangles>
+      <triangles count="1"><input semantic="VERTEX" source="#tri-vtx" offset="0"/>
+        <p>0 1 2</p></triangles>
     </mesh></geometry>
   </library_geometries>
   <library_visual_scenes>
@@ -687,13 +705,12 @@ TEST_P(ImportShared, TriangleCount) {
 // 75,284 triangles (the scenes README's 75,165 counts faces). Sponza: 40,211 faces (13,972
 // triangles, 26,239 quads), 66,450 triangles. Bunny: 144,046 triangles. Conference room: 330,837
 // faces (330,495 triangles, 342 quads), 331,179 triangles.
-INSTANTIATE_TEST_SUITE_P(
-    Scenes, ImportShared,
-    ::testing::Values(SharedScene{"sibenik-cathedral/sibenik.obj", 75284},
-                      SharedScene{"dabrovic-sponza/sponza.obj", 66450},
-                      SharedScene{"stanford-bunny/bunny.obj", 144046},
-                      SharedScene{"conference-room/conference.obj", 331179}),
-    [](const auto& info) {
-      std::string n = fs::path(info.param.path).stem().string();
-      return n;
-    });
+INSTANTIATE_TEST_SUITE_P(Scenes, ImportShared,
+                         ::testing::Values(SharedScene{"sibenik-cathedral/sibenik.obj", 75284},
+                                           SharedScene{"dabrovic-sponza/sponza.obj", 66450},
+                                           SharedScene{"stanford-bunny/bunny.obj", 144046},
+                                           SharedScene{"conference-room/conference.obj", 331179}),
+                         [](const auto& info) {
+                           std::string n = fs::path(info.param.path).stem().string();
+                           return n;
+                         });

@@ -115,18 +115,21 @@ TEST(SceneFile, TransformsScaleThenRotateThenTranslate) {
 
   // Euler [90, 90, 0]: about x first ((1,0,0) stays, (0,1,0) -> (0,0,1)), then about y
   // ((1,0,0) -> (0,0,-1), (0,0,1) -> (1,0,0)).
-  s = loadWithQuad("euler", R"({ "meshes": [ { "file": "models/quad.obj", "rotate": [90, 90, 0] } ] })");
+  s = loadWithQuad("euler",
+                   R"({ "meshes": [ { "file": "models/quad.obj", "rotate": [90, 90, 0] } ] })");
   expectVec(s.meshes[0].positions[1], Vec3(0, 0, -1));
   expectVec(s.meshes[0].positions[3], Vec3(1, 0, 0));
 
   // Non-uniform scale.
-  s = loadWithQuad("scale3", R"({ "meshes": [ { "file": "models/quad.obj", "scale": [2, 3, 4] } ] })");
+  s = loadWithQuad("scale3",
+                   R"({ "meshes": [ { "file": "models/quad.obj", "scale": [2, 3, 4] } ] })");
   expectVec(s.meshes[0].positions[2], Vec3(2, 3, 0));
 }
 
 TEST(SceneFile, MirroringKeepsFacesFacingTheSameWayInTheMirror) {
   // A mirror in x keeps the +z normal; without reversing the winding it would flip to -z.
-  Scene s = loadWithQuad("mirror", R"({ "meshes": [ { "file": "models/quad.obj", "scale": [-1, 1, 1] } ] })");
+  Scene s = loadWithQuad("mirror",
+                         R"({ "meshes": [ { "file": "models/quad.obj", "scale": [-1, 1, 1] } ] })");
   expectVec(faceNormal(s.meshes[0], 0), Vec3(0, 0, 1));
   expectVec(s.meshes[0].positions[1], Vec3(-1, 0, 0));
 }
@@ -172,7 +175,8 @@ TEST(SceneFile, OverridesAndAddsMaterialsByName) {
 
 TEST(SceneFile, EmissionStrengthScalesAnImportedEmission) {
   fs::path dir = tmpDir("strength");
-  writeFile(dir / "lamp.obj", "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl light\nf 1 2 3\n");
+  writeFile(dir / "lamp.obj",
+            "mtllib lamp.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl light\nf 1 2 3\n");
   writeFile(dir / "lamp.mtl", "newmtl light\nKd 0.5 0.5 0.5\nKe 17 12 4\n");
   writeFile(dir / "scene.json", R"({ "meshes": [ { "file": "lamp.obj" } ],
                                      "materials": { "light": { "emissionStrength": 0.5 } } })");
@@ -276,7 +280,8 @@ TEST(SceneFileErrors, UnknownLightType) {
 
 TEST(SceneFileErrors, UnknownKeys) {
   expectError("key-top", R"({ "mesh": [] })", {"/mesh", "unknown key 'mesh'"});
-  expectError("key-camera", R"({ "cameras": [ { "eye": [0,0,1], "target": [0,0,0], "fob": 40 } ] })",
+  expectError("key-camera",
+              R"({ "cameras": [ { "eye": [0,0,1], "target": [0,0,0], "fob": 40 } ] })",
               {"/cameras/0/fob", "unknown key 'fob'"});
   // A key that belongs to another light type.
   expectError("key-light", R"({ "lights": [ { "type": "directional", "direction": [0,-1,0],
@@ -291,7 +296,8 @@ TEST(SceneFileErrors, WrongTypes) {
               {"/lights/0/intensity", "expected a number, got string"});
   expectError("type-vec", R"({ "cameras": [ { "eye": [0, 0], "target": [0,0,0] } ] })",
               {"/cameras/0/eye", "expected an array of 3 numbers"});
-  expectError("type-lights", R"({ "lights": { "type": "sky" } })", {"/lights", "expected an array"});
+  expectError("type-lights", R"({ "lights": { "type": "sky" } })",
+              {"/lights", "expected an array"});
   expectError("type-root", R"([1, 2])", {"/:", "expected an object"});
   expectError("type-bool", R"({ "materials": { "m": { "twoSided": 1 } } })",
               {"/materials/m/twoSided", "expected true or false"});
@@ -315,7 +321,8 @@ TEST(SceneFileErrors, BadValues) {
               {"/meshes/0/material", "'nope'"});
   expectError("scale", R"({ "meshes": [ { "file": "models/quad.obj", "scale": [1, 0, 1] } ] })",
               {"/meshes/0/scale"});
-  expectError("rotate", R"({ "meshes": [ { "file": "models/quad.obj", "rotate": { "axis": [0,1,0] } } ] })",
+  expectError("rotate",
+              R"({ "meshes": [ { "file": "models/quad.obj", "rotate": { "axis": [0,1,0] } } ] })",
               {"/meshes/0/rotate", "angle"});
 }
 

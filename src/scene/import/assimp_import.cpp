@@ -38,7 +38,8 @@ constexpr float kPi = 3.14159265358979f;
 enum class Format { Gltf, Collada, Fbx, Other };
 
 std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
   return s;
 }
 
@@ -160,12 +161,12 @@ class AssimpImport {
     Rgb reflectance(base.r, base.g, base.b);
     Rgb clamped;
     for (int c = 0; c < 3; ++c)
-      clamped[c] = std::isfinite(reflectance[c]) ? std::clamp(reflectance[c], 0.0f, kMaxReflectance)
-                                                 : 0.0f;
+      clamped[c] =
+          std::isfinite(reflectance[c]) ? std::clamp(reflectance[c], 0.0f, kMaxReflectance) : 0.0f;
     if (clamped != reflectance)
-      scene_.warnings.push_back(fmt::format(
-          "{}: material '{}': reflectance ({}, {}, {}) clamped to [0, {}]", file_, mat.name,
-          reflectance.x, reflectance.y, reflectance.z, kMaxReflectance));
+      scene_.warnings.push_back(
+          fmt::format("{}: material '{}': reflectance ({}, {}, {}) clamped to [0, {}]", file_,
+                      mat.name, reflectance.x, reflectance.y, reflectance.z, kMaxReflectance));
     mat.reflectance = clamped;
 
     aiColor4D emissive(0.0f, 0.0f, 0.0f, 1.0f);
@@ -187,10 +188,10 @@ class AssimpImport {
         strength = gltfEmissiveStrength(*gltf_, haveMaterialName(am) ? mat.name : std::string(),
                                         emissiveFactor, Rgb(base.r, base.g, base.b), ambiguous);
         if (ambiguous)
-          scene_.warnings.push_back(fmt::format(
-              "{}: material '{}': several glTF materials match with different "
-              "KHR_materials_emissive_strength; used {}",
-              file_, mat.name, strength));
+          scene_.warnings.push_back(
+              fmt::format("{}: material '{}': several glTF materials match with different "
+                          "KHR_materials_emissive_strength; used {}",
+                          file_, mat.name, strength));
       }
     }
     Rgb emission = emissiveFactor * strength;
@@ -208,11 +209,12 @@ class AssimpImport {
     int twoSided = 0;
     if (am.Get(AI_MATKEY_TWOSIDED, twoSided) == AI_SUCCESS) mat.twoSided = twoSided != 0;
 
-    mat.reflectanceTexture = materialTexture(am, mat.name, {aiTextureType_BASE_COLOR,
-                                                            aiTextureType_DIFFUSE});
+    mat.reflectanceTexture =
+        materialTexture(am, mat.name, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE});
     // glTF's emissive factor defaults to black, and black times the texture is black: skip the
     // decode unless the material emits.
-    if (mat.isEmissive()) mat.emissionTexture = materialTexture(am, mat.name, {aiTextureType_EMISSIVE});
+    if (mat.isEmissive())
+      mat.emissionTexture = materialTexture(am, mat.name, {aiTextureType_EMISSIVE});
     return mat;
   }
 
@@ -368,14 +370,21 @@ class AssimpImport {
   void importLights() {
     for (unsigned i = 0; i < ai_.mNumLights; ++i) {
       const aiLight& al = *ai_.mLights[i];
-      std::string name = al.mName.length > 0 ? std::string(al.mName.C_Str())
-                                             : fmt::format("{}#light{}", path_.filename().string(), i);
+      std::string name = al.mName.length > 0
+                             ? std::string(al.mName.C_Str())
+                             : fmt::format("{}#light{}", path_.filename().string(), i);
       Light light;
       light.name = name;
       switch (al.mType) {
-        case aiLightSource_POINT: light.type = Light::Type::Point; break;
-        case aiLightSource_SPOT: light.type = Light::Type::Spot; break;
-        case aiLightSource_DIRECTIONAL: light.type = Light::Type::Directional; break;
+        case aiLightSource_POINT:
+          light.type = Light::Type::Point;
+          break;
+        case aiLightSource_SPOT:
+          light.type = Light::Type::Spot;
+          break;
+        case aiLightSource_DIRECTIONAL:
+          light.type = Light::Type::Directional;
+          break;
         default:
           scene_.warnings.push_back(fmt::format(
               "{}: light '{}': ambient, area and undefined lights are not supported; skipped",
@@ -385,9 +394,9 @@ class AssimpImport {
       Rgb c(al.mColorDiffuse.r, al.mColorDiffuse.g, al.mColorDiffuse.b);
       float peak = std::max({c.x, c.y, c.z});
       if (!finite(c) || c.x < 0.0f || c.y < 0.0f || c.z < 0.0f) {
-        scene_.warnings.push_back(fmt::format(
-            "{}: light '{}': colour ({}, {}, {}) is negative or not finite; skipped", file_, name,
-            c.x, c.y, c.z));
+        scene_.warnings.push_back(
+            fmt::format("{}: light '{}': colour ({}, {}, {}) is negative or not finite; skipped",
+                        file_, name, c.x, c.y, c.z));
         continue;
       }
       light.color = peak > 0.0f ? c / peak : Rgb(1.0f);
@@ -425,9 +434,9 @@ class AssimpImport {
       }
       std::optional<float> fovY = verticalFov(ac);
       if (!fovY) {
-        scene_.warnings.push_back(fmt::format(
-            "{}: camera '{}': field of view {} rad is unusable; using {} degrees", file_, cam.name,
-            ac.mHorizontalFOV, cam.fovY));
+        scene_.warnings.push_back(
+            fmt::format("{}: camera '{}': field of view {} rad is unusable; using {} degrees",
+                        file_, cam.name, ac.mHorizontalFOV, cam.fovY));
       } else {
         cam.fovY = *fovY;
       }
@@ -498,10 +507,12 @@ Scene importMeshFile(const fs::path& path) {
   // "Mesh contains no faces", and "contains no triangles" says what is wrong.
   const aiScene* ai = importer.ReadFile(file, 0);
   if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
-  if (!ai->mRootNode || !hasPolygons(*ai)) throw Error(fmt::format("{}: contains no triangles", file));
+  if (!ai->mRootNode || !hasPolygons(*ai))
+    throw Error(fmt::format("{}: contains no triangles", file));
   // Points and lines carry no area: drop them rather than get meshes of them. Validation runs
   // first among the steps, so the others only see indices that are in range.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   ai = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));

@@ -6,7 +6,6 @@
 #include <iterator>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <string_view>
 #include <system_error>
 #include <utility>
@@ -35,9 +34,12 @@ float radians(float degrees) { return degrees * kPi / 180.0f; }
 std::string escapeKey(std::string_view key) {
   std::string out;
   for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
   }
   return out;
 }
@@ -194,8 +196,10 @@ class SceneFileLoader {
         Camera cam = readCamera(cameras[i], Reader::child("/cameras", i), i);
         auto same = std::find_if(scene_.cameras.begin(), scene_.cameras.end(),
                                  [&](const Camera& c) { return c.name == cam.name; });
-        if (same != scene_.cameras.end()) *same = cam;  // a file's camera redefined by name
-        else scene_.cameras.push_back(cam);
+        if (same != scene_.cameras.end())
+          *same = cam;  // a file's camera redefined by name
+        else
+          scene_.cameras.push_back(cam);
       }
     }
     if (auto it = doc.find("up"); it != doc.end()) scene_.up = in_.direction(*it, "/up");
@@ -258,7 +262,8 @@ class SceneFileLoader {
     glm::mat4 m(1.0f);
     if (auto it = j.find("translate"); it != j.end())
       m = glm::translate(m, in_.vec3(*it, Reader::child(ptr, "translate")));
-    if (auto it = j.find("rotate"); it != j.end()) m = m * readRotation(*it, Reader::child(ptr, "rotate"));
+    if (auto it = j.find("rotate"); it != j.end())
+      m = m * readRotation(*it, Reader::child(ptr, "rotate"));
     if (auto it = j.find("scale"); it != j.end()) {
       std::string p = Reader::child(ptr, "scale");
       Vec3 s = it->is_number() ? Vec3(in_.number(*it, p)) : in_.vec3(*it, p);
@@ -279,7 +284,8 @@ class SceneFileLoader {
       r = glm::rotate(r, radians(e.x), Vec3(1.0f, 0.0f, 0.0f));
       return r;
     }
-    in_.expectType(j, ptr, j.is_object(), "[x, y, z] degrees or {\"axis\": [x, y, z], \"angle\": degrees}");
+    in_.expectType(j, ptr, j.is_object(),
+                   "[x, y, z] degrees or {\"axis\": [x, y, z], \"angle\": degrees}");
     in_.keys(j, ptr, {"axis", "angle"});
     if (!j.contains("axis") || !j.contains("angle")) in_.fail(ptr, "needs both 'axis' and 'angle'");
     Vec3 axis = in_.direction(j["axis"], Reader::child(ptr, "axis"));
@@ -309,8 +315,9 @@ class SceneFileLoader {
 
   void applyMaterial(const std::string& name, const Json& spec, const std::string& ptr) {
     in_.object(spec, ptr);
-    in_.keys(spec, ptr, {"reflectance", "emission", "emissionStrength", "twoSided", "texture",
-                         "emissionTexture"});
+    in_.keys(
+        spec, ptr,
+        {"reflectance", "emission", "emissionStrength", "twoSided", "texture", "emissionTexture"});
     std::vector<size_t> targets;
     for (size_t i = 0; i < scene_.materials.size(); ++i)
       if (scene_.materials[i].name == name) targets.push_back(i);
@@ -332,8 +339,8 @@ class SceneFileLoader {
         in_.fail(p, fmt::format("reflectance ({}, {}, {}) is above 1", r.x, r.y, r.z));
       Rgb clamped = glm::min(r, Rgb(kMaxReflectance));
       if (clamped != r)
-        scene_.warnings.push_back(fmt::format("{}: {}: reflectance clamped to {}", in_.file(), p,
-                                              kMaxReflectance));
+        scene_.warnings.push_back(
+            fmt::format("{}: {}: reflectance clamped to {}", in_.file(), p, kMaxReflectance));
       reflectance = clamped;
     }
     if (auto it = spec.find("emission"); it != spec.end())
@@ -387,8 +394,9 @@ class SceneFileLoader {
       in_.keys(j, ptr, {"type", "name", "color", "intensity", "position"});
     } else if (type == "spot") {
       light.type = Light::Type::Spot;
-      in_.keys(j, ptr, {"type", "name", "color", "intensity", "position", "direction", "target",
-                        "innerConeAngle", "outerConeAngle"});
+      in_.keys(j, ptr,
+               {"type", "name", "color", "intensity", "position", "direction", "target",
+                "innerConeAngle", "outerConeAngle"});
     } else if (type == "directional") {
       light.type = Light::Type::Directional;
       in_.keys(j, ptr, {"type", "name", "color", "intensity", "direction", "angularRadius"});
@@ -405,8 +413,10 @@ class SceneFileLoader {
     }
 
     light.name = fmt::format("light{}", index);
-    if (auto it = j.find("name"); it != j.end()) light.name = in_.string(*it, Reader::child(ptr, "name"));
-    if (auto it = j.find("color"); it != j.end()) light.color = in_.color(*it, Reader::child(ptr, "color"));
+    if (auto it = j.find("name"); it != j.end())
+      light.name = in_.string(*it, Reader::child(ptr, "name"));
+    if (auto it = j.find("color"); it != j.end())
+      light.color = in_.color(*it, Reader::child(ptr, "color"));
     if (auto it = j.find("intensity"); it != j.end())
       light.intensity = in_.nonNegative(*it, Reader::child(ptr, "intensity"));
 
@@ -420,7 +430,8 @@ class SceneFileLoader {
       light.direction = in_.direction(require("direction"), Reader::child(ptr, "direction"));
     if (light.type == Light::Type::Spot) {
       bool hasDir = j.contains("direction"), hasTarget = j.contains("target");
-      if (hasDir == hasTarget) in_.fail(ptr, "a spot light needs exactly one of 'direction' and 'target'");
+      if (hasDir == hasTarget)
+        in_.fail(ptr, "a spot light needs exactly one of 'direction' and 'target'");
       if (hasDir) {
         light.direction = in_.direction(j["direction"], Reader::child(ptr, "direction"));
       } else {
@@ -459,22 +470,24 @@ class SceneFileLoader {
     in_.keys(j, ptr, {"name", "eye", "target", "up", "fov"});
     Camera cam;
     cam.name = fmt::format("camera{}", index);
-    if (auto it = j.find("name"); it != j.end()) cam.name = in_.string(*it, Reader::child(ptr, "name"));
+    if (auto it = j.find("name"); it != j.end())
+      cam.name = in_.string(*it, Reader::child(ptr, "name"));
     for (const char* key : {"eye", "target"})
       if (!j.contains(key)) in_.fail(ptr, fmt::format("a camera needs '{}'", key));
     cam.eye = in_.vec3(j["eye"], Reader::child(ptr, "eye"));
     cam.target = in_.vec3(j["target"], Reader::child(ptr, "target"));
     if (!(glm::length(cam.target - cam.eye) > 0.0f))
       in_.fail(Reader::child(ptr, "target"), "target is at the eye");
-    if (auto it = j.find("up"); it != j.end()) cam.up = in_.direction(*it, Reader::child(ptr, "up"));
+    if (auto it = j.find("up"); it != j.end())
+      cam.up = in_.direction(*it, Reader::child(ptr, "up"));
     if (glm::length(glm::cross(glm::normalize(cam.target - cam.eye), cam.up)) < 1e-6f)
       in_.fail(Reader::child(ptr, "up"), "up is parallel to the viewing direction");
     if (auto it = j.find("fov"); it != j.end()) {
       std::string p = Reader::child(ptr, "fov");
       cam.fovY = in_.number(*it, p);
       if (!(cam.fovY > 0.0f) || !(cam.fovY < 180.0f))
-        in_.fail(p, fmt::format("vertical field of view must be in (0, 180) degrees, got {}",
-                                cam.fovY));
+        in_.fail(
+            p, fmt::format("vertical field of view must be in (0, 180) degrees, got {}", cam.fovY));
     }
     return cam;
   }
@@ -483,7 +496,7 @@ class SceneFileLoader {
   fs::path folder_;
   Reader in_;
   Scene scene_;
-  std::map<std::string, int> textures_;      // textures this file loaded, by path
+  std::map<std::string, int> textures_;  // textures this file loaded, by path
 };
 
 }  // namespace
@@ -502,7 +515,8 @@ Scene loadSceneFile(const fs::path& path) {
   } catch (const Json::parse_error& e) {
     // what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ...".
     std::string what = e.what();
-    if (size_t close = what.find("] "); what.rfind("[json.exception", 0) == 0 && close != std::string::npos)
+    if (size_t close = what.find("] ");
+        what.rfind("[json.exception", 0) == 0 && close != std::string::npos)
       what = what.substr(close + 2);
     throw Error(fmt::format("{}: invalid JSON at byte {}: {}", file, e.byte, what));
   }
