@@ -66,7 +66,7 @@ struct DiscretiseOptions {
   // Approximate total number of elements wanted (used when elementSize is 0).
   size_t elementBudget = 4000;
   // A patch is about this many elements along each side.
-  int elementsPerPatchSide = 4;
+  int elementsPerPatchSide = 8;
   // Turn faces round whose back receives more direct light than their front (models with
   // inconsistent winding).
   bool orientByLight = true;

@@ -26,7 +26,7 @@ void validate(const SolveOptions& o) {
   if (!(o.timeBudget >= 0.0)) fail(fmt::format("time budget {} must be >= 0", o.timeBudget));
   if (o.maxIterations < 1) fail("max iterations must be >= 1");
   const FormFactorOptions& f = o.formFactors;
-  for (int n : {f.raysPerPair, f.nearRaysPerPair, f.emitterRaysPerPair, f.lightSamples})
+  for (int n : {f.raysPerPair, f.nearRaysPerPair, f.emitterRaysPerPair, f.lightSamples, f.classifyRays})
     if (n < 1 || n > 256) fail(fmt::format("ray and sample counts must be in 1..256 (got {})", n));
   if (!(f.nearFactor >= 0.0f)) fail("near factor must be >= 0");
   if (!(o.refineThreshold > 0.0f)) fail("refine threshold must be > 0");

@@ -23,6 +23,8 @@ constexpr size_t kPairsPerBatch = 128;
 constexpr float kRayOffsetFraction = 1e-5f;
 // The densest midpoint rule for the unoccluded factor of a touching pair: 8 x 8 receiver points.
 constexpr int kMaxAnalyticSide = 3;
+// Patch-pair classification keeps one byte per pair: up to 64 MiB.
+constexpr size_t kMaxClassifiedPatches = 8192;
 
 std::vector<Polygon> facePolygons(const SurfaceSet& set) {
   std::vector<Polygon> polys(set.faces.size());
@@ -63,19 +65,31 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
       threadLocal_(std::make_unique<ThreadLocal>()) {
   rayOffset_ = kRayOffsetFraction * std::max(surfaces.sceneExtent, 1e-6f);
   patchRadius_.resize(surfaces.patches.size());
+  patchLo_.resize(surfaces.patches.size());
+  patchHi_.resize(surfaces.patches.size());
   patchEmits_.resize(surfaces.patches.size());
   for (size_t p = 0; p < surfaces.patches.size(); ++p) {
     const Patch& patch = surfaces.patches[p];
     float r = 0.0f;
-    for (int i = 0; i < patch.polygon.count; ++i)
+    Vec3 lo = patch.polygon.v[0], hi = patch.polygon.v[0];
+    for (int i = 0; i < patch.polygon.count; ++i) {
       r = std::max(r, glm::length(patch.polygon.v[i] - patch.centroid));
+      lo = glm::min(lo, patch.polygon.v[i]), hi = glm::max(hi, patch.polygon.v[i]);
+    }
     patchRadius_[p] = r;
+    patchLo_[p] = lo, patchHi_[p] = hi;
     bool emits = false;
     for (uint32_t e : patch.elements) {
       const Rgb& x = surfaces.elements[e].exitance;
       emits |= (x.r + x.g + x.b) > 0.0f;
     }
     patchEmits_[p] = emits;
+  }
+
+  const size_t np = surfaces.patches.size();
+  if (options.classifyVisibility && np <= kMaxClassifiedPatches) {
+    pairVisibility_.reset(new std::atomic<uint8_t>[np * np]);
+    for (size_t i = 0; i < np * np; ++i) pairVisibility_[i].store(0, std::memory_order_relaxed);
   }
 
   // Each element's receiver quadrature: denser the closer another face's patch comes, so that
@@ -91,9 +105,10 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
       elementRadius_[ei] = radius;
       float gap = std::numeric_limits<float>::max();
       for (size_t p = 0; p < surfaces.patches.size(); ++p) {
-        const Patch& patch = surfaces.patches[p];
-        if (patch.face == e.face) continue;
-        gap = std::min(gap, glm::length(e.centroid - patch.centroid) - patchRadius_[p]);
+        if (surfaces.patches[p].face == e.face) continue;
+        // Distance to the patch's bounding box: a tight lower bound on the distance to the patch.
+        Vec3 outside = glm::max(glm::max(patchLo_[p] - e.centroid, e.centroid - patchHi_[p]), Vec3(0.0f));
+        gap = std::min(gap, glm::length(outside));
       }
       gap = std::max(gap, 0.1f * radius);
       elementQuadrature_[ei] = uint8_t(std::clamp(int(std::ceil(options_.nearFactor * radius / gap)), 1, kMaxAnalyticSide));
@@ -102,6 +117,39 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
 }
 
 CpuTransport::~CpuTransport() = default;
+
+CpuTransport::PairVisibility CpuTransport::classify(uint32_t q, uint32_t p) {
+  std::atomic<uint8_t>& slot = pairVisibility_[size_t(q) * surfaces_.patches.size() + p];
+  auto known = PairVisibility(slot.load(std::memory_order_relaxed));
+  if (known != PairVisibility::Unknown) return known;
+  // Two threads may classify the same pair at once; both reach the same deterministic verdict.
+  const Patch& a = surfaces_.patches[q];
+  const Patch& b = surfaces_.patches[p];
+  const int k = squareCount(options_.classifyRays), m = k * k;
+  Rng rng(hashCombine(hashCombine(options_.seed ^ 0x3C6EF372u, q), p));
+  int permutation[256];
+  shuffledStrata(rng, m, permutation);
+  RTCRay rays[256];
+  int count = 0;
+  for (int i = 0; i < m; ++i) {
+    Vec3 x = polygonPoint(a.polygon, (float(i % k) + rng.next()) / float(k), (float(i / k) + rng.next()) / float(k));
+    const int j = permutation[i];
+    Vec3 y = polygonPoint(b.polygon, (float(j % k) + rng.next()) / float(k), (float(j / k) + rng.next()) / float(k));
+    Vec3 d = y - x;
+    if (glm::dot(a.normal, d) <= 0.0f || glm::dot(b.normal, d) >= 0.0f) continue;
+    Vec3 xo = x + a.normal * rayOffset_, yo = y + b.normal * rayOffset_;
+    rays[count++] = makeRay(xo, yo - xo, 0.0f, 1.0f);
+  }
+  tracer_.occluded({rays, size_t(count)});
+  int arrived = 0;
+  for (int i = 0; i < count; ++i) arrived += isOccluded(rays[i]) ? 0 : 1;
+  PairVisibility verdict = count == 0        ? PairVisibility::Partial
+                           : arrived == count ? PairVisibility::Clear
+                           : arrived == 0     ? PairVisibility::Blocked
+                                              : PairVisibility::Partial;
+  slot.store(uint8_t(verdict), std::memory_order_relaxed);
+  return verdict;
+}
 
 CpuTransport::Workspace& CpuTransport::workspace() { return threadLocal_->workspaces.local(); }
 
@@ -126,16 +174,24 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
     const int ka = elementQuadrature_[pair.element];
     float analytic = 0.0f;
     if (ka == 1) {
-      analytic = pointToPolygonFormFactor(e.centroid, e.normal, p.polygon, receiverSides, sourceSides);
+      analytic = pointToPolygonFormFactor(e.centroid, e.normal, p.polygon, p.normal, receiverSides, sourceSides);
     } else {
       for (int j = 0; j < ka; ++j)
         for (int i = 0; i < ka; ++i) {
           Vec3 x = polygonPoint(e.polygon, (float(i) + 0.5f) / float(ka), (float(j) + 0.5f) / float(ka));
-          analytic += pointToPolygonFormFactor(x, e.normal, p.polygon, receiverSides, sourceSides);
+          analytic += pointToPolygonFormFactor(x, e.normal, p.polygon, p.normal, receiverSides, sourceSides);
         }
       analytic /= float(ka * ka);
     }
     if (analytic <= 0.0f) continue;
+    if (pairVisibility_) {
+      PairVisibility v = classify(e.patch, pair.patch);
+      if (v == PairVisibility::Blocked) continue;
+      if (v == PairVisibility::Clear) {
+        *pair.out = analytic;
+        continue;
+      }
+    }
 
     const float distance = glm::length(e.centroid - p.centroid);
     const bool nearField = distance < options_.nearFactor * (elementRadius_[pair.element] + patchRadius_[pair.patch]);

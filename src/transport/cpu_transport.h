@@ -4,6 +4,7 @@
 // Baum et al. 1989 in place of the disc approximation.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -43,7 +44,13 @@ class CpuTransport final : public Transport {
   FormFactorOptions options_;
   RayTracer tracer_;
   float rayOffset_ = 0.0f;
+  enum class PairVisibility : uint8_t { Unknown, Clear, Partial, Blocked };
+  PairVisibility classify(uint32_t receiverPatch, uint32_t sourcePatch);
+
   std::vector<float> patchRadius_;
+  std::vector<Vec3> patchLo_, patchHi_;  // bounding boxes
+  // Receiver patch x source patch verdicts, filled lazily; empty when classification is off.
+  std::unique_ptr<std::atomic<uint8_t>[]> pairVisibility_;
   std::vector<float> elementRadius_;
   std::vector<uint8_t> elementQuadrature_;  // receiver midpoint rule: k x k points
   std::vector<uint8_t> patchEmits_;

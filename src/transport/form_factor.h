@@ -18,6 +18,9 @@ enum class Sides { Front, Both };
 // `sourceSides` == Front means the polygon radiates only from its front face.
 float pointToPolygonFormFactor(Vec3 p, Vec3 n, const Polygon& poly, Sides receiverSides,
                                Sides sourceSides);
+// The same with the polygon's unit normal supplied, for callers that have it at hand.
+float pointToPolygonFormFactor(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNormal,
+                               Sides receiverSides, Sides sourceSides);
 
 // Area-to-area form factor F(receiver -> source), the point form factor integrated over the
 // receiver with a regular k x k (quads) or k^2 (triangles) midpoint rule.

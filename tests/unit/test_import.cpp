@@ -685,6 +685,8 @@ struct SharedScene {
   size_t triangles;
 };
 
+void PrintTo(const SharedScene& s, std::ostream* os) { *os << s.path << " (" << s.triangles << ")"; }
+
 class ImportShared : public ::testing::TestWithParam<SharedScene> {};
 
 TEST_P(ImportShared, TriangleCount) {
