@@ -221,7 +221,7 @@ int main(int argc, char** argv) {
   render->add_option("--size", ra.size, "Image size WxH")->capture_default_str();
   render->add_option("--spp", ra.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
   render->add_option("--solver", ra.solver, "progressive or gather")->capture_default_str();
-  auto* el = render->add_option("--elements", ra.elements, "Element budget (default 4000)");
+  auto* el = render->add_option("--elements", ra.elements, "Element budget (default 10000)");
   render->add_option("--element-size", ra.elementSize, "Element edge length in scene units")->excludes(el);
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   render->add_flag("-q,--quiet", ra.quiet, "Print nothing but errors");

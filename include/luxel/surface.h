@@ -64,7 +64,7 @@ struct DiscretiseOptions {
   // Target element edge length in scene units. When 0, derived from elementBudget.
   float elementSize = 0.0f;
   // Approximate total number of elements wanted (used when elementSize is 0).
-  size_t elementBudget = 4000;
+  size_t elementBudget = 10000;
   // A patch is about this many elements along each side.
   int elementsPerPatchSide = 8;
   // Turn faces round whose back receives more direct light than their front (models with

@@ -73,6 +73,10 @@ RayTracer::~RayTracer() {
 
 void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
   if (rays.empty()) return;
+  if (recorder_) {
+    std::lock_guard lock(recorderMutex_);
+    recorder_->insert(recorder_->end(), rays.begin(), rays.end());
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;

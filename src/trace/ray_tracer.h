@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -30,11 +31,17 @@ class RayTracer {
   void intersect(std::span<RTCRayHit> hits, bool coherent = true) const;
 
   uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
+
+  // Benchmarks only: when set, every occlusion ray is copied here before it is traced, so that
+  // Embree's raw throughput can be measured on exactly the rays a solver cast.
+  void recordOcclusionRays(std::vector<RTCRay>* sink) { recorder_ = sink; }
   void resetRayCount() { rays_.store(0, std::memory_order_relaxed); }
 
  private:
   RTCScene scene_ = nullptr;
   mutable std::atomic<uint64_t> rays_{0};
+  std::vector<RTCRay>* recorder_ = nullptr;
+  mutable std::mutex recorderMutex_;
 };
 
 // A ray from `org` along `dir` (not necessarily unit) over [tnear, tfar].

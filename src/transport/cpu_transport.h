@@ -24,7 +24,7 @@ class CpuTransport final : public Transport {
   void analyticIrradiance(std::span<Rgb> out) override;
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
 
-  const RayTracer& tracer() const { return tracer_; }
+  RayTracer& tracer() { return tracer_; }
 
   // One element-patch pair, written to *out.
   struct Pair {

@@ -1,0 +1,283 @@
+"""Render luxel's built-in Cornell box with Blender Cycles, as a peer for benchmarks.
+
+Run headless (arguments after "--" belong to this script):
+
+    blender -b --factory-startup --python bench/peers/cycles_cornell.py -- \
+        --spp 256 --out out/peers/cycles_256.exr --threads 2 --size 256
+
+The scene is rebuilt from the same data as luxel's built-in `cornell` scene,
+src/scene/builtin/cornell_box.cpp (the Cornell Program of Computer Graphics measured
+data, https://www.graphics.cornell.edu/online/box/data.html, millimetres -> metres),
+in luxel's own y-up coordinates (Cycles does not care which axis is up; only the
+camera is oriented explicitly).  Everything is set up so that Cycles computes the
+same quantity as luxel (linear radiance, box-filtered over each pixel):
+
+  * Lambertian materials only (Diffuse BSDF, roughness 0) with the same reflectances.
+  * The light: Emission (colour (17,12,4), strength 1) + Diffuse 0.78 on its front
+    face; its back face is black (Mix Shader driven by Geometry > Backfacing), so it
+    emits downward only, like luxel's one-sided emitter.  Cycles' Emission shader
+    with strength S and colour C emits radiance C*S (W/(m^2 sr)); check it with
+    --emission-test, which renders a camera looking straight at a large emissive
+    quad of strength 1 (a pixel value of 1.0 means radiance = C*S, 1/pi means C*S/pi).
+  * Same camera: eye (0.278,0.273,-0.8), target (0.278,0.273,0), up +y, vertical fov
+    39.3077 deg (sensor fit vertical), square image.
+  * Black world, film exposure 0, view transform Standard, look None; the OpenEXR
+    output (float32 RGB) holds scene-linear values anyway.
+  * No denoiser, adaptive sampling off, fixed spp, fixed seed, box pixel filter of
+    width 1 px, 64 bounces of every kind, no clamping, no filter glossy; light
+    sampling threshold 0 (no probabilistic light culling).
+
+The render time (seconds between the start and the end of bpy.ops.render.render,
+which includes Cycles' scene sync and BVH build and writing the EXR, but not
+Blender's start-up) is printed as a line `CYCLES_RENDER_SECONDS <t>` and, with
+--json, written to a JSON file.
+"""
+
+import argparse
+import json
+import math
+import sys
+import time
+
+import bpy
+from mathutils import Vector
+
+MM = 0.001
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    p = argparse.ArgumentParser(prog="cycles_cornell.py")
+    p.add_argument("--spp", type=int, default=256)
+    p.add_argument("--out", required=True, help="output OpenEXR file")
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--size", type=int, default=256, help="image width = height")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--json", help="write render settings and time here")
+    p.add_argument("--two-sided-light", action="store_true",
+                   help="let the light emit from both faces (Cycles' default), for checking")
+    p.add_argument("--emission-test", action="store_true",
+                   help="render a large emissive quad of strength 1 seen head-on instead")
+    return p.parse_args(argv)
+
+
+def clear_scene():
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj, do_unlink=True)
+    for coll in (bpy.data.meshes, bpy.data.materials, bpy.data.cameras, bpy.data.lights):
+        for block in list(coll):
+            coll.remove(block)
+
+
+def diffuse_material(name, rgb):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    bsdf = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    bsdf.inputs["Color"].default_value = (*rgb, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.0  # Lambertian (Oren-Nayar off)
+    nt.links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
+    return mat
+
+
+def light_material(name, emission, reflectance, two_sided):
+    """Emission + Lambertian reflection on the front face; black on the back face."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    mat.cycles.sample_as_light = True  # "Multiple Importance" (next-event estimation)
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    emit = nt.nodes.new("ShaderNodeEmission")
+    emit.inputs["Color"].default_value = (*emission, 1.0)
+    emit.inputs["Strength"].default_value = 1.0
+    bsdf = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    bsdf.inputs["Color"].default_value = (*reflectance, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.0
+    add = nt.nodes.new("ShaderNodeAddShader")
+    nt.links.new(emit.outputs["Emission"], add.inputs[0])
+    nt.links.new(bsdf.outputs["BSDF"], add.inputs[1])
+    if two_sided:
+        nt.links.new(add.outputs["Shader"], out.inputs["Surface"])
+        return mat
+    geo = nt.nodes.new("ShaderNodeNewGeometry")
+    black = nt.nodes.new("ShaderNodeBsdfDiffuse")  # the back face neither emits nor reflects
+    black.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    nt.links.new(geo.outputs["Backfacing"], mix.inputs["Fac"])
+    nt.links.new(add.outputs["Shader"], mix.inputs[1])    # Fac 0: front face
+    nt.links.new(black.outputs["BSDF"], mix.inputs[2])    # Fac 1: back face
+    nt.links.new(mix.outputs["Shader"], out.inputs["Surface"])
+    return mat
+
+
+def add_mesh(name, quads, mat):
+    """quads: lists of 4 vertices in millimetres, counter-clockwise seen from the front."""
+    verts, faces = [], []
+    for q in quads:
+        base = len(verts)
+        verts.extend(Vector(v) * MM for v in q)
+        faces.append(tuple(range(base, base + 4)))
+    me = bpy.data.meshes.new(name)
+    me.from_pydata(verts, [], faces)
+    me.validate()
+    me.update()
+    me.materials.append(mat)
+    obj = bpy.data.objects.new(name, me)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def build_cornell(two_sided_light):
+    # Copied from src/scene/builtin/cornell_box.cpp (same vertex order, so the same normals).
+    white = diffuse_material("white", (0.725, 0.71, 0.68))
+    red = diffuse_material("red", (0.63, 0.065, 0.05))
+    green = diffuse_material("green", (0.14, 0.45, 0.091))
+    light = light_material("light", (17.0, 12.0, 4.0), (0.78, 0.78, 0.78), two_sided_light)
+    y = 548.8
+    add_mesh("floor", [[(552.8, 0, 0), (0, 0, 0), (0, 0, 559.2), (549.6, 0, 559.2)]], white)
+    add_mesh("ceiling", [
+        [(556, y, 0), (556, y, 227), (0, y, 227), (0, y, 0)],
+        [(556, y, 332), (556, y, 559.2), (0, y, 559.2), (0, y, 332)],
+        [(556, y, 227), (556, y, 332), (343, y, 332), (343, y, 227)],
+        [(213, y, 227), (213, y, 332), (0, y, 332), (0, y, 227)],
+    ], white)
+    add_mesh("light", [[(343, y, 227), (343, y, 332), (213, y, 332), (213, y, 227)]], light)
+    add_mesh("back wall", [[(549.6, 0, 559.2), (0, 0, 559.2), (0, y, 559.2), (556, y, 559.2)]], white)
+    add_mesh("right wall", [[(0, 0, 559.2), (0, 0, 0), (0, y, 0), (0, y, 559.2)]], green)
+    add_mesh("left wall", [[(552.8, 0, 0), (549.6, 0, 559.2), (556, y, 559.2), (556, y, 0)]], red)
+    add_mesh("short block", [
+        [(130, 165, 65), (82, 165, 225), (240, 165, 272), (290, 165, 114)],
+        [(290, 0, 114), (290, 165, 114), (240, 165, 272), (240, 0, 272)],
+        [(130, 0, 65), (130, 165, 65), (290, 165, 114), (290, 0, 114)],
+        [(82, 0, 225), (82, 165, 225), (130, 165, 65), (130, 0, 65)],
+        [(240, 0, 272), (240, 165, 272), (82, 165, 225), (82, 0, 225)],
+    ], white)
+    add_mesh("tall block", [
+        [(423, 330, 247), (265, 330, 296), (314, 330, 456), (472, 330, 406)],
+        [(423, 0, 247), (423, 330, 247), (472, 330, 406), (472, 0, 406)],
+        [(472, 0, 406), (472, 330, 406), (314, 330, 456), (314, 0, 456)],
+        [(314, 0, 456), (314, 330, 456), (265, 330, 296), (265, 0, 296)],
+        [(265, 0, 296), (265, 330, 296), (423, 330, 247), (423, 0, 247)],
+    ], white)
+    add_camera(eye=(0.278, 0.273, -0.8), target=(0.278, 0.273, 0.0), fov_deg=39.3077)
+
+
+def build_emission_test():
+    """A 100 m x 100 m quad of Emission strength 1, colour (1, 0.5, 0.25), 1 m in front."""
+    mat = bpy.data.materials.new("emit")
+    mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    emit = nt.nodes.new("ShaderNodeEmission")
+    emit.inputs["Color"].default_value = (1.0, 0.5, 0.25, 1.0)
+    emit.inputs["Strength"].default_value = 1.0
+    nt.links.new(emit.outputs["Emission"], out.inputs["Surface"])
+    s = 50000.0  # mm
+    # facing -z, towards a camera at the origin looking down +z
+    add_mesh("emitter", [[(s, -s, 1000), (-s, -s, 1000), (-s, s, 1000), (s, s, 1000)]], mat)
+    add_camera(eye=(0, 0, 0), target=(0, 0, 1), fov_deg=39.3077)
+
+
+def add_camera(eye, target, fov_deg):
+    cam_data = bpy.data.cameras.new("camera")
+    cam_data.type = "PERSP"
+    cam_data.sensor_fit = "VERTICAL"
+    cam_data.angle_y = math.radians(fov_deg)
+    cam_data.clip_start = 0.001
+    cam_data.clip_end = 1000.0
+    cam = bpy.data.objects.new("camera", cam_data)
+    bpy.context.scene.collection.objects.link(cam)
+    eye, target = Vector(eye), Vector(target)
+    cam.location = eye
+    # A Blender camera looks down its local -Z with local +Y up.
+    cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.scene.camera = cam
+
+
+def configure(args):
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = args.spp
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.use_preview_denoising = False
+    c.seed = args.seed
+    c.use_animated_seed = False
+    c.pixel_filter_type = "BOX"
+    c.filter_width = 1.0
+    c.max_bounces = 64
+    c.diffuse_bounces = 64
+    c.glossy_bounces = 64
+    c.transmission_bounces = 64
+    c.volume_bounces = 64
+    c.transparent_max_bounces = 64
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = 0.0
+    c.blur_glossy = 0.0
+    c.caustics_reflective = True
+    c.caustics_refractive = True
+    c.light_sampling_threshold = 0.0
+    c.use_auto_tile = False
+    c.film_exposure = 1.0  # a linear multiplier in Cycles: 1.0 means exposure 0
+    scene.render.film_transparent = False
+    scene.render.use_persistent_data = False
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = args.threads
+    scene.render.resolution_x = args.size
+    scene.render.resolution_y = args.size
+    scene.render.resolution_percentage = 100
+    scene.render.pixel_aspect_x = 1.0
+    scene.render.pixel_aspect_y = 1.0
+    scene.render.use_compositing = False
+    scene.render.use_sequencer = False
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+    # A black world: nothing but the scene's emitter lights anything.
+    world = scene.world or bpy.data.worlds.new("World")
+    scene.world = world
+    world.use_nodes = True
+    bg = world.node_tree.nodes.get("Background")
+    if bg is not None:
+        bg.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+        bg.inputs["Strength"].default_value = 0.0
+    world.color = (0.0, 0.0, 0.0)
+    img = scene.render.image_settings
+    img.file_format = "OPEN_EXR"
+    img.color_mode = "RGB"
+    img.color_depth = "32"
+    img.exr_codec = "ZIP"
+    scene.render.filepath = args.out
+    scene.render.use_file_extension = False
+
+
+def main():
+    args = parse_args()
+    clear_scene()
+    configure(args)
+    if args.emission_test:
+        build_emission_test()
+    else:
+        build_cornell(args.two_sided_light)
+    t0 = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    seconds = time.perf_counter() - t0
+    print(f"CYCLES_RENDER_SECONDS {seconds:.6f}", flush=True)
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"renderer": "cycles", "blender": bpy.app.version_string,
+                       "spp": args.spp, "size": args.size, "threads": args.threads,
+                       "seed": args.seed, "sampling_pattern": bpy.context.scene.cycles.sampling_pattern,
+                       "two_sided_light": args.two_sided_light,
+                       "emission_test": args.emission_test, "output": args.out,
+                       "render_seconds": seconds}, f, indent=2)
+
+
+main()
