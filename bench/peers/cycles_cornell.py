@@ -56,8 +56,12 @@ def parse_args():
     p.add_argument("--json", help="write render settings and time here")
     p.add_argument("--two-sided-light", action="store_true",
                    help="let the light emit from both faces (Cycles' default), for checking")
-    p.add_argument("--emission-test", action="store_true",
-                   help="render a large emissive quad of strength 1 seen head-on instead")
+    p.add_argument("--emission-test", choices=["direct", "indirect"],
+                   help="instead of the Cornell box, check Cycles' emission units: 'direct' looks "
+                        "straight at a large emissive quad of strength 1 and colour (1,0.5,0.25) "
+                        "(pixel = radiance); 'indirect' looks at a diffuse plane of reflectance 0.5 "
+                        "under that quad 1 mm away (pixel = 0.5 * radiance, the quad fills the "
+                        "hemisphere)")
     return p.parse_args(argv)
 
 
@@ -165,8 +169,8 @@ def build_cornell(two_sided_light):
     add_camera(eye=(0.278, 0.273, -0.8), target=(0.278, 0.273, 0.0), fov_deg=39.3077)
 
 
-def build_emission_test():
-    """A 100 m x 100 m quad of Emission strength 1, colour (1, 0.5, 0.25), 1 m in front."""
+def build_emission_test(kind):
+    """A 100 m x 100 m quad of Emission strength 1, colour (1, 0.5, 0.25)."""
     mat = bpy.data.materials.new("emit")
     mat.use_nodes = True
     nt = mat.node_tree
@@ -177,9 +181,18 @@ def build_emission_test():
     emit.inputs["Strength"].default_value = 1.0
     nt.links.new(emit.outputs["Emission"], out.inputs["Surface"])
     s = 50000.0  # mm
-    # facing -z, towards a camera at the origin looking down +z
-    add_mesh("emitter", [[(s, -s, 1000), (-s, -s, 1000), (-s, s, 1000), (s, s, 1000)]], mat)
-    add_camera(eye=(0, 0, 0), target=(0, 0, 1), fov_deg=39.3077)
+    if kind == "direct":
+        # facing -z, towards a camera at the origin looking down +z
+        add_mesh("emitter", [[(s, -s, 1000), (-s, -s, 1000), (-s, s, 1000), (s, s, 1000)]], mat)
+        add_camera(eye=(0, 0, 0), target=(0, 0, 1), fov_deg=39.3077)
+        return
+    # emitter at y = 1 mm facing down; diffuse floor at y = 0 facing up; the camera sits
+    # between them and looks obliquely down at the floor (its view never reaches the edges)
+    add_mesh("emitter", [[(s, G, -s), (s, G, s), (-s, G, s), (-s, G, -s)]], mat)
+    add_mesh("floor", [[(s, 0, -s), (-s, 0, -s), (-s, 0, s), (s, 0, s)]],
+             diffuse_material("half", (0.5, 0.5, 0.5)))
+    add_camera(eye=(0, G * MM / 2, 0), target=(0, 0.0, G * MM * 2), fov_deg=20.0)
+    bpy.context.scene.camera.data.clip_start = 1e-6
 
 
 def add_camera(eye, target, fov_deg):
@@ -263,7 +276,7 @@ def main():
     clear_scene()
     configure(args)
     if args.emission_test:
-        build_emission_test()
+        build_emission_test(args.emission_test)
     else:
         build_cornell(args.two_sided_light)
     t0 = time.perf_counter()

@@ -45,7 +45,10 @@ TEST(Discretise, ElementAreasOfEachFaceSumToTheFaceArea) {
   DiscretiseOptions o;
   o.elementBudget = 2000;
   SurfaceSet set = discretise(scene, o);
-  ASSERT_EQ(set.faces.size(), scene.faceCount());  // every Cornell quad is planar and convex
+  // The measured left (red) wall is not planar: its 4th corner is 3.2 mm off the plane of the
+  // other three, so it is cut into two triangles. Every other Cornell quad is planar.
+  EXPECT_EQ(set.splitQuads, 1u);
+  ASSERT_EQ(set.faces.size(), scene.faceCount() + set.splitQuads);
   std::vector<double> sums(set.faces.size(), 0.0);
   for (const Element& e : set.elements) sums[e.face] += e.area;
   double total = 0.0;
@@ -116,8 +119,9 @@ TEST(Discretise, NonPlanarQuadIsSplitIntoTwoTriangles) {
   EXPECT_EQ(set.splitQuads, 1u);
   ASSERT_EQ(set.faces.size(), 2u);
   for (const SurfaceFace& f : set.faces) EXPECT_TRUE(f.triangle);
-  // Triangles (0,1,2) and (0,2,3): areas 1/2 and |(1,1,0) x (0,1,0.2)| / 2 = sqrt(1.04) / 2.
-  EXPECT_NEAR(set.totalArea(), 0.5 + std::sqrt(1.04) / 2.0, 1e-4);
+  // Triangles (0,1,2) and (0,2,3): areas 1/2 and |(1,1,0) x (0,1,0.2)| / 2 = |(0.2,-0.2,1)| / 2
+  // = sqrt(1.08) / 2.
+  EXPECT_NEAR(set.totalArea(), 0.5 + std::sqrt(1.08) / 2.0, 1e-5);
   for (const Element& e : set.elements) {  // every element is planar: it lies in its face's plane
     const SurfaceFace& f = set.faces[e.face];
     for (int i = 0; i < e.polygon.count; ++i)
