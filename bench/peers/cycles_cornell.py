@@ -18,7 +18,10 @@ same quantity as luxel (linear radiance, box-filtered over each pixel):
     emits downward only, like luxel's one-sided emitter.  Cycles' Emission shader
     with strength S and colour C emits radiance C*S (W/(m^2 sr)); check it with
     --emission-test, which renders a camera looking straight at a large emissive
-    quad of strength 1 (a pixel value of 1.0 means radiance = C*S, 1/pi means C*S/pi).
+    quad of strength 1 (a pixel value of 1.0 means radiance = C*S, 1/pi means C*S/pi),
+    and --emission-test indirect, a diffuse plane of reflectance 0.5 lit by that quad
+    over its whole hemisphere (expect 0.5 * C * S).  Measured with Blender 3.4.1:
+    direct 1.0 * C exactly, indirect 0.498 * C (expected 0.4999): radiance = C * S.
   * Same camera: eye (0.278,0.273,-0.8), target (0.278,0.273,0), up +y, vertical fov
     39.3077 deg (sensor fit vertical), square image.
   * Black world, film exposure 0, view transform Standard, look None; the OpenEXR
@@ -60,8 +63,8 @@ def parse_args():
                    help="instead of the Cornell box, check Cycles' emission units: 'direct' looks "
                         "straight at a large emissive quad of strength 1 and colour (1,0.5,0.25) "
                         "(pixel = radiance); 'indirect' looks at a diffuse plane of reflectance 0.5 "
-                        "under that quad 1 mm away (pixel = 0.5 * radiance, the quad fills the "
-                        "hemisphere)")
+                        "1 m under that quad, 100 m wide (pixel = 0.5 * radiance: the quad fills "
+                        "the hemisphere)")
     return p.parse_args(argv)
 
 
@@ -134,39 +137,49 @@ def add_mesh(name, quads, mat):
     return obj
 
 
-def build_cornell(two_sided_light):
-    # Copied from src/scene/builtin/cornell_box.cpp (same vertex order, so the same normals).
-    white = diffuse_material("white", (0.725, 0.71, 0.68))
-    red = diffuse_material("red", (0.63, 0.065, 0.05))
-    green = diffuse_material("green", (0.14, 0.45, 0.091))
-    light = light_material("light", (17.0, 12.0, 4.0), (0.78, 0.78, 0.78), two_sided_light)
-    y = 548.8
-    add_mesh("floor", [[(552.8, 0, 0), (0, 0, 0), (0, 0, 559.2), (549.6, 0, 559.2)]], white)
-    add_mesh("ceiling", [
-        [(556, y, 0), (556, y, 227), (0, y, 227), (0, y, 0)],
-        [(556, y, 332), (556, y, 559.2), (0, y, 559.2), (0, y, 332)],
-        [(556, y, 227), (556, y, 332), (343, y, 332), (343, y, 227)],
-        [(213, y, 227), (213, y, 332), (0, y, 332), (0, y, 227)],
-    ], white)
-    add_mesh("light", [[(343, y, 227), (343, y, 332), (213, y, 332), (213, y, 227)]], light)
-    add_mesh("back wall", [[(549.6, 0, 559.2), (0, 0, 559.2), (0, y, 559.2), (556, y, 559.2)]], white)
-    add_mesh("right wall", [[(0, 0, 559.2), (0, 0, 0), (0, y, 0), (0, y, 559.2)]], green)
-    add_mesh("left wall", [[(552.8, 0, 0), (549.6, 0, 559.2), (556, y, 559.2), (556, y, 0)]], red)
-    add_mesh("short block", [
+# Copied from src/scene/builtin/cornell_box.cpp: (mesh, material, quads in millimetres),
+# same vertex order (so the same normals: counter-clockwise = front).
+_Y = 548.8
+CORNELL_MESHES = [
+    ("floor", "white", [[(552.8, 0, 0), (0, 0, 0), (0, 0, 559.2), (549.6, 0, 559.2)]]),
+    ("ceiling", "white", [
+        [(556, _Y, 0), (556, _Y, 227), (0, _Y, 227), (0, _Y, 0)],
+        [(556, _Y, 332), (556, _Y, 559.2), (0, _Y, 559.2), (0, _Y, 332)],
+        [(556, _Y, 227), (556, _Y, 332), (343, _Y, 332), (343, _Y, 227)],
+        [(213, _Y, 227), (213, _Y, 332), (0, _Y, 332), (0, _Y, 227)],
+    ]),
+    ("light", "light", [[(343, _Y, 227), (343, _Y, 332), (213, _Y, 332), (213, _Y, 227)]]),
+    ("back wall", "white",
+     [[(549.6, 0, 559.2), (0, 0, 559.2), (0, _Y, 559.2), (556, _Y, 559.2)]]),
+    ("right wall", "green", [[(0, 0, 559.2), (0, 0, 0), (0, _Y, 0), (0, _Y, 559.2)]]),
+    ("left wall", "red", [[(552.8, 0, 0), (549.6, 0, 559.2), (556, _Y, 559.2), (556, _Y, 0)]]),
+    ("short block", "white", [
         [(130, 165, 65), (82, 165, 225), (240, 165, 272), (290, 165, 114)],
         [(290, 0, 114), (290, 165, 114), (240, 165, 272), (240, 0, 272)],
         [(130, 0, 65), (130, 165, 65), (290, 165, 114), (290, 0, 114)],
         [(82, 0, 225), (82, 165, 225), (130, 165, 65), (130, 0, 65)],
         [(240, 0, 272), (240, 165, 272), (82, 165, 225), (82, 0, 225)],
-    ], white)
-    add_mesh("tall block", [
+    ]),
+    ("tall block", "white", [
         [(423, 330, 247), (265, 330, 296), (314, 330, 456), (472, 330, 406)],
         [(423, 0, 247), (423, 330, 247), (472, 330, 406), (472, 0, 406)],
         [(472, 0, 406), (472, 330, 406), (314, 330, 456), (314, 0, 456)],
         [(314, 0, 456), (314, 330, 456), (265, 330, 296), (265, 0, 296)],
         [(265, 0, 296), (265, 330, 296), (423, 330, 247), (423, 0, 247)],
-    ], white)
-    add_camera(eye=(0.278, 0.273, -0.8), target=(0.278, 0.273, 0.0), fov_deg=39.3077)
+    ]),
+]
+CORNELL_CAMERA = dict(eye=(0.278, 0.273, -0.8), target=(0.278, 0.273, 0.0), fov_deg=39.3077)
+REFLECTANCE = {"white": (0.725, 0.71, 0.68), "red": (0.63, 0.065, 0.05),
+               "green": (0.14, 0.45, 0.091)}
+
+
+def build_cornell(two_sided_light):
+    mats = {name: diffuse_material(name, rgb) for name, rgb in REFLECTANCE.items()}
+    mats["light"] = light_material("light", (17.0, 12.0, 4.0), (0.78, 0.78, 0.78),
+                                   two_sided_light)
+    for name, mat, quads in CORNELL_MESHES:
+        add_mesh(name, quads, mats[mat])
+    add_camera(**CORNELL_CAMERA)
 
 
 def build_emission_test(kind):
@@ -186,8 +199,13 @@ def build_emission_test(kind):
         add_mesh("emitter", [[(s, -s, 1000), (-s, -s, 1000), (-s, s, 1000), (s, s, 1000)]], mat)
         add_camera(eye=(0, 0, 0), target=(0, 0, 1), fov_deg=39.3077)
         return
-    # emitter at y = 1 mm facing down; diffuse floor at y = 0 facing up; the camera sits
-    # between them and looks obliquely down at the floor (its view never reaches the edges)
+    # emitter at y = G facing down; diffuse floor at y = 0 facing up; the camera sits
+    # between them and looks obliquely down at the floor (its view never reaches the edges).
+    # Seen from the floor the emitter fills all but 0.03% of the hemisphere (form factor
+    # 0.9997 at G = 1 m), so the floor's radiance is 0.5 * 0.9997 * (1, 0.5, 0.25).
+    # (With much smaller gaps, e.g. 1 mm under a 100 m quad, Cycles 3.4 loses a few per
+    # cent to grazing-angle precision; 1 m is well conditioned.)
+    G = 1000.0  # mm
     add_mesh("emitter", [[(s, G, -s), (s, G, s), (-s, G, s), (-s, G, -s)]], mat)
     add_mesh("floor", [[(s, 0, -s), (-s, 0, -s), (-s, 0, s), (s, 0, s)]],
              diffuse_material("half", (0.5, 0.5, 0.5)))
@@ -293,4 +311,5 @@ def main():
                        "render_seconds": seconds}, f, indent=2)
 
 
-main()
+if __name__ == "__main__":
+    main()

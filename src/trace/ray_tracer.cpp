@@ -71,6 +71,25 @@ RayTracer::~RayTracer() {
   if (scene_) rtcReleaseScene(scene_);
 }
 
+namespace {
+
+bool visitNear(RTCPointQueryFunctionArguments* args) {
+  (*static_cast<const std::function<void(uint32_t)>*>(args->userPtr))(args->primID);
+  return false;  // the query radius is unchanged
+}
+
+}  // namespace
+
+void RayTracer::forEachNear(Vec3 p, float radius, const std::function<void(uint32_t)>& visit) const {
+  RTCPointQuery query;
+  query.x = p.x, query.y = p.y, query.z = p.z;
+  query.radius = radius;
+  query.time = 0.0f;
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(scene_, &query, &context, visitNear, const_cast<std::function<void(uint32_t)>*>(&visit));
+}
+
 void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
   if (rays.empty()) return;
   if (recorder_) {

@@ -61,23 +61,18 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
     : scene_(scene),
       surfaces_(surfaces),
       options_(options),
-      tracer_(facePolygons(surfaces)),
+      facePolygons_(facePolygons(surfaces)),
+      tracer_(facePolygons_),
       threadLocal_(std::make_unique<ThreadLocal>()) {
   rayOffset_ = kRayOffsetFraction * std::max(surfaces.sceneExtent, 1e-6f);
   patchRadius_.resize(surfaces.patches.size());
-  patchLo_.resize(surfaces.patches.size());
-  patchHi_.resize(surfaces.patches.size());
   patchEmits_.resize(surfaces.patches.size());
   for (size_t p = 0; p < surfaces.patches.size(); ++p) {
     const Patch& patch = surfaces.patches[p];
     float r = 0.0f;
-    Vec3 lo = patch.polygon.v[0], hi = patch.polygon.v[0];
-    for (int i = 0; i < patch.polygon.count; ++i) {
+    for (int i = 0; i < patch.polygon.count; ++i)
       r = std::max(r, glm::length(patch.polygon.v[i] - patch.centroid));
-      lo = glm::min(lo, patch.polygon.v[i]), hi = glm::max(hi, patch.polygon.v[i]);
-    }
     patchRadius_[p] = r;
-    patchLo_[p] = lo, patchHi_[p] = hi;
     bool emits = false;
     for (uint32_t e : patch.elements) {
       const Rgb& x = surfaces.elements[e].exitance;
@@ -103,13 +98,11 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
       float radius = 0.0f;
       for (int i = 0; i < e.polygon.count; ++i) radius = std::max(radius, glm::length(e.polygon.v[i] - e.centroid));
       elementRadius_[ei] = radius;
+      // Only faces closer than nearFactor * radius make the rule denser than one point.
       float gap = std::numeric_limits<float>::max();
-      for (size_t p = 0; p < surfaces.patches.size(); ++p) {
-        if (surfaces.patches[p].face == e.face) continue;
-        // Distance to the patch's bounding box: a tight lower bound on the distance to the patch.
-        Vec3 outside = glm::max(glm::max(patchLo_[p] - e.centroid, e.centroid - patchHi_[p]), Vec3(0.0f));
-        gap = std::min(gap, glm::length(outside));
-      }
+      tracer_.forEachNear(e.centroid, options_.nearFactor * radius, [&](uint32_t face) {
+        if (face != e.face) gap = std::min(gap, pointPolygonDistance(e.centroid, facePolygons_[face]));
+      });
       gap = std::max(gap, 0.1f * radius);
       elementQuadrature_[ei] = uint8_t(std::clamp(int(std::ceil(options_.nearFactor * radius / gap)), 1, kMaxAnalyticSide));
     }

@@ -42,13 +42,13 @@ class CpuTransport final : public Transport {
   const Scene& scene_;
   const SurfaceSet& surfaces_;
   FormFactorOptions options_;
+  std::vector<Polygon> facePolygons_;
   RayTracer tracer_;
   float rayOffset_ = 0.0f;
   enum class PairVisibility : uint8_t { Unknown, Clear, Partial, Blocked };
   PairVisibility classify(uint32_t receiverPatch, uint32_t sourcePatch);
 
   std::vector<float> patchRadius_;
-  std::vector<Vec3> patchLo_, patchHi_;  // bounding boxes
   // Receiver patch x source patch verdicts, filled lazily; empty when classification is off.
   std::unique_ptr<std::atomic<uint8_t>[]> pairVisibility_;
   std::vector<float> elementRadius_;

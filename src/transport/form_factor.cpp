@@ -1,6 +1,8 @@
 #include "transport/form_factor.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace luxel {
@@ -118,6 +120,23 @@ double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source
       }
   }
   return total > 0.0 ? weighted / total : 0.0;
+}
+
+float pointPolygonDistance(Vec3 p, const Polygon& poly) {
+  const Vec3 n = poly.normal();
+  const float height = glm::dot(p - poly.v[0], n);
+  const Vec3 q = p - height * n;  // p projected onto the polygon's plane
+  bool inside = true;
+  float edgeDistance = std::numeric_limits<float>::max();
+  for (int i = 0; i < poly.count; ++i) {
+    const Vec3& a = poly.v[i];
+    const Vec3& b = poly.v[(i + 1) % poly.count];
+    inside &= glm::dot(glm::cross(b - a, q - a), n) >= 0.0f;
+    Vec3 ab = b - a;
+    float t = std::clamp(glm::dot(p - a, ab) / std::max(glm::dot(ab, ab), 1e-30f), 0.0f, 1.0f);
+    edgeDistance = std::min(edgeDistance, glm::length(p - (a + t * ab)));
+  }
+  return inside ? std::abs(height) : edgeDistance;
 }
 
 float polygonSolidAngle(Vec3 p, const Polygon& poly) {

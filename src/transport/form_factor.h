@@ -31,6 +31,9 @@ double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source
 // Solid angle of a polygon seen from `p` (Van Oosterom and Strackee 1983, per fan triangle).
 float polygonSolidAngle(Vec3 p, const Polygon& poly);
 
+// Euclidean distance from `p` to the (filled) planar convex polygon.
+float pointPolygonDistance(Vec3 p, const Polygon& poly);
+
 // A point on the polygon from (s,t) in [0,1)^2: bilinear on quads, folded barycentric on triangles.
 Vec3 polygonPoint(const Polygon& poly, float s, float t);
 

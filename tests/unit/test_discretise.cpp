@@ -196,6 +196,27 @@ TEST(Discretise, SplitElementQuartersAParallelogram) {
   for (size_t e = 0; e < seen.size(); ++e) EXPECT_EQ(seen[e], 1) << "element " << e;
 }
 
+TEST(Discretise, SplitElementQuartersATriangle) {
+  // The bent quad of NonPlanarQuadIsSplitIntoTwoTriangles: its elements are triangles, which
+  // split at their edge midpoints into four congruent quarters.
+  Scene scene = quadScene({{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0.2f)}});
+  DiscretiseOptions o;
+  o.elementBudget = 20;
+  SurfaceSet set = discretise(scene, o);
+  const double before = set.totalArea();
+  const size_t n = set.elements.size();
+  const Element parent = set.elements[0];
+  ASSERT_EQ(parent.polygon.count, 3);
+  set.splitElement(0, scene);
+  ASSERT_EQ(set.elements.size(), n + 3);
+  EXPECT_NEAR(set.totalArea(), before, 1e-5 * before);
+  for (uint32_t c : {uint32_t(0), uint32_t(n), uint32_t(n + 1), uint32_t(n + 2)}) {
+    EXPECT_EQ(set.elements[c].polygon.count, 3);
+    EXPECT_NEAR(set.elements[c].area, parent.area / 4.0f, 1e-5f * parent.area) << "child " << c;
+    EXPECT_EQ(set.elements[c].patch, parent.patch);
+  }
+}
+
 TEST(Discretise, AbsurdOptionsThrow) {
   Scene scene = builtin::cornellBox();
   DiscretiseOptions o;
@@ -248,16 +269,24 @@ TEST(Orientation, FacesLitFromBehindAreTurnedRound) {
   }
   // Floor normal +y, back wall normal -z: into the box.
   for (const SurfaceFace& f : repaired.faces) {
-    if (f.mesh == 0) EXPECT_NEAR(f.normal.y, 1.0f, 1e-5f);
-    if (f.mesh == 3) EXPECT_NEAR(f.normal.z, -1.0f, 1e-5f);
+    if (f.mesh == 0) {
+      EXPECT_NEAR(f.normal.y, 1.0f, 1e-5f);
+    }
+    if (f.mesh == 3) {
+      EXPECT_NEAR(f.normal.z, -1.0f, 1e-5f);
+    }
   }
 
   o.orientByLight = false;
   SurfaceSet kept = discretise(reversed, o);
   EXPECT_EQ(kept.flippedFaces, 0u);
   for (const SurfaceFace& f : kept.faces) {
-    if (f.mesh == 0) EXPECT_NEAR(f.normal.y, -1.0f, 1e-5f);
-    if (f.mesh == 3) EXPECT_NEAR(f.normal.z, 1.0f, 1e-5f);
+    if (f.mesh == 0) {
+      EXPECT_NEAR(f.normal.y, -1.0f, 1e-5f);
+    }
+    if (f.mesh == 3) {
+      EXPECT_NEAR(f.normal.z, 1.0f, 1e-5f);
+    }
   }
 }
 
@@ -355,7 +384,9 @@ TEST(TwoSided, LightDoesNotLeakThroughATwoSidedPanel) {
   EXPECT_EQ(s.facesAway, 1);
   ASSERT_GT(s.towardsLight, 0.0);
   // The lit side sees the emitter directly (form factor of a 1 x 1 square at 1.5 m, about 0.1,
-  // times pi * 10); the back only gets light that went round the panel via the walls.
+  // times pi * 10); the back only gets light that went round the panel via the walls. (Measured
+  // at the time of writing: front 4.05, back 0.24 W/m^2.) Light leaking through the panel would
+  // give the back about what the front gets.
   EXPECT_GT(s.away, 0.0);
   EXPECT_LT(s.away, 0.3 * s.towardsLight) << "front " << s.towardsLight << " back " << s.away;
   // Winding the two-sided panel the other way round changes nothing: both sides take part.
