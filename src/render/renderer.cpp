@@ -89,8 +89,18 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
       field[e] = glm::max(field[e] - solution.directIrradiance[e], Rgb(0.0f));
   const std::vector<Rgb> corners = elementCornerValues(surfaces, field);
 
+  // The two sides of a two-sided face are coplanar twins, and a ray would hit either at random.
+  // Only the side facing the camera goes into the BVH (its twin is the same geometry, so shadow
+  // rays still see everything); slots of the other side hold an empty polygon.
   std::vector<Polygon> polygons(surfaces.elements.size());
-  for (size_t e = 0; e < polygons.size(); ++e) polygons[e] = surfaces.elements[e].polygon;
+  for (size_t e = 0; e < polygons.size(); ++e) {
+    const Element& el = surfaces.elements[e];
+    const bool hasTwin = surfaces.faces[el.face].twin >= 0;
+    if (!hasTwin || glm::dot(el.normal, options.camera.eye - el.centroid) > 0.0f)
+      polygons[e] = el.polygon;
+    else
+      polygons[e] = Polygon{{el.centroid, el.centroid, el.centroid, el.centroid}, 3};
+  }
   RayTracer tracer(polygons);
   DirectLight direct(scene, surfaces);
   const float rayOffset = 1e-5f * std::max(surfaces.sceneExtent, 1e-6f);

@@ -199,11 +199,6 @@ TEST(CornerValues, DoNotBleedAcrossMaterials) {
 // x = 2.8 (back), looking along the x axis at the panel's centre with a 40 deg field of view, so
 // every pixel sees the panel (half-width 0.29 m of the 0.8 m it spans about the centre).
 TEST(TwoSidedRender, BothSidesOfAPanelAreVisible) {
-  GTEST_SKIP() << "BUG: src/render/renderer.cpp:155-156: a primary ray that hits a two-sided "
-                  "surface may be reported by Embree on the twin polygon (same plane, opposite "
-                  "normal); the renderer then takes it for the back of a one-sided surface and "
-                  "leaves the pixel black. Seen from the lit side 271 of 1024 pixels (32 x 32) are "
-                  "0, from the back 4, in both modes";
   Scene s;
   s.name = "two-sided panel";
   s.materials = {Material{.name = "wall", .reflectance = Rgb(0.5f)},

@@ -3,6 +3,10 @@
 #include <cctype>
 #include <filesystem>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "luxel/error.h"
 #include "luxel/import.h"
 
 namespace luxel {
@@ -19,6 +23,10 @@ Scene loadScene(std::string_view spec) {
     scene = builtinScene(spec);
   } else if (ext == ".json") {
     scene = loadSceneFile(path);
+  } else if (ext.empty() && !std::filesystem::exists(path)) {
+    // No extension and no such file: most likely a mistyped built-in name.
+    throw Error(fmt::format("'{}' is neither a built-in scene ({}) nor a file", spec,
+                            fmt::join(builtinSceneNames(), ", ")));
   } else {
     scene = importMeshFile(path);
   }

@@ -519,6 +519,11 @@ Scene loadSceneFile(const fs::path& path) {
         what.rfind("[json.exception", 0) == 0 && close != std::string::npos)
       what = what.substr(close + 2);
     throw Error(fmt::format("{}: invalid JSON at byte {}: {}", file, e.byte, what));
+  } catch (const Json::exception& e) {
+    // Anything else the parser rejects, e.g. a number that overflows a double (1e999).
+    std::string what = e.what();
+    if (size_t close = what.find("] "); close != std::string::npos) what = what.substr(close + 2);
+    throw Error(fmt::format("{}: invalid JSON: {}", file, what));
   }
   return SceneFileLoader(path, file).load(doc);
 }
