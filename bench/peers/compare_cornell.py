@@ -38,6 +38,7 @@ without Blender's own start-up (~0.5 s).
 
 import argparse
 import importlib.util
+import itertools
 import json
 import math
 import os
@@ -68,10 +69,12 @@ def parse_args():
     p.add_argument("--luxel-elements", default="2500,10000,40000")
     p.add_argument("--luxel-spp", default="4,16,64")
     p.add_argument("--luxel-solver", default="progressive")
+    p.add_argument("--luxel-modes", default="hq", help="comma-separated: hq, radiosity")
     p.add_argument("--luxel-extra", default="", help="extra luxel render arguments")
     p.add_argument("--cycles-spp", default="16,64,256,1024")
     p.add_argument("--cycles-seed", type=int, default=0)
-    p.add_argument("--repeat", type=int, default=3, help="luxel runs per setting (median time)")
+    p.add_argument("--repeat", type=int, default=3,
+                   help="luxel runs per setting (median time); runs over 5 s are not repeated")
     p.add_argument("--reuse", action="store_true",
                    help="do not re-render images whose EXR and timing JSON exist")
     p.add_argument("--markdown", help="write the tables here")
@@ -188,8 +191,8 @@ def build_mask(size, border=2):
 
 # ---------------------------------------------------------------------------- renders
 
-def run_luxel(args, elements, spp):
-    name = f"luxel_e{elements}_s{spp}_{args.luxel_solver}"
+def run_luxel(args, mode, elements, spp):
+    name = f"luxel_{mode}_e{elements}_s{spp}_{args.luxel_solver}"
     exr = os.path.join(args.outdir, name + ".exr")
     meta = os.path.join(args.outdir, name + ".timing.json")
     if args.reuse and os.path.exists(exr) and os.path.exists(meta):
@@ -198,7 +201,7 @@ def run_luxel(args, elements, spp):
     stats_path = os.path.join(args.outdir, name + ".stats.json")
     cmd = [args.luxel, "render", "cornell", "-o", exr, "--size", f"{args.size}x{args.size}",
            "--spp", str(spp), "--elements", str(elements), "--solver", args.luxel_solver,
-           "--mode", "hq", "--stats", stats_path, "--threads", str(args.threads), "-q"]
+           "--mode", mode, "--stats", stats_path, "--threads", str(args.threads), "-q"]
     cmd += args.luxel_extra.split()
     walls, totals = [], []
     for _ in range(args.repeat):
@@ -208,6 +211,8 @@ def run_luxel(args, elements, spp):
         with open(stats_path) as f:
             stats = json.load(f)
         totals.append(stats["seconds"]["total"])
+        if walls[-1] > 5.0:
+            break
     info = {"command": " ".join(cmd), "wall_seconds": walls, "stats_total_seconds": totals,
             "seconds": statistics.median(walls), "elements": stats["elements"],
             "stats": stats["seconds"]}
@@ -279,15 +284,17 @@ def main():
                          seconds=info["seconds"], img=img, name=name,
                          err=measure(img)))
         print(f"  {rows[-1]['renderer']} {rows[-1]['settings']}: {info['seconds']:.3f} s", flush=True)
-    for elements in [int(e) for e in args.luxel_elements.split(",") if e]:
-        for spp in [int(s) for s in args.luxel_spp.split(",") if s]:
-            name, exr, info = run_luxel(args, elements, spp)
-            img = read_exr(exr)
-            rows.append(dict(renderer="luxel", settings=f"{args.luxel_solver}, "
-                             f"{info['elements']} elements, {spp} spp", spp=spp,
-                             seconds=info["seconds"], img=img, name=name, info=info,
-                             err=measure(img)))
-            print(f"  {rows[-1]['renderer']} {rows[-1]['settings']}: {info['seconds']:.3f} s", flush=True)
+    for mode, elements, spp in itertools.product(
+            [m for m in args.luxel_modes.split(",") if m],
+            [int(e) for e in args.luxel_elements.split(",") if e],
+            [int(s) for s in args.luxel_spp.split(",") if s]):
+        name, exr, info = run_luxel(args, mode, elements, spp)
+        img = read_exr(exr)
+        rows.append(dict(renderer="luxel", settings=f"{mode}, {args.luxel_solver}, "
+                         f"{info['elements']} elements, {spp} spp", spp=spp,
+                         seconds=info["seconds"], img=img, name=name, info=info,
+                         err=measure(img)))
+        print(f"  {rows[-1]['renderer']} {rows[-1]['settings']}: {info['seconds']:.3f} s", flush=True)
 
     cyc = [r for r in rows if r["renderer"] == "cycles"]
     c = fit_inverse_sqrt(np.array([r["spp"] for r in cyc], float),

@@ -100,6 +100,7 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
     std::vector<uint32_t> split = elementsToRefine(surfaces, sol.radiosity, options, options.refineBudget - refined);
     if (split.empty()) break;
     for (uint32_t e : split) surfaces.splitElement(e, scene);
+    transport.elementsChanged();
     refined += split.size() * 3;
     stats.refinePasses = pass + 1;
     reportProgress(progress, "refine", 1.0, fmt::format("split {} elements", split.size()));

@@ -87,6 +87,11 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
     for (size_t i = 0; i < np * np; ++i) pairVisibility_[i].store(0, std::memory_order_relaxed);
   }
 
+  elementsChanged();
+}
+
+void CpuTransport::elementsChanged() {
+  const SurfaceSet& surfaces = surfaces_;
   // Each element's receiver quadrature: denser the closer another face's patch comes, so that
   // the midpoint rule's error stays a small fraction of the factor of the nearest source.
   const size_t ne = surfaces.elements.size();

@@ -23,6 +23,7 @@ class CpuTransport final : public Transport {
   void rows(std::span<const uint32_t> elements, std::span<float> out) override;
   void analyticIrradiance(std::span<Rgb> out) override;
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
+  void elementsChanged() override;
 
   RayTracer& tracer() { return tracer_; }
 

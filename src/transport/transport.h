@@ -30,6 +30,10 @@ class Transport {
 
   // Rays traced so far (0 for backends that do not trace rays).
   virtual uint64_t raysTraced() const = 0;
+
+  // The elements changed (adaptive refinement split some); patches and faces did not. Backends
+  // rebuild whatever they keep per element.
+  virtual void elementsChanged() = 0;
 };
 
 }  // namespace luxel
