@@ -7,8 +7,8 @@ Runs inside Blender's Python (for numpy and OpenEXR reading), from the repositor
                     out/peers/ref_seed3.exr out/peers/ref_seed4.exr \
         --markdown out/peers/table.md
 
-It renders luxel (built-in `cornell`, mode hq) at several element budgets and sample
-counts and Cycles (bench/peers/cycles_cornell.py) at several sample counts, all at
+It renders luxel (built-in `cornell`; --luxel-modes hq and/or radiosity) at several
+element budgets and sample counts and Cycles (bench/peers/cycles_cornell.py) at several sample counts, all at
 256x256 with 2 threads, and measures each image's error against a converged reference
 (the average of independent high-spp Cycles renders with different seeds).
 
@@ -22,18 +22,20 @@ is what the matched-error analysis uses.
 
 Mask: the pixels whose footprint lies inside a single planar face, at least 2 px away
 from any depth or normal discontinuity.  The scene geometry (cycles_cornell.CORNELL_MESHES)
-is ray cast with 4x4 sub-pixel rays per pixel through the same pinhole camera; a pixel
+is ray cast with 8x8 sub-pixel rays per pixel through the same pinhole camera; a pixel
 whose sub-pixel rays hit more than one face (or the background) straddles an edge, and
 every pixel within 2 px (Chebyshev distance) of such a pixel is excluded.  The four
 coplanar ceiling quads count as one face.  The light's own pixels (emission 17,12,4,
 exact in both renderers, and 100x brighter than anything else) and background pixels
 are excluded too.  Shadow boundaries are *not* excluded: they are radiance features that
-a renderer has to get right.
+a renderer has to get right.  --border sets the 2 px; the table also gives the error
+with border 0 (every pixel whose footprint lies on one face), which adds the pixels
+right next to creases, where a radiosity solution's discretisation error is largest.
 
 Timing: luxel's is the wall time of the whole `luxel render` process (scene setup,
 form factors, solve, render, EXR write), the median of --repeat runs; Cycles' is the time
 of bpy.ops.render.render inside Blender (scene sync, BVH, path tracing, EXR write),
-without Blender's own start-up (~0.5 s).
+without Blender's own start-up and the scene building (~0.8 s).
 """
 
 import argparse
@@ -50,6 +52,7 @@ import time
 import bpy
 import numpy as np
 
+sys.dont_write_bytecode = True  # importing cycles_cornell must leave no __pycache__ behind
 HERE = os.path.dirname(os.path.abspath(__file__))
 _spec = importlib.util.spec_from_file_location("cycles_cornell", os.path.join(HERE, "cycles_cornell.py"))
 cc = importlib.util.module_from_spec(_spec)
@@ -77,6 +80,8 @@ def parse_args():
                    help="luxel runs per setting (median time); runs over 5 s are not repeated")
     p.add_argument("--reuse", action="store_true",
                    help="do not re-render images whose EXR and timing JSON exist")
+    p.add_argument("--border", type=int, default=2,
+                   help="exclude pixels within this many pixels of an edge-straddling pixel")
     p.add_argument("--markdown", help="write the tables here")
     p.add_argument("--images", action="store_true",
                    help="write PNG comparisons (reference | image | signed error) to --outdir")
@@ -127,7 +132,7 @@ def error_map(d, scale):
 
 # ---------------------------------------------------------------------------- mask
 
-def face_ids(size, sub=4):
+def face_ids(size, sub=8):
     """Per pixel, the face id hit by each of sub x sub sub-pixel rays: (H, W, sub*sub), -1 = miss.
 
     Also returns the id -> (mesh, material) table."""
@@ -152,26 +157,31 @@ def face_ids(size, sub=4):
     th = math.tan(math.radians(cam["fov_deg"]) / 2)
     o = (np.arange(sub) + 0.5) / sub
     px = (np.arange(size)[:, None] + o[None, :]).ravel() / size  # (size*sub,)
-    sx, sy = np.meshgrid(px, px)  # sy: rows (down), sx: columns
-    d = fwd + right * ((2 * sx - 1) * th)[..., None] + up * ((1 - 2 * sy) * th)[..., None]
-    d = d.reshape(-1, 3)
-    best_t = np.full(len(d), np.inf)
-    best_f = np.full(len(d), -1)
-    for (a, b, c), fid in zip(tris, tri_face):  # Moller-Trumbore, both faces
-        e1, e2 = b - a, c - a
-        pv = np.cross(d, e2)
-        det = pv @ e1
-        ok = np.abs(det) > 1e-12
-        inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
-        tv = eye - a
-        u = (pv @ tv) * inv
-        qv = np.cross(tv, e1)
-        v = (d @ qv) * inv
-        t = (qv @ e2) * inv
-        hit = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 1e-6) & (t < best_t)
-        best_t[hit] = t[hit]
-        best_f[hit] = fid
-    ids = best_f.reshape(size, sub, size, sub).transpose(0, 2, 1, 3).reshape(size, size, sub * sub)
+    ids = np.empty((size, size, sub * sub), np.int64)
+    rows_per_chunk = 16
+    for r0 in range(0, size, rows_per_chunk):
+        r1 = min(r0 + rows_per_chunk, size)
+        sx, sy = np.meshgrid(px, px[r0 * sub: r1 * sub])  # sy: rows (down), sx: columns
+        d = fwd + right * ((2 * sx - 1) * th)[..., None] + up * ((1 - 2 * sy) * th)[..., None]
+        d = d.reshape(-1, 3)
+        best_t = np.full(len(d), np.inf)
+        best_f = np.full(len(d), -1)
+        for (a, b, c), fid in zip(tris, tri_face):  # Moller-Trumbore, both faces
+            e1, e2 = b - a, c - a
+            pv = np.cross(d, e2)
+            det = pv @ e1
+            ok = np.abs(det) > 1e-12
+            inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+            tv = eye - a
+            u = (pv @ tv) * inv
+            qv = np.cross(tv, e1)
+            v = (d @ qv) * inv
+            t = (qv @ e2) * inv
+            hit = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 1e-6) & (t < best_t)
+            best_t[hit] = t[hit]
+            best_f[hit] = fid
+        ids[r0:r1] = best_f.reshape(r1 - r0, sub, size, sub).transpose(0, 2, 1, 3).reshape(
+            r1 - r0, size, sub * sub)
     return ids, faces
 
 
@@ -252,7 +262,11 @@ def main():
     ref = refs.mean(axis=0)
     size = ref.shape[0]
     assert ref.shape[:2] == (args.size, args.size), "reference size differs from --size"
-    mask, face_of_pixel, faces = build_mask(size)
+    mask, face_of_pixel, faces = build_mask(size, args.border)
+    mask0 = build_mask(size, 0)[0]  # also every single-face pixel, right up to the edges
+    m0 = mask0[..., None].repeat(3, axis=2)
+    ref_mean0 = ref[m0].mean()
+    ref_var0 = (refs.var(axis=0, ddof=1) / len(refs))[m0].mean() if len(refs) > 1 else 0.0
     m = mask[..., None].repeat(3, axis=2)
     ref_mean = ref[m].mean()
     k = len(refs)
@@ -264,7 +278,8 @@ def main():
         lines.append(s)
 
     out(f"Reference: mean of {k} Cycles renders ({', '.join(args.reference)}); "
-        f"mask: {mask.sum()} of {size * size} pixels; mean reference radiance over the mask "
+        f"mask (border {args.border} px): {mask.sum()} of {size * size} pixels (border 0: "
+        f"{mask0.sum()}); mean reference radiance over the mask "
         f"{ref_mean:.5f}; reference noise, relative RMS: {math.sqrt(ref_var) / ref_mean:.5f}")
     out()
 
@@ -274,7 +289,8 @@ def main():
         raw = math.sqrt(mse) / ref_mean
         corr = math.sqrt(max(mse - ref_var, 0.0)) / ref_mean
         bias = img[m].mean() / ref_mean - 1.0
-        return raw, corr, bias
+        corr0 = math.sqrt(max((d[m0] ** 2).mean() - ref_var0, 0.0)) / ref_mean0
+        return raw, corr, bias, corr0
 
     rows = []
     for spp in [int(s) for s in args.cycles_spp.split(",") if s]:
@@ -305,22 +321,35 @@ def main():
     else:
         a, b = 0.0, cyc[0]["seconds"] / cyc[0]["spp"]
 
-    def cycles_time_for(err):
-        spp = (c / err) ** 2
-        return spp, a + b * spp
+    # Matched error: interpolate Cycles' measured (spp, time) against error, log-log and
+    # piecewise linear between the measured sample counts; beyond them, extrapolate from
+    # the nearest measured point with error ~ 1/sqrt(spp) and time ~ a + b * spp.
+    pts = sorted((r["err"][1], r["spp"], r["seconds"]) for r in cyc)  # error ascending
 
-    out("| renderer | settings | time (s) | rel. RMSE (raw) | rel. RMSE (noise-corrected) "
-        "| mean bias | Cycles spp for same error | Cycles time for same error (s) | Cycles/luxel time |")
-    out("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    def cycles_time_for(err):
+        if err <= pts[0][0] or err >= pts[-1][0] or len(pts) == 1:
+            e0, s0, t0 = pts[0] if err <= pts[0][0] else pts[-1]
+            spp = s0 * (e0 / err) ** 2
+            return spp, max(t0 + b * (spp - s0), 0.0)
+        for (e0, s0, t0), (e1, s1, t1) in zip(pts, pts[1:]):
+            if e0 <= err <= e1:
+                w = math.log(err / e0) / math.log(e1 / e0)
+                return (math.exp(math.log(s0) + w * (math.log(s1) - math.log(s0))),
+                        math.exp(math.log(t0) + w * (math.log(t1) - math.log(t0))))
+
+    out(f"| renderer | settings | time (s) | rel. RMSE (raw) | rel. RMSE (noise-corrected) "
+        f"| mean bias | Cycles spp for same error | Cycles time for same error (s) "
+        f"| Cycles/luxel time | rel. RMSE, border 0 (noise-corrected) |")
+    out("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
-        raw, corr, bias = r["err"]
+        raw, corr, bias, corr0 = r["err"]
         if r["renderer"] == "luxel":
             spp_eq, t_eq = cycles_time_for(corr)
             extra = f"{spp_eq:.0f} | {t_eq:.2f} | {t_eq / r['seconds']:.1f}"
         else:
             extra = " |  | "
         out(f"| {r['renderer']} | {r['settings']} | {r['seconds']:.3f} | {raw:.4f} | {corr:.4f} "
-            f"| {bias * 100:+.2f}% | {extra} |")
+            f"| {bias * 100:+.2f}% | {extra} | {corr0:.4f} |")
     out()
     out(f"Cycles fit: rel. RMSE = {c:.4f} / sqrt(spp); time = {a:.3f} s + {b * 1000:.2f} ms * spp "
         f"(at 256 spp: fit error {c / 16:.4f}, fit time {a + 256 * b:.2f} s)")
@@ -345,6 +374,23 @@ def main():
             ratio = r["img"][sel].mean(axis=0) / ref[sel].mean(axis=0)
             cells.append(" ".join(f"{x:.3f}" for x in ratio))
         out(f"| {r['renderer']} {r['settings']} | " + " | ".join(cells) + " |")
+    out()
+
+    # Where the squared error comes from: each surface's share of the sum over the mask.
+    out("Share of the squared error (noise-corrected for the reference) by surface, and "
+        "the surface's share of the masked pixels:")
+    out()
+    out("| image | " + " | ".join(names) + " |")
+    out("|---|" + "---|" * len(names))
+    sels = {n: mask & np.isin(face_of_pixel, [i for i, f in enumerate(faces) if f[0] == n])
+            for n in names}
+    out("| (pixels) | " + " | ".join(f"{sels[n].sum() / mask.sum() * 100:.1f}%" for n in names) + " |")
+    refvar_px = (refs.var(axis=0, ddof=1) / k).sum(axis=2) if k > 1 else np.zeros(mask.shape)
+    for r in rows:
+        se = ((r["img"] - ref) ** 2).sum(axis=2) - refvar_px
+        total = se[mask].sum()
+        out(f"| {r['renderer']} {r['settings']} | "
+            + " | ".join(f"{se[sels[n]].sum() / total * 100:.1f}%" for n in names) + " |")
     out()
 
     if args.images:

@@ -63,7 +63,8 @@ size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces) {
           if (ei == fi) continue;
           float ff = pointToPolygonFormFactor(x, n, polygons[ei], Sides::Front, Sides::Front);
           if (ff <= 0.0f) continue;
-          Vec3 y = polygonPoint(polygons[ei], rng.next(), rng.next());
+          Vec3 y;
+          if (!pointInFront(polygons[ei], x, n, [&] { return rng.next(); }, y)) continue;
           Vec3 yo = y + faces[ei].normal * offset;
           rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
           const Rgb& le = scene.materials[faces[ei].material].emission;

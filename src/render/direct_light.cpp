@@ -39,11 +39,13 @@ DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
 
 void DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Sides sides, Rng& rng,
                                 float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
-  float f = pointToPolygonFormFactor(x, n, em.polygon, sides, em.sides);
-  if (f <= 0.0f) return;
-  Vec3 y = polygonPoint(em.polygon, rng.next(), rng.next());
-  Vec3 d = y - x;
   Vec3 pn = em.polygon.normal();
+  float f = pointToPolygonFormFactor(x, n, em.polygon, pn, sides, em.sides);
+  if (f <= 0.0f) return;
+  // f already counts only the part of the emitter above x's plane; visibility is sampled there.
+  Vec3 y;
+  if (!pointInFront(em.polygon, x, n, [&] { return rng.next(); }, y)) return;
+  Vec3 d = y - x;
   Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
   Vec3 yo = y + pn * (glm::dot(pn, d) <= 0.0f ? rayOffset : -rayOffset);
   rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));

@@ -37,4 +37,21 @@ float pointPolygonDistance(Vec3 p, const Polygon& poly);
 // A point on the polygon from (s,t) in [0,1)^2: bilinear on quads, folded barycentric on triangles.
 Vec3 polygonPoint(const Polygon& poly, float s, float t);
 
+// A uniformly distributed point on the part of `poly` strictly above the plane through `p` with
+// normal `n`, by rejection from (s,t) pairs drawn with `next()`; false when none of `tries`
+// lands there (a sliver). A shadow ray towards the part behind the plane would always count as
+// blocked and darken a receiver whose plane cuts through an emitter.
+template <typename Next>
+bool pointInFront(const Polygon& poly, Vec3 p, Vec3 n, Next&& next, Vec3& out, int tries = 16) {
+  for (int i = 0; i < tries; ++i) {
+    float s = next(), t = next();
+    Vec3 y = polygonPoint(poly, s, t);
+    if (glm::dot(y - p, n) > 0.0f) {
+      out = y;
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace luxel
