@@ -42,7 +42,7 @@ size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces) {
     for (int c = 0; c < polygons[i].count; ++c) lo = glm::min(lo, polygons[i].v[c]), hi = glm::max(hi, polygons[i].v[c]);
   }
   RayTracer tracer(polygons);
-  const float offset = 1e-5f * std::max(glm::length(hi - lo), 1e-6f);
+  const float offset = rayOffsetFor(glm::length(hi - lo));
   const Vec3 up = glm::normalize(scene.up);
 
   std::atomic<size_t> flipped{0};

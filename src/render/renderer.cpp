@@ -103,7 +103,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   }
   RayTracer tracer(polygons);
   DirectLight direct(scene, surfaces);
-  const float rayOffset = 1e-5f * std::max(surfaces.sceneExtent, 1e-6f);
+  const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
 
   // Background: the sky where there is one.

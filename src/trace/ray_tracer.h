@@ -48,6 +48,11 @@ class RayTracer {
   mutable std::mutex recorderMutex_;
 };
 
+// How far rays start off the surface they leave (and stop short of the one they aim at), for a
+// scene whose bounding-box diagonal is `extent`: far above float noise at that scale, far below
+// any element size.
+inline float rayOffsetFor(float extent) { return 1e-5f * (extent > 1e-6f ? extent : 1e-6f); }
+
 // A ray from `org` along `dir` (not necessarily unit) over [tnear, tfar].
 inline RTCRay makeRay(Vec3 org, Vec3 dir, float tnear, float tfar) {
   RTCRay r;

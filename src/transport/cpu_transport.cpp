@@ -18,9 +18,6 @@ namespace {
 // Pairs handed to Embree in one stream: large enough to amortise the call, small enough to stay
 // in cache.
 constexpr size_t kPairsPerBatch = 128;
-// Rays start this fraction of the scene's extent off their surfaces, so that they do not hit the
-// surface they leave or arrive at.
-constexpr float kRayOffsetFraction = 1e-5f;
 // The densest midpoint rule for the unoccluded factor of a touching pair: 8 x 8 receiver points.
 constexpr int kMaxAnalyticSide = 3;
 // Patch-pair classification keeps one byte per pair: up to 64 MiB.
@@ -64,7 +61,7 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
       facePolygons_(facePolygons(surfaces)),
       tracer_(facePolygons_),
       threadLocal_(std::make_unique<ThreadLocal>()) {
-  rayOffset_ = kRayOffsetFraction * std::max(surfaces.sceneExtent, 1e-6f);
+  rayOffset_ = rayOffsetFor(surfaces.sceneExtent);
   patchRadius_.resize(surfaces.patches.size());
   patchEmits_.resize(surfaces.patches.size());
   for (size_t p = 0; p < surfaces.patches.size(); ++p) {
