@@ -257,7 +257,7 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
       }
     }
   }
-  if (options.orientByLight) set.flippedFaces = orientFacesByLight(scene, set.faces);
+  if (options.orientByLight) set.flippedFaces = orientFacesByLight(scene, set.faces, set.sceneExtent);
   addTwinFaces(scene, set.faces);
   double totalArea = 0.0;
   for (const SurfaceFace& f : set.faces) totalArea += Polygon{f.corners, f.triangle ? 3 : 4}.area();

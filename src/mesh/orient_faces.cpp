@@ -23,7 +23,7 @@ Polygon polygonOf(const SurfaceFace& f) { return Polygon{f.corners, f.triangle ?
 
 }  // namespace
 
-size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces) {
+size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces, float sceneExtent) {
   std::vector<size_t> emitters;
   for (size_t i = 0; i < faces.size(); ++i)
     if (scene.materials[faces[i].material].isEmissive()) emitters.push_back(i);
@@ -36,13 +36,9 @@ size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces) {
   if (emitters.empty() && scene.lights.empty()) return 0;
 
   std::vector<Polygon> polygons(faces.size());
-  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (size_t i = 0; i < faces.size(); ++i) {
-    polygons[i] = polygonOf(faces[i]);
-    for (int c = 0; c < polygons[i].count; ++c) lo = glm::min(lo, polygons[i].v[c]), hi = glm::max(hi, polygons[i].v[c]);
-  }
+  for (size_t i = 0; i < faces.size(); ++i) polygons[i] = polygonOf(faces[i]);
   RayTracer tracer(polygons);
-  const float offset = rayOffsetFor(glm::length(hi - lo));
+  const float offset = rayOffsetFor(sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
 
   std::atomic<size_t> flipped{0};

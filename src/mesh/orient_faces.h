@@ -12,6 +12,7 @@
 namespace luxel {
 
 // Returns the number of faces turned round.
-size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces);
+// `sceneExtent` is the bounding-box diagonal, for ray offsets.
+size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces, float sceneExtent);
 
 }  // namespace luxel

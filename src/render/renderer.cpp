@@ -45,7 +45,7 @@ struct CameraFrame {
   }
 };
 
-void validate(const Scene& scene, const RenderOptions& o) {
+void validate(const RenderOptions& o) {
   if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
     throw Error(fmt::format("image size {}x{} must be between 1 and {} a side", o.width, o.height, kMaxImageSide));
   if (o.samplesPerPixel < 1 || o.samplesPerPixel > 65536)
@@ -56,7 +56,6 @@ void validate(const Scene& scene, const RenderOptions& o) {
   Vec3 f = c.target - c.eye;
   if (!(glm::length(f) > 0.0f) || !(glm::length(glm::cross(f, c.up)) > 0.0f))
     throw Error(fmt::format("camera '{}': eye, target and up must span a frame", c.name));
-  (void)scene;
 }
 
 template <typename T>
@@ -75,7 +74,7 @@ RenderOptions::Mode parseRenderMode(const std::string& name) {
 
 Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& solution,
              const RenderOptions& options, const ProgressCallback& progress, RenderStats* stats) {
-  validate(scene, options);
+  validate(options);
   if (solution.irradiance.size() != surfaces.elements.size())
     throw Error(fmt::format("the solution has {} elements but the surfaces have {}",
                             solution.irradiance.size(), surfaces.elements.size()));
