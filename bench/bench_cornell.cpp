@@ -50,7 +50,8 @@ void EmbreeRawOcclusion(benchmark::State& state) {
   Scene scene = builtin::cornellBox();
   SurfaceSet surfaces = cornellSurfaces(scene);
   CpuTransport transport(scene, surfaces, FormFactorOptions{});
-  std::vector<RTCRay> recorded;
+  RayTracer::RayRecording recorded;
+  recorded.maxRays = size_t(1) << 26;
   transport.tracer().recordOcclusionRays(&recorded);
   std::vector<uint32_t> ids(surfaces.elements.size());
   std::iota(ids.begin(), ids.end(), 0u);
@@ -58,20 +59,21 @@ void EmbreeRawOcclusion(benchmark::State& state) {
   transport.rows(ids, matrix);
   transport.tracer().recordOcclusionRays(nullptr);
 
-  // Streams of about the size the transport uses (128 pairs x ~1-16 rays).
-  constexpr size_t kStream = 256;
-  std::vector<RTCRay> work(recorded.size());
+  // The same streams the transport issued, in parallel on the same threads.
+  std::vector<size_t> offsets(recorded.streamSizes.size() + 1, 0);
+  for (size_t i = 0; i < recorded.streamSizes.size(); ++i) offsets[i + 1] = offsets[i] + recorded.streamSizes[i];
+  std::vector<RTCRay> work;
   uint64_t rays = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    work = recorded;  // tracing overwrites tfar
+    work = recorded.rays;  // tracing overwrites tfar
     state.ResumeTiming();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, work.size(), kStream), [&](const tbb::blocked_range<size_t>& r) {
-      transport.tracer().occluded({work.data() + r.begin(), r.size()});
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, recorded.streamSizes.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t s = r.begin(); s < r.end(); ++s) transport.tracer().occluded({work.data() + offsets[s], recorded.streamSizes[s]});
     });
     rays += work.size();
   }
-  state.counters["rays"] = double(recorded.size());
+  state.counters["rays"] = double(recorded.rays.size());
   state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
 }
 

@@ -20,6 +20,7 @@
 #include "luxel/import.h"
 #include "luxel/render.h"
 #include "luxel/solve.h"
+#include "bench_command.h"
 #include "progress_bar.h"
 
 namespace fs = std::filesystem;
@@ -233,6 +234,19 @@ int main(int argc, char** argv) {
   render->add_option("--refine", ra.refine, "Adaptive refinement: extra elements allowed (0: off)");
   render->add_option("--rays-per-pair", ra.raysPerPair, "Visibility rays per element-patch pair")->check(CLI::Range(1, 256));
 
+  cli::BenchArgs ba;
+  CLI::App* bench = app.add_subcommand("bench", "Run a benchmark suite: timings, throughput, memory and error");
+  bench->add_option("suite", ba.suite, "Suite: seeds, shader, scenes, core or quick (--list shows the cases)")->capture_default_str();
+  bench->add_option("--runs", ba.runs, "Timed runs per case")->check(CLI::Range(1, 1000))->capture_default_str();
+  bench->add_option("--json", ba.jsonPath, "Write the results as JSON");
+  bench->add_option("--case", ba.filter, "Only cases whose name contains this");
+  bench->add_option("--cache", ba.cacheDir, "Folder for reference solutions (default ~/.cache/luxel/references)");
+  bench->add_flag("--no-reference", ba.noReference, "Skip the error column (no reference solve)");
+  bench->add_flag("--no-limit", ba.noLimit, "Skip the Embree hardware-limit measurement");
+  bench->add_flag("--list", ba.list, "List the suites and their cases");
+  bench->add_option("--threads", ba.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  bench->add_flag("-q,--quiet", ba.quiet, "Print nothing but errors");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -240,6 +254,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*render) return runRender(ra);
+    if (*bench) return cli::runBench(ba);
   } catch (const Cancelled&) {
     std::cerr << "\nluxel: cancelled\n";
     return 130;

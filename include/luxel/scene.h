@@ -63,6 +63,16 @@ struct Mesh {
   std::vector<Vec2> uvs;  // empty, or one per position
   std::vector<Face> faces;
   uint32_t material = 0;  // index into Scene::materials
+  // Optional element grids, for scenes whose element counts are prescribed (the seed papers' test
+  // scenes): empty, or one per face, {elements along s, elements along t}; {0, 0} leaves the face
+  // to the automatic cut (DiscretiseOptions' size or budget). A quad with {nu, nv} is cut into
+  // exactly nu x nv elements, uniform in its parameter space (s from v[0] to v[1], t from v[0] to
+  // v[3]), grouped into patches of about elementsPerPatchSide x elementsPerPatchSide elements. A
+  // triangle needs nu == nv = n and gets n^2 elements. Hinted elements count as fixed: the budget
+  // search sizes only the other faces, with what the hinted ones leave of the budget. A quad that
+  // discretisation has to cut in two (non-planar or non-convex) falls back to the automatic cut;
+  // the back face of a two-sided material keeps the grid.
+  std::vector<std::array<uint16_t, 2>> elementGrids;
 };
 
 struct Light {

@@ -22,15 +22,15 @@ struct FormFactorOptions {
   // Rays for pairs closer than `nearFactor` times their summed sizes, where both the unoccluded
   // form factor and the visibility vary most over the receiver (contacts, corners).
   int nearRaysPerPair = 16;
-  // Rays for pairs whose source patch emits: direct light makes the sharpest shadows.
-  int emitterRaysPerPair = 16;
+  // Rays for pairs whose source patch emits: direct light makes the sharpest shadows, and their
+  // noise was the largest share of the error against a converged reference (Cornell box, 10k
+  // elements: NRMSE 0.013 at 16 rays, 0.0064 at 64). Shaft culling leaves only penumbra pairs.
+  int emitterRaysPerPair = 64;
   float nearFactor = 2.0f;
-  // Classify each receiver-patch/source-patch pair first with `classifyRays` rays: when all
-  // arrive (or none does), every element of the receiver patch takes that verdict without rays of
-  // its own. Much faster where most pairs are clear; an occluder thinner than the gaps between
-  // those rays can be missed, so turn it off for reference solutions of cluttered scenes.
+  // Classify each receiver-patch/source-patch pair first by shaft culling (Haines and Wallace
+  // 1991): when no other face reaches into the hull of the two patches, every element of the
+  // pair is wholly visible and casts no rays. Exact; off only to measure what it saves.
   bool classifyVisibility = true;
-  int classifyRays = 25;
   // Shadow rays per element for each analytic light (point, spot, sun, sky).
   int lightSamples = 16;
   uint32_t seed = 1;

@@ -1,6 +1,8 @@
 // Cutting faces into patches and elements (Cohen, Greenberg, Immel, Brock 1986: substructuring).
 // Each face is cut on a regular grid in its own parameter space, so that elements of one face tile
-// it exactly and can be split again later by adaptive refinement.
+// it exactly and can be split again later by adaptive refinement. A face may prescribe its grid
+// (Mesh::elementGrids, for scenes whose element counts are given, such as the seed papers' test
+// scenes); the budget then sizes only the other faces.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -18,6 +20,21 @@ constexpr float kPi = std::numbers::pi_v<float>;
 constexpr size_t kMaxElements = 50'000'000;
 // Samples per side when averaging a texture over an element.
 constexpr int kTextureSamplesPerSide = 4;
+
+// A face's prescribed grid, {elements along s, along t}; {0, 0} for the automatic cut.
+using ElementGrid = std::array<uint16_t, 2>;
+
+bool isFixed(const ElementGrid& g) { return g[0] > 0 && g[1] > 0; }
+
+// Triangles are cut n x n; Scene::validate asks for g[0] == g[1], the larger one wins otherwise.
+int triangleCuts(const ElementGrid& g) { return std::max(g[0], g[1]); }
+
+size_t fixedCount(const SurfaceFace& f, const ElementGrid& g) {
+  if (!isFixed(g)) return 0;
+  return f.triangle ? size_t(triangleCuts(g)) * size_t(triangleCuts(g)) : size_t(g[0]) * g[1];
+}
+
+int ceilDiv(int a, int b) { return (a + b - 1) / b; }
 
 struct GridCounts {
   int patchesU = 1, patchesV = 1;    // quads: patches along s and t; triangles: patchesU only
@@ -50,9 +67,13 @@ GridCounts gridFor(const SurfaceFace& f, float elementSize, int perPatch) {
   return g;
 }
 
-size_t elementCount(const std::vector<SurfaceFace>& faces, float elementSize, int perPatch) {
+// Elements of the faces without a prescribed grid, for a given element size.
+size_t elementCount(const std::vector<SurfaceFace>& faces, const std::vector<ElementGrid>& grids,
+                    float elementSize, int perPatch) {
   size_t n = 0;
-  for (const SurfaceFace& f : faces) {
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (isFixed(grids[i])) continue;
+    const SurfaceFace& f = faces[i];
     GridCounts g = gridFor(f, elementSize, perPatch);
     n += f.triangle ? size_t(g.patchesU) * g.patchesU * g.elementsU * g.elementsU
                     : size_t(g.patchesU) * g.patchesV * g.elementsU * g.elementsV;
@@ -153,8 +174,16 @@ std::vector<SurfaceFace> splitIfNonPlanar(const SurfaceFace& f, bool triangle, s
   return {t0, t1};
 }
 
-// Two-sided materials get a second, reversed face: the back side, with its own radiosity.
-void addTwinFaces(const Scene& scene, std::vector<SurfaceFace>& faces) {
+// Swapping corners 1 and 3 of a quad (turning it round) swaps its s and t: the prescribed grid
+// follows, so that the same elements cover the same places.
+ElementGrid turnedRound(const SurfaceFace& f, const ElementGrid& g) {
+  return f.triangle ? g : ElementGrid{g[1], g[0]};
+}
+
+// Two-sided materials get a second, reversed face: the back side, with its own radiosity, and the
+// front's element grid.
+void addTwinFaces(const Scene& scene, std::vector<SurfaceFace>& faces,
+                  std::vector<ElementGrid>& grids) {
   const size_t n = faces.size();
   for (size_t i = 0; i < n; ++i) {
     if (!scene.materials[faces[i].material].twoSided) continue;
@@ -166,7 +195,18 @@ void addTwinFaces(const Scene& scene, std::vector<SurfaceFace>& faces) {
     back.twin = int32_t(i);
     faces[i].twin = int32_t(faces.size());
     faces.push_back(back);
+    grids.push_back(turnedRound(back, grids[i]));
   }
+}
+
+Patch makePatch(const SurfaceFace& f, uint32_t faceIndex, const std::array<Vec2, 4>& param) {
+  Patch patch;
+  patch.polygon = polygonFromParams(f, param);
+  patch.centroid = patch.polygon.centroid();
+  patch.normal = f.normal;
+  patch.area = patch.polygon.area();
+  patch.face = faceIndex;
+  return patch;
 }
 
 Element makeElement(const Scene& scene, const SurfaceSet& set, uint32_t faceIndex,
@@ -190,6 +230,51 @@ Element makeElement(const Scene& scene, const SurfaceSet& set, uint32_t faceInde
     e.exitance *= textureMean(scene.textures[size_t(m.emissionTexture)], f, param);
   e.depth = depth;
   return e;
+}
+
+// Cuts a face with a prescribed grid. Quads: nu x nv elements, in patches of blocks of about
+// perPatch x perPatch elements (block edges at round(k nu / patchesU), so block sizes differ by at
+// most one); each patch is the parameter rectangle of its block. Triangles: n^2 elements; one
+// patch when n <= perPatch, else P^2 triangular patches of (n/P)^2 elements each, P the smallest
+// divisor of n with n/P <= perPatch (so the patches' grids line up with the n x n grid exactly).
+void cutPrescribed(const Scene& scene, SurfaceSet& set, uint32_t fi, const ElementGrid& g,
+                   int perPatch) {
+  const SurfaceFace& f = set.faces[fi];
+  if (f.triangle) {
+    const int n = triangleCuts(g);
+    int p = ceilDiv(n, perPatch);
+    while (n % p != 0) ++p;
+    const std::array<Vec2, 4> whole{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(0, 1)};
+    for (const auto& patchParam : subdivideParams(whole, true, p, p)) {
+      Patch patch = makePatch(f, fi, patchParam);
+      const auto patchIndex = uint32_t(set.patches.size());
+      for (const auto& param : subdivideParams(patchParam, true, n / p, n / p)) {
+        patch.elements.push_back(uint32_t(set.elements.size()));
+        set.elements.push_back(makeElement(scene, set, fi, patchIndex, param, 0));
+      }
+      set.patches.push_back(std::move(patch));
+    }
+    return;
+  }
+  const int nu = g[0], nv = g[1];
+  const int pu = ceilDiv(nu, perPatch), pv = ceilDiv(nv, perPatch);
+  // round(k n / parts), halves up, in integers.
+  auto edge = [](int n, int parts, int k) { return (2 * k * n + parts) / (2 * parts); };
+  auto at = [&](int i, int j) { return Vec2(float(i) / float(nu), float(j) / float(nv)); };
+  for (int pj = 0; pj < pv; ++pj)
+    for (int pi = 0; pi < pu; ++pi) {
+      const int i0 = edge(nu, pu, pi), i1 = edge(nu, pu, pi + 1);
+      const int j0 = edge(nv, pv, pj), j1 = edge(nv, pv, pj + 1);
+      Patch patch = makePatch(f, fi, {at(i0, j0), at(i1, j0), at(i1, j1), at(i0, j1)});
+      const auto patchIndex = uint32_t(set.patches.size());
+      for (int j = j0; j < j1; ++j)
+        for (int i = i0; i < i1; ++i) {
+          const std::array<Vec2, 4> cell{at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+          patch.elements.push_back(uint32_t(set.elements.size()));
+          set.elements.push_back(makeElement(scene, set, fi, patchIndex, cell, 0));
+        }
+      set.patches.push_back(std::move(patch));
+    }
 }
 
 }  // namespace
@@ -239,9 +324,14 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
   set.sceneExtent = glm::length(hi - lo);
 
   const float minArea = 1e-14f * set.sceneExtent * set.sceneExtent;
+  std::vector<ElementGrid> grids;  // one per entry of set.faces
   for (uint32_t mi = 0; mi < scene.meshes.size(); ++mi) {
     const Mesh& mesh = scene.meshes[mi];
-    for (const Face& face : mesh.faces) {
+    if (!mesh.elementGrids.empty() && mesh.elementGrids.size() != mesh.faces.size())
+      throw Error(fmt::format("scene '{}': mesh '{}': {} element grids for {} faces", scene.name,
+                              mesh.name, mesh.elementGrids.size(), mesh.faces.size()));
+    for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+      const Face& face = mesh.faces[fi];
       SurfaceFace f;
       f.mesh = mi;
       f.material = mesh.material;
@@ -249,32 +339,60 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
         f.corners[i] = mesh.positions[face.v[i]];
         f.uvs[i] = mesh.uvs.empty() ? Vec2(0.0f) : mesh.uvs[face.v[i]];
       }
-      for (SurfaceFace& piece : splitIfNonPlanar(f, face.isTriangle(), set.splitQuads)) {
+      ElementGrid grid = mesh.elementGrids.empty() ? ElementGrid{0, 0} : mesh.elementGrids[fi];
+      if (!isFixed(grid)) grid = {0, 0};
+      auto pieces = splitIfNonPlanar(f, face.isTriangle(), set.splitQuads);
+      // A quad cut in two has no grid of its own any more: its halves are cut automatically.
+      if (pieces.size() > 1) grid = {0, 0};
+      for (SurfaceFace& piece : pieces) {
         Polygon poly{piece.corners, piece.triangle ? 3 : 4};
         if (!(poly.area() > minArea)) continue;  // degenerate faces carry no light
         piece.normal = poly.normal();
         set.faces.push_back(piece);
+        grids.push_back(grid);
       }
     }
   }
-  if (options.orientByLight) set.flippedFaces = orientFacesByLight(scene, set.faces, set.sceneExtent);
-  addTwinFaces(scene, set.faces);
-  double totalArea = 0.0;
-  for (const SurfaceFace& f : set.faces) totalArea += Polygon{f.corners, f.triangle ? 3 : 4}.area();
+  if (options.orientByLight) {
+    set.flippedFaces = orientFacesByLight(scene, set.faces, set.sceneExtent);
+    for (size_t i = 0; i < set.faces.size(); ++i)
+      if (set.faces[i].flipped) grids[i] = turnedRound(set.faces[i], grids[i]);
+  }
+  addTwinFaces(scene, set.faces, grids);
   if (set.faces.empty())
     throw Error(fmt::format("scene '{}': no face has a positive area", scene.name));
+  // Faces with a prescribed grid are fixed; the budget search sizes the others only.
+  double freeArea = 0.0, fixedArea = 0.0;
+  size_t fixedElements = 0, freeFaces = 0;
+  for (size_t i = 0; i < set.faces.size(); ++i) {
+    const SurfaceFace& f = set.faces[i];
+    const double area = Polygon{f.corners, f.triangle ? 3 : 4}.area();
+    if (isFixed(grids[i])) {
+      fixedArea += area;
+      fixedElements += fixedCount(f, grids[i]);
+    } else {
+      freeArea += area;
+      ++freeFaces;
+    }
+  }
 
   const int perPatch = options.elementsPerPatchSide;
   float size = options.elementSize;
-  if (size == 0.0f) {
+  if (size == 0.0f && freeFaces > 0) {
+    // What the fixed faces leave of the budget; when they take it all, one element per free face.
+    const size_t left =
+        options.elementBudget > fixedElements ? options.elementBudget - fixedElements : 0;
+    const double budget = double(left > 0 ? left : freeFaces);
     // Rounding each face up to whole cells overshoots the budget; correct the size a few times.
-    size = float(std::sqrt(totalArea / double(options.elementBudget)));
+    size = float(std::sqrt(freeArea / budget));
     for (int i = 0; i < 4; ++i) {
-      size_t n = elementCount(set.faces, size, perPatch);
-      size *= float(std::sqrt(double(n) / double(options.elementBudget)));
+      size_t n = elementCount(set.faces, grids, size, perPatch);
+      size *= float(std::sqrt(double(n) / budget));
     }
+  } else if (size == 0.0f) {
+    size = float(std::sqrt(fixedArea / double(std::max<size_t>(fixedElements, 1))));  // for show
   }
-  const size_t expected = elementCount(set.faces, size, perPatch);
+  const size_t expected = elementCount(set.faces, grids, size, perPatch) + fixedElements;
   if (expected > kMaxElements)
     throw Error(fmt::format("element size {} gives {} elements, over the limit of {}", size,
                             expected, kMaxElements));
@@ -282,19 +400,17 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
   set.elements.reserve(expected);
 
   for (uint32_t fi = 0; fi < set.faces.size(); ++fi) {
+    if (isFixed(grids[fi])) {
+      cutPrescribed(scene, set, fi, grids[fi], perPatch);
+      continue;
+    }
     const SurfaceFace& f = set.faces[fi];
-    const Material& m = scene.materials[f.material];
     GridCounts g = gridFor(f, size, perPatch);
     std::array<Vec2, 4> whole = f.triangle
                                     ? std::array<Vec2, 4>{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1), Vec2(0, 1)}
                                     : std::array<Vec2, 4>{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
     for (const auto& patchParam : subdivideParams(whole, f.triangle, g.patchesU, g.patchesV)) {
-      Patch patch;
-      patch.polygon = polygonFromParams(f, patchParam);
-      patch.centroid = patch.polygon.centroid();
-      patch.normal = f.normal;
-      patch.area = patch.polygon.area();
-      patch.face = fi;
+      Patch patch = makePatch(f, fi, patchParam);
       const auto patchIndex = uint32_t(set.patches.size());
       for (const auto& param : subdivideParams(patchParam, f.triangle, g.elementsU, g.elementsV)) {
         patch.elements.push_back(uint32_t(set.elements.size()));

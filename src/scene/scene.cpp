@@ -69,6 +69,17 @@ void Scene::validate() const {
         if (v >= mesh.positions.size())
           throw Error(fmt::format("scene '{}': mesh '{}': face {} references vertex {} of {}", name,
                                   mesh.name, f, v, mesh.positions.size()));
+    if (!mesh.elementGrids.empty() && mesh.elementGrids.size() != mesh.faces.size())
+      throw Error(fmt::format("scene '{}': mesh '{}': {} element grids for {} faces", name,
+                              mesh.name, mesh.elementGrids.size(), mesh.faces.size()));
+    for (size_t f = 0; f < mesh.elementGrids.size(); ++f) {
+      const auto [nu, nv] = mesh.elementGrids[f];
+      // {0, 0} is automatic; a grid needs both counts, and a triangle the same count on both.
+      if ((nu == 0) != (nv == 0) || (mesh.faces[f].isTriangle() && nu != nv))
+        throw Error(fmt::format("scene '{}': mesh '{}': face {}: element grid {} x {} is invalid{}",
+                                name, mesh.name, f, nu, nv,
+                                mesh.faces[f].isTriangle() ? " for a triangle (needs n x n)" : ""));
+    }
   }
   for (const Light& l : lights) {
     if (!finite(l.color) || !std::isfinite(l.intensity) || l.intensity < 0.0f ||

@@ -11,6 +11,7 @@
 #include "luxel/solve.h"
 #include "mesh/corner_groups.h"
 #include "solve/radiosity_system.h"
+#include "solve/solve_with_transport.h"
 #include "transport/cpu_transport.h"
 
 namespace luxel {
@@ -26,7 +27,7 @@ void validate(const SolveOptions& o) {
   if (!(o.timeBudget >= 0.0)) fail(fmt::format("time budget {} must be >= 0", o.timeBudget));
   if (o.maxIterations < 1) fail("max iterations must be >= 1");
   const FormFactorOptions& f = o.formFactors;
-  for (int n : {f.raysPerPair, f.nearRaysPerPair, f.emitterRaysPerPair, f.lightSamples, f.classifyRays})
+  for (int n : {f.raysPerPair, f.nearRaysPerPair, f.emitterRaysPerPair, f.lightSamples})
     if (n < 1 || n > 256) fail(fmt::format("ray and sample counts must be in 1..256 (got {})", n));
   if (!(f.nearFactor >= 0.0f)) fail("near factor must be >= 0");
   if (!(o.refineThreshold > 0.0f)) fail("refine threshold must be > 0");
@@ -71,11 +72,20 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
                const ProgressCallback& progress) {
   validate(options);
   const auto start = Clock::now();
-  SolveStats stats;
-
-  auto t = Clock::now();
   CpuTransport transport(scene, surfaces, options.formFactors);
-  stats.secondsSetup = secondsSince(t);
+  const double setup = secondsSince(start);
+  Solution sol = solveWithTransport(scene, surfaces, transport, options, progress);
+  sol.stats.secondsSetup += setup;
+  sol.stats.secondsTotal = secondsSince(start);
+  return sol;
+}
+
+Solution solveWithTransport(const Scene& scene, SurfaceSet& surfaces, Transport& transport,
+                            const SolveOptions& options, const ProgressCallback& progress) {
+  validate(options);
+  const auto start = Clock::now();
+  SolveStats stats;
+  auto t = start;
 
   Solution sol;
   double formFactorSeconds = 0.0, solveSeconds = 0.0;

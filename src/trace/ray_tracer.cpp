@@ -94,7 +94,10 @@ void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
   if (rays.empty()) return;
   if (recorder_) {
     std::lock_guard lock(recorderMutex_);
-    recorder_->insert(recorder_->end(), rays.begin(), rays.end());
+    if (recorder_->rays.size() + rays.size() <= recorder_->maxRays) {
+      recorder_->rays.insert(recorder_->rays.end(), rays.begin(), rays.end());
+      recorder_->streamSizes.push_back(uint32_t(rays.size()));
+    }
   }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

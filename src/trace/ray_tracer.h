@@ -36,15 +36,20 @@ class RayTracer {
 
   uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
 
-  // Benchmarks only: when set, every occlusion ray is copied here before it is traced, so that
-  // Embree's raw throughput can be measured on exactly the rays a solver cast.
-  void recordOcclusionRays(std::vector<RTCRay>* sink) { recorder_ = sink; }
+  // Benchmarks only: occlusion rays as a solver cast them, stream by stream, so that Embree's raw
+  // throughput can be measured on exactly that work (same rays, same stream sizes).
+  struct RayRecording {
+    std::vector<RTCRay> rays;
+    std::vector<uint32_t> streamSizes;
+    size_t maxRays = size_t(1) << 22;  // streams past this are traced but not recorded
+  };
+  void recordOcclusionRays(RayRecording* sink) { recorder_ = sink; }
   void resetRayCount() { rays_.store(0, std::memory_order_relaxed); }
 
  private:
   RTCScene scene_ = nullptr;
   mutable std::atomic<uint64_t> rays_{0};
-  std::vector<RTCRay>* recorder_ = nullptr;
+  RayRecording* recorder_ = nullptr;
   mutable std::mutex recorderMutex_;
 };
 

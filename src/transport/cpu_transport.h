@@ -46,8 +46,10 @@ class CpuTransport final : public Transport {
   std::vector<Polygon> facePolygons_;
   RayTracer tracer_;
   float rayOffset_ = 0.0f;
-  enum class PairVisibility : uint8_t { Unknown, Clear, Partial, Blocked };
+  enum class PairVisibility : uint8_t { Unknown, Clear, Partial };
   PairVisibility classify(uint32_t receiverPatch, uint32_t sourcePatch);
+  // True when no face other than the two patches' own reaches into the shaft between them.
+  bool shaftIsEmpty(const Patch& a, const Patch& b) const;
 
   std::vector<float> patchRadius_;
   // Receiver patch x source patch verdicts, filled lazily; empty when classification is off.

@@ -21,6 +21,30 @@ Scene furnace(float rho = 0.5f, float le = 1.0f);
 // illuminance over the walls is flux / (S (1 - rho)).
 Scene cieCube(float rho = 0.5f, float flux = 10000.0f);
 
+// The test scenes of the seed papers, with their element counts exactly (docs/seed-scenes.md;
+// Mesh::elementGrids fixes them, whatever the element budget). In every scene the dynamic object
+// of seed 001 is the mesh named "box".
+//
+// Seed 001 (van de Hoef 2013, Sec. 5.1): a closed Cornell box 0.55 m a side, the light 1 mm below
+// the ceiling facing down, a white 0.165 x 0.385 x 0.165 m box floating at the centre.
+// cornell-large: 10,254 static elements, 918 on the box; light 0.161 x 0.188 m, radiance
+// (8.5, 6, 2). cornell-small: the same counts, the light a third as long and wide, 9 times the
+// radiance. cornell-low: cornell-large's geometry with 2,734 static elements and 270 on the box.
+Scene cornellLarge();
+Scene cornellSmall();
+Scene cornellLow();
+// Seed 001's indirect-light scene: a 5 x 2.5 x 4 m room of albedo 0.9, a window in its right wall
+// facing away from a directional sun, which lights the ground and a facade outside; 10,296 static
+// elements, a 0.6 x 0.9 x 0.7 m box of 318 elements at the left side.
+Scene indirectLight();
+// Seed 000's closed 2 m box, six inward k x k grids of one-element quads (12 k^2 triangles),
+// red left and green right walls, the ceiling's central fifth emitting (100.4, 96.8, 90.0).
+// k = 10, 20, 40, 50 are the scenes shader-box-774, -2734, -10254, -15814 (the thesis's vertex
+// counts); k must be a multiple of 5.
+Scene shaderBox(int k);
+// Seed 000's Plate C.10: shaderBox(10) with a sphere above the floor and a torus above the sphere.
+Scene shaderSphereTorus();
+
 // Adds a planar quad (a, b, c, d counter-clockwise seen from the front) to `mesh`.
 void addQuad(Mesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d);
 // Adds the six inward-facing walls of the axis-aligned box [lo, hi] to `mesh`.

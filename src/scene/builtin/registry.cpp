@@ -10,7 +10,11 @@
 
 namespace luxel {
 
-std::vector<std::string> builtinSceneNames() { return {"cornell", "furnace", "cie-5.8"}; }
+std::vector<std::string> builtinSceneNames() {
+  return {"cornell",          "furnace",          "cie-5.8",          "cornell-large",
+          "cornell-small",    "cornell-low",      "indirect-light",   "shader-box-774",
+          "shader-box-2734",  "shader-box-10254", "shader-box-15814", "shader-sphere-torus"};
+}
 
 bool isBuiltinScene(std::string_view name) {
   auto names = builtinSceneNames();
@@ -21,6 +25,16 @@ Scene builtinScene(std::string_view name) {
   if (name == "cornell") return builtin::cornellBox();
   if (name == "furnace") return builtin::furnace();
   if (name == "cie-5.8") return builtin::cieCube();
+  // The seed papers' test scenes (docs/seed-scenes.md).
+  if (name == "cornell-large") return builtin::cornellLarge();
+  if (name == "cornell-small") return builtin::cornellSmall();
+  if (name == "cornell-low") return builtin::cornellLow();
+  if (name == "indirect-light") return builtin::indirectLight();
+  if (name == "shader-box-774") return builtin::shaderBox(10);
+  if (name == "shader-box-2734") return builtin::shaderBox(20);
+  if (name == "shader-box-10254") return builtin::shaderBox(40);
+  if (name == "shader-box-15814") return builtin::shaderBox(50);
+  if (name == "shader-sphere-torus") return builtin::shaderSphereTorus();
   throw Error(fmt::format("unknown built-in scene '{}' (known: {})", name,
                           fmt::join(builtinSceneNames(), ", ")));
 }

@@ -1,0 +1,164 @@
+#include "bench_command.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include "io/atomic_file.h"
+#include "luxel/bench.h"
+#include "luxel/error.h"
+
+namespace luxel::cli {
+namespace {
+
+using namespace luxel::bench;
+
+std::string defaultCacheDir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/luxel/references";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/luxel/references";
+  return ".luxel-cache/references";
+}
+
+std::string ms(double seconds) { return fmt::format("{:.1f}", seconds * 1e3); }
+
+nlohmann::json spreadJson(const Spread& s) {
+  return {{"median", s.median}, {"min", s.min}, {"max", s.max}};
+}
+
+nlohmann::json caseJson(const CaseResult& r) {
+  const Case& c = r.benchCase;
+  nlohmann::json j = {
+      {"name", c.name},
+      {"scene", c.scene},
+      {"backend", c.backend},
+      {"setting", c.setting},
+      {"solver", c.solve.method == SolveOptions::Method::Gather ? "gather" : "progressive"},
+      {"elements", r.elements},
+      {"patches", r.patches},
+      {"runs", r.runs},
+      {"seconds", {{"load", r.loadSeconds}, {"total", spreadJson(r.total)}, {"setup", spreadJson(r.setup)},
+                   {"form_factors", spreadJson(r.formFactors)}, {"solve", spreadJson(r.solve)}}},
+      {"rays", r.rays},
+      {"rays_per_second", r.raysPerSecond},
+      {"embree_raw_rays_per_second", r.limitRaysPerSecond},
+      {"fraction_of_embree_raw", r.limitFraction},
+      {"shots", r.shots},
+      {"iterations", r.iterations},
+      {"unshot_fraction", r.unshot},
+      {"peak_memory_bytes", r.peakMemoryBytes},
+      {"error", r.error ? nlohmann::json(*r.error) : nlohmann::json(nullptr)},
+      {"error_note", r.errorNote},
+      {"reference_seconds", r.referenceSeconds},
+  };
+  if (!c.seed.source.empty())
+    j["seed"] = {{"source", c.seed.source}, {"milliseconds", c.seed.milliseconds}, {"error", c.seed.error}};
+  return j;
+}
+
+void printHeader() {
+  std::cout << fmt::format("{:<34} {:>7} {:>19} {:>8} {:>8} {:>8} {:>7} {:>7} {:>5} {:>6} {:>9} {:>9} {:>9}\n", "case",
+                           "elems", "total ms (min-max)", "setup", "ff+vis", "solve", "Mray/s", "limit", "lim%",
+                           "MiB", "error", "seed ms", "seed err");
+}
+
+void printRow(const CaseResult& r) {
+  const Case& c = r.benchCase;
+  std::string total = fmt::format("{} ({}-{})", ms(r.total.median), ms(r.total.min), ms(r.total.max));
+  std::string error = r.error ? fmt::format("{:.5f}", *r.error) : std::string("-");
+  std::string seedMs = c.seed.milliseconds > 0 ? fmt::format("{:g}", c.seed.milliseconds) : "-";
+  std::string seedErr = c.seed.error > 0 ? fmt::format("{:.5f}", c.seed.error) : "-";
+  std::string limit = r.limitRaysPerSecond > 0 ? fmt::format("{:.1f}", r.limitRaysPerSecond / 1e6) : "-";
+  std::string frac = r.limitRaysPerSecond > 0 ? fmt::format("{:.0f}%", 100 * r.limitFraction) : "-";
+  std::cout << fmt::format("{:<34} {:>7} {:>19} {:>8} {:>8} {:>8} {:>7.1f} {:>7} {:>5} {:>6.0f} {:>9} {:>9} {:>9}\n",
+                           c.name, r.elements, total, ms(r.setup.median), ms(r.formFactors.median),
+                           ms(r.solve.median), r.raysPerSecond / 1e6, limit, frac,
+                           double(r.peakMemoryBytes) / (1 << 20), error, seedMs, seedErr);
+  if (!r.errorNote.empty()) std::cout << "    (" << r.errorNote << ")\n";
+  std::cout.flush();
+}
+
+}  // namespace
+
+int runBench(const BenchArgs& a) {
+  if (a.list) {
+    for (const Suite& s : suites()) {
+      std::cout << s.name << ": " << s.description << "\n";
+      for (const Case& c : s.cases) std::cout << "  " << c.name << "  [" << c.setting << "]\n";
+    }
+    return 0;
+  }
+  const Suite& suite = findSuite(a.suite);
+  if (!a.jsonPath.empty()) {
+    std::filesystem::path p(a.jsonPath);
+    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    if (!std::filesystem::is_directory(dir))
+      throw Error(fmt::format("{}: directory '{}' does not exist", a.jsonPath, dir.string()));
+  }
+  std::unique_ptr<tbb::global_control> limit;
+  if (a.threads > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
+  const int threads = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
+
+  Options options;
+  options.runs = a.runs;
+  options.cacheDir = a.cacheDir.empty() ? defaultCacheDir() : a.cacheDir;
+  options.reference = !a.noReference;
+  options.hardwareLimit = !a.noLimit;
+
+  const Machine m = describeMachine(threads);
+  if (!a.quiet) {
+    std::cout << fmt::format("luxel bench {}: {} ({} hardware threads, {} used), {}, commit {}, {}\n", suite.name,
+                             m.cpuModel, m.cores, m.threads, m.os, m.commit.empty() ? "unknown" : m.commit, m.date);
+    std::cout << fmt::format("{} runs per case; times are medians; references in {}\n", a.runs, options.cacheDir);
+    printHeader();
+  }
+  nlohmann::json cases = nlohmann::json::array();
+  int ran = 0;
+  for (const Case& c : suite.cases) {
+    if (!a.filter.empty() && c.name.find(a.filter) == std::string::npos) continue;
+    ++ran;
+    CaseResult r;
+    try {
+      r = runCase(c, options);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      // A scene that is not there (the shared scenes) is reported and skipped, not fatal.
+      std::cout << fmt::format("{:<34} skipped: {}\n", c.name, e.what());
+      cases.push_back({{"name", c.name}, {"skipped", e.what()}});
+      continue;
+    }
+    if (!a.quiet) printRow(r);
+    cases.push_back(caseJson(r));
+  }
+  if (ran == 0) throw Error(fmt::format("no case of suite '{}' matches '{}'", suite.name, a.filter));
+
+  if (!a.jsonPath.empty()) {
+    nlohmann::json j = {
+        {"suite", suite.name},
+        {"description", suite.description},
+        {"runs", a.runs},
+        {"machine", {{"cpu", m.cpuModel}, {"hardware_threads", m.cores}, {"threads", m.threads},
+                     {"memory_bytes", m.memoryBytes}, {"os", m.os}}},
+        {"commit", m.commit},
+        {"date", m.date},
+        {"cases", cases},
+    };
+    writeFileAtomically(a.jsonPath, [&](const std::filesystem::path& tmp) {
+      std::ofstream out(tmp);
+      out << j.dump(2) << "\n";
+      if (!out) throw Error("cannot write");
+    });
+    if (!a.quiet) std::cout << "luxel: wrote " << a.jsonPath << "\n";
+  }
+  return 0;
+}
+
+}  // namespace luxel::cli

@@ -1,0 +1,104 @@
+// The benchmark suite behind `luxel bench`: named cases (a scene, a solver, a backend and a
+// setting), each run N times and reported with the split of its wall time, its ray throughput
+// beside Embree's raw throughput on the same rays, its peak memory, and its error against a
+// converged reference of the same discretisation (cached on disk). docs/performance.md explains
+// the method and keeps the results.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "luxel/progress.h"
+#include "luxel/solve.h"
+#include "luxel/surface.h"
+
+namespace luxel::bench {
+
+// What a seed document published for the same work, shown beside luxel's figure.
+struct SeedFigure {
+  std::string source;        // e.g. "001 Table 5.2a, GTX 670"
+  double milliseconds = 0.0; // 0 when the seed gives no time
+  double error = 0.0;        // normalised RMS error the seed reached; 0 when none
+};
+
+struct Case {
+  std::string name;     // unique in its suite, e.g. "cornell-large/progressive"
+  std::string scene;    // a built-in name, a scene file or a mesh file (as `luxel render`)
+  std::string backend = "cpu";
+  std::string setting;  // what this case varies, in words
+  DiscretiseOptions discretise;
+  SolveOptions solve;
+  SeedFigure seed;
+  // Cases whose pairs (elements x patches) exceed this get no reference: a gather over them
+  // would take hours. Their error column says so.
+  double maxReferencePairs = 5e7;
+};
+
+struct Suite {
+  std::string name;
+  std::string description;
+  std::vector<Case> cases;
+};
+
+// The named suites: "seeds" (001's four scenes), "shader" (000's boxes), "scenes" (the shared
+// real scenes, which skip when absent), "quick" (a smoke run).
+const std::vector<Suite>& suites();
+const Suite& findSuite(const std::string& name);  // throws Error listing the names
+
+struct Options {
+  int runs = 5;
+  std::string cacheDir;  // where references are kept; created when missing
+  bool hardwareLimit = true;
+  bool reference = true;
+  ProgressCallback progress;
+};
+
+// Median and extremes of one measurement over the runs.
+struct Spread {
+  double median = 0.0, min = 0.0, max = 0.0;
+};
+
+struct CaseResult {
+  Case benchCase;
+  size_t elements = 0, patches = 0;
+  int runs = 0;
+  double loadSeconds = 0.0;                 // reading the scene, once, outside the runs
+  Spread total, setup, formFactors, solve;  // seconds; setup includes discretisation
+  uint64_t rays = 0;                        // per run
+  double raysPerSecond = 0.0;               // rays / form-factor time, median run
+  uint64_t shots = 0, iterations = 0;
+  double unshot = 0.0;
+  size_t peakMemoryBytes = 0;  // resident-set high-water mark during one run (0: unknown)
+  // Normalised RMS error of element radiosities against the reference (see docs/performance.md);
+  // empty when there is no reference, with the reason in errorNote.
+  std::optional<double> error;
+  std::string errorNote;
+  double referenceSeconds = 0.0;  // 0 when the reference came from the cache
+  // Embree alone on the rays one run cast (same streams, same threads).
+  double limitRaysPerSecond = 0.0;
+  double limitFraction = 0.0;  // raysPerSecond / limitRaysPerSecond
+};
+
+CaseResult runCase(const Case& benchCase, const Options& options);
+
+// The machine and build a result belongs to.
+struct Machine {
+  std::string cpuModel;
+  int cores = 0;    // hardware threads
+  int threads = 0;  // threads the runs used
+  uint64_t memoryBytes = 0;
+  std::string os;
+  std::string commit;  // git describe of the source tree, when it can be found
+  std::string date;    // UTC, ISO 8601
+};
+Machine describeMachine(int threads);
+
+// Normalised RMS difference of element radiosities, over the elements that do not emit:
+// sqrt(mean |B - R|^2) / sqrt(mean |R|^2), all three channels. Emitters are left out because
+// their radiosity is mostly their own exact emission, which would hide the error elsewhere.
+double normalisedRmsError(const SurfaceSet& surfaces, const std::vector<Rgb>& radiosity,
+                          const std::vector<Rgb>& reference);
+
+}  // namespace luxel::bench

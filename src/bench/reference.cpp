@@ -1,0 +1,111 @@
+#include "bench/reference.h"
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "io/atomic_file.h"
+#include "luxel/error.h"
+
+namespace luxel::bench {
+namespace {
+
+constexpr char kMagic[8] = {'L', 'X', 'R', 'E', 'F', '0', '0', '1'};
+
+// FNV-1a, 64 bits: enough to tell discretisations apart, and stable across runs and machines.
+struct Hasher {
+  uint64_t h = 1469598103934665603ull;
+  void bytes(const void* p, size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  }
+  template <class T>
+  void value(const T& v) {
+    bytes(&v, sizeof v);
+  }
+};
+
+// Everything the reference solution depends on: the elements (geometry, patch, reflectance,
+// emission), the analytic lights and the solver settings.
+uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const SolveOptions& o) {
+  Hasher h;
+  h.bytes("luxel-reference-1", 17);
+  for (const Element& e : surfaces.elements) {
+    h.value(e.polygon.count);
+    h.bytes(e.polygon.v.data(), sizeof(Vec3) * 4);
+    h.value(e.patch), h.value(e.reflectance), h.value(e.exitance);
+  }
+  for (const Light& l : scene.lights) {
+    h.value(l.type), h.value(l.color), h.value(l.intensity), h.value(l.position), h.value(l.direction);
+    h.value(l.innerConeAngle), h.value(l.outerConeAngle), h.value(l.angularRadius);
+  }
+  h.value(scene.up);
+  const FormFactorOptions& f = o.formFactors;
+  h.value(f.raysPerPair), h.value(f.nearRaysPerPair), h.value(f.emitterRaysPerPair), h.value(f.nearFactor);
+  h.value(f.classifyVisibility), h.value(f.lightSamples), h.value(f.seed), h.value(o.residualThreshold);
+  return h.h;
+}
+
+bool readCache(const std::filesystem::path& path, uint64_t key, size_t n, std::vector<Rgb>& out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  char magic[8];
+  uint64_t storedKey = 0, count = 0;
+  in.read(magic, 8);
+  in.read(reinterpret_cast<char*>(&storedKey), 8);
+  in.read(reinterpret_cast<char*>(&count), 8);
+  if (!in || std::memcmp(magic, kMagic, 8) != 0 || storedKey != key || count != n) return false;
+  out.resize(n);
+  in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(Rgb)));
+  return bool(in);
+}
+
+}  // namespace
+
+SolveOptions referenceSolveOptions() {
+  SolveOptions o;
+  o.method = SolveOptions::Method::Gather;
+  o.residualThreshold = 1e-6;
+  o.maxIterations = 100000;
+  o.formFactors.raysPerPair = 64;
+  o.formFactors.nearRaysPerPair = 64;
+  o.formFactors.emitterRaysPerPair = 256;
+  o.formFactors.classifyVisibility = false;
+  o.formFactors.lightSamples = 256;
+  o.formFactors.seed = 7;  // independent of the default seed the benchmarked runs use
+  return o;
+}
+
+Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces,
+                                 const std::string& cacheDir, const ProgressCallback& progress) {
+  const SolveOptions options = referenceSolveOptions();
+  const uint64_t key = referenceKey(scene, surfaces, options);
+  std::filesystem::path dir(cacheDir);
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(fmt::format("{}: cannot create the reference cache: {}", cacheDir, ec.message()));
+  Reference ref;
+  ref.path = (dir / fmt::format("{}-{:016x}.ref", scene.name, key)).string();
+  if (readCache(ref.path, key, surfaces.elements.size(), ref.radiosity)) return ref;
+
+  const auto start = std::chrono::steady_clock::now();
+  SurfaceSet copy = surfaces;  // solve() may refine in place; references never do, but stay safe
+  Solution sol = solve(scene, copy, options, progress);
+  ref.radiosity = std::move(sol.radiosity);
+  ref.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const uint64_t n = ref.radiosity.size();
+  writeFileAtomically(ref.path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(kMagic, 8);
+    out.write(reinterpret_cast<const char*>(&key), 8);
+    out.write(reinterpret_cast<const char*>(&n), 8);
+    out.write(reinterpret_cast<const char*>(ref.radiosity.data()), std::streamsize(n * sizeof(Rgb)));
+    if (!out) throw Error("cannot write");
+  });
+  return ref;
+}
+
+}  // namespace luxel::bench

@@ -1,0 +1,29 @@
+// Converged reference solutions for the benchmark's error column, as van de Hoef (2013, section
+// 5.2) did: gathering at high settings on the same discretisation. They take seconds to minutes,
+// so they are cached on disk under a hash of everything that determines them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "luxel/progress.h"
+#include "luxel/scene.h"
+#include "luxel/solve.h"
+
+namespace luxel::bench {
+
+struct Reference {
+  std::vector<Rgb> radiosity;
+  double seconds = 0.0;  // time to compute it; 0 when it came from the cache
+  std::string path;      // the cache file
+};
+
+// The settings references are solved with: Gauss-Seidel gathering to a 1e-6 residual, 64
+// visibility rays for every pair, no pair classification, 64 samples per analytic light.
+SolveOptions referenceSolveOptions();
+
+// Loads the reference for `surfaces` from `cacheDir`, or solves and stores it there.
+Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces,
+                                 const std::string& cacheDir, const ProgressCallback& progress);
+
+}  // namespace luxel::bench

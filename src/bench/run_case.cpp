@@ -1,0 +1,138 @@
+// Running one benchmark case: N timed runs of the whole static solve (discretise, build, form
+// factors, solve), one untimed run that records its occlusion rays for the hardware limit, and
+// the error of the last run against the cached reference.
+#include <algorithm>
+#include <chrono>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "bench/memory.h"
+#include "bench/reference.h"
+#include "luxel/bench.h"
+#include "luxel/error.h"
+#include "luxel/import.h"
+#include "solve/solve_with_transport.h"
+#include "transport/cpu_transport.h"
+
+namespace luxel::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+Spread spreadOf(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  return {median, v.front(), v.back()};
+}
+
+struct Run {
+  double setup = 0, formFactors = 0, solve = 0, total = 0;
+  Solution solution;
+  size_t patches = 0;
+};
+
+Run solveOnce(const Scene& scene, const Case& c, RayTracer::RayRecording* recording) {
+  Run r;
+  const auto start = Clock::now();
+  SurfaceSet surfaces = discretise(scene, c.discretise);
+  r.patches = surfaces.patches.size();
+  CpuTransport transport(scene, surfaces, c.solve.formFactors);
+  r.setup = secondsSince(start);
+  if (recording) transport.tracer().recordOcclusionRays(recording);
+  r.solution = solveWithTransport(scene, surfaces, transport, c.solve);
+  r.formFactors = r.solution.stats.secondsFormFactors;
+  r.solve = r.solution.stats.secondsSolve;
+  r.total = secondsSince(start);
+  return r;
+}
+
+// Embree alone on the recorded streams, on the same threads, as the solver issued them (one
+// stream per call, many calls in parallel). The best of three passes: the limit, not a typical.
+double embreeRawRaysPerSecond(const Scene& scene, const Case& c, const RayTracer::RayRecording& rec) {
+  if (rec.rays.empty()) return 0.0;
+  SurfaceSet surfaces = discretise(scene, c.discretise);
+  CpuTransport transport(scene, surfaces, c.solve.formFactors);
+  std::vector<size_t> offsets(rec.streamSizes.size() + 1, 0);
+  for (size_t i = 0; i < rec.streamSizes.size(); ++i) offsets[i + 1] = offsets[i] + rec.streamSizes[i];
+  double best = 0.0;
+  std::vector<RTCRay> work;
+  for (int pass = 0; pass < 3; ++pass) {
+    work = rec.rays;  // tracing overwrites tfar
+    const auto start = Clock::now();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rec.streamSizes.size(), 1),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        for (size_t s = r.begin(); s < r.end(); ++s)
+                          transport.tracer().occluded({work.data() + offsets[s], rec.streamSizes[s]});
+                      });
+    best = std::max(best, double(work.size()) / secondsSince(start));
+  }
+  return best;
+}
+
+}  // namespace
+
+CaseResult runCase(const Case& c, const Options& options) {
+  if (options.runs < 1 || options.runs > 1000) throw Error(fmt::format("runs {} must be in 1..1000", options.runs));
+  if (c.backend != "cpu") throw Error(fmt::format("case {}: backend '{}' is not available", c.name, c.backend));
+  CaseResult result;
+  result.benchCase = c;
+  result.runs = options.runs;
+  reportProgress(options.progress, c.name, 0.0, "loading");
+  const auto loadStart = Clock::now();
+  const Scene scene = loadScene(c.scene);
+  result.loadSeconds = secondsSince(loadStart);
+
+  std::vector<double> setup, ff, sol, total;
+  Run last;
+  for (int i = 0; i < options.runs; ++i) {
+    reportProgress(options.progress, c.name, double(i) / options.runs, fmt::format("run {} of {}", i + 1, options.runs));
+    if (i == 0) resetPeakMemory();
+    Run r = solveOnce(scene, c, nullptr);
+    if (i == 0) result.peakMemoryBytes = peakMemoryBytes();
+    setup.push_back(r.setup), ff.push_back(r.formFactors), sol.push_back(r.solve), total.push_back(r.total);
+    last = std::move(r);
+  }
+  result.setup = spreadOf(setup);
+  result.formFactors = spreadOf(ff);
+  result.solve = spreadOf(sol);
+  result.total = spreadOf(total);
+  const SolveStats& s = last.solution.stats;
+  result.elements = s.elements;
+  result.patches = s.patches;
+  result.rays = s.rays;
+  result.shots = s.shots;
+  result.iterations = s.iterations;
+  result.unshot = s.unshotFraction;
+  result.raysPerSecond = result.formFactors.median > 0 ? double(s.rays) / result.formFactors.median : 0.0;
+
+  if (options.hardwareLimit && s.rays > 0) {
+    reportProgress(options.progress, c.name, 1.0, "hardware limit");
+    RayTracer::RayRecording rec;
+    Run recorded = solveOnce(scene, c, &rec);
+    result.limitRaysPerSecond = embreeRawRaysPerSecond(scene, c, rec);
+    if (result.limitRaysPerSecond > 0) result.limitFraction = result.raysPerSecond / result.limitRaysPerSecond;
+  }
+
+  if (!options.reference) {
+    result.errorNote = "reference off";
+  } else if (double(s.elements) * double(s.patches) > c.maxReferencePairs) {
+    result.errorNote = fmt::format("no reference: {:.2g} element-patch pairs", double(s.elements) * double(s.patches));
+  } else {
+    reportProgress(options.progress, c.name, 1.0, "reference");
+    SurfaceSet surfaces = discretise(scene, c.discretise);
+    if (c.solve.refineBudget > 0) {
+      result.errorNote = "no reference: refinement changes the discretisation";
+    } else {
+      Reference ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress);
+      result.referenceSeconds = ref.seconds;
+      result.error = normalisedRmsError(surfaces, last.solution.radiosity, ref.radiosity);
+    }
+  }
+  return result;
+}
+
+}  // namespace luxel::bench

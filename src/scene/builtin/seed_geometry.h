@@ -1,0 +1,28 @@
+// Geometry for the seed papers' test scenes (docs/seed-scenes.md): quads whose element grids are
+// prescribed (Mesh::elementGrids), so that the scenes have the papers' exact element counts.
+// Every helper appends positions, unit-square uvs, faces and grids together, so a mesh built only
+// with them always has one uv per position and one grid per face.
+#pragma once
+
+#include <functional>
+
+#include "luxel/scene.h"
+
+namespace luxel::builtin {
+
+// The parallelogram origin, origin + u, origin + u + v, origin + v as one face, front side
+// u x v, cut into nu elements along u and nv along v.
+void addGridQuad(Mesh& mesh, Vec3 origin, Vec3 u, Vec3 v, int nu, int nv);
+
+// The same parallelogram as nu x nv quad faces of one element each, sharing vertices: the
+// tessellated models of seed 000, whose triangle count is 2 nu nv. Cells (i, j) with `skip(i, j)`
+// true are left out (a hole for a light panel).
+void addCellGrid(Mesh& mesh, Vec3 origin, Vec3 u, Vec3 v, int nu, int nv,
+                 const std::function<bool(int i, int j)>& skip = {});
+
+// A box of `size` (x, y, z) centred on `centre`, turned by `yawDegrees` about the vertical axis
+// through its centre, as six outward faces: nx x ny x nz elements along its edges, so
+// 2 (nx ny + ny nz + nz nx) elements in all.
+void addOutwardBox(Mesh& mesh, Vec3 centre, Vec3 size, float yawDegrees, int nx, int ny, int nz);
+
+}  // namespace luxel::builtin

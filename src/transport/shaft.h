@@ -1,0 +1,38 @@
+// Shaft culling: Haines and Wallace, "Shaft Culling for Efficient Ray-Cast Radiosity",
+// Eurographics Workshop on Rendering 1991. The convex hull of two patches holds every segment
+// between them; when no other face reaches into it, the pair is wholly visible, proved rather
+// than sampled. (A handful of test rays can miss a small occluder and bias every element of the
+// pair; the shaft cannot.)
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/surface.h"
+
+namespace luxel {
+
+class Shaft {
+ public:
+  // The hull of the corners of `a` and `b`. `tolerance` is how far a face may reach into the
+  // hull and still count as outside: faces that touch the shaft along an edge or lie in its
+  // boundary plane (the walls of a room) block no ray that starts a ray offset off a surface.
+  Shaft(const Polygon& a, const Polygon& b, float tolerance);
+
+  // False when the hull is degenerate (flat): nothing can be proved about it.
+  bool valid() const { return !planes_.empty(); }
+  Vec3 boundsMin() const { return lo_; }
+  Vec3 boundsMax() const { return hi_; }
+  // False only when `poly` certainly stays outside the shaft (conservative: may say true for a
+  // polygon that misses it narrowly, never false for one that enters it).
+  bool mayIntersect(const Polygon& poly) const;
+
+ private:
+  std::vector<glm::vec4> planes_;  // outward normal, offset: inside where dot(n, x) + w <= 0
+  std::vector<Vec3> points_;
+  Vec3 lo_{0.0f}, hi_{0.0f};
+  float tolerance_ = 0.0f;
+};
+
+}  // namespace luxel
