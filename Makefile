@@ -4,7 +4,7 @@ BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: deps configure build demo test asan bench clean
+.PHONY: deps configure build demo test asan bench bench-suite bench-peer clean
 
 deps:
 	./scripts/install-deps.sh
@@ -31,6 +31,16 @@ asan: deps
 
 bench: build
 	./$(BUILD)/luxel-bench --benchmark_min_time=0.5
+
+# The seed scenes beside the seeds' published figures, with Embree's raw throughput and the
+# error against cached references (docs/performance.md).
+bench-suite: build
+	mkdir -p out
+	./$(BUILD)/luxel bench seeds --json out/bench-seeds.json
+
+# luxel beside Blender Cycles on the Cornell box (needs blender and python3-numpy).
+bench-peer: build
+	./bench/peers/run_cornell.sh
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN) out

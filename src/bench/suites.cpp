@@ -11,9 +11,12 @@ namespace luxel::bench {
 namespace {
 
 // 001's progressive refinement stops on a fixed budget per frame; ours stops on the unshot
-// fraction, set so the error lands at or below the seed's (docs/performance.md has the sweep).
-constexpr double kSeedProgressiveUnshot = 1e-2;
-constexpr double kSeedGatherResidual = 1e-3;
+// fraction, set per scene so the error lands at or below the seed's (docs/performance.md has
+// the sweep: albedo 0.9 needs many more bounces than the Cornell boxes).
+constexpr double kSeedProgressiveUnshot = 3e-3;
+constexpr double kIndirectProgressiveUnshot = 1e-3;
+// Gauss-Seidel has converged to the form factors' own noise by this residual.
+constexpr double kSeedGatherResidual = 1e-4;
 
 Case progressive(const std::string& scene, double unshot, SeedFigure seed) {
   Case c;
@@ -48,7 +51,8 @@ std::vector<Suite> makeSuites() {
                        Row{"cornell-large", 2437, 0.00225834, 116, 0.00675699},
                        Row{"cornell-small", 2440, 0.0028034, 87, 0.0098088},
                        Row{"cornell-low", 150, 0.0110786, 49, 0.0149107}}) {
-    seeds.cases.push_back(progressive(r.scene, kSeedProgressiveUnshot, {t51, r.progressiveMs, r.progressiveError}));
+    const double unshot = std::string(r.scene) == "indirect-light" ? kIndirectProgressiveUnshot : kSeedProgressiveUnshot;
+    seeds.cases.push_back(progressive(r.scene, unshot, {t51, r.progressiveMs, r.progressiveError}));
     seeds.cases.push_back(gather(r.scene, kSeedGatherResidual, {t51, r.gatherMs, r.gatherError}));
   }
 

@@ -21,9 +21,6 @@ namespace {
 constexpr size_t kPairsPerBatch = 128;
 // The densest midpoint rule for the unoccluded factor of a touching pair: 8 x 8 receiver points.
 constexpr int kMaxAnalyticSide = 3;
-// Sources farther than this many times the summed radii of element and patch get the one-point
-// rule, whatever the element's nearest neighbour asks for.
-constexpr float kDenseRuleReach = 3.0f;
 // Patch-pair classification keeps one byte per pair: up to 64 MiB.
 constexpr size_t kMaxClassifiedPatches = 8192;
 
@@ -167,11 +164,7 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
     // V is the fraction of stratified, jittered rays between the two that arrive.
     const float distance = glm::length(e.centroid - p.centroid);
     const bool nearField = distance < options_.nearFactor * (elementRadius_[pair.element] + patchRadius_[pair.patch]);
-    // The dense rule is for sources close enough to vary across the element; a far one does not,
-    // and its centroid value is within the rule's own error (measured: no change in the error
-    // against the reference, 15% less time on the Cornell box).
-    const bool far = distance > kDenseRuleReach * (elementRadius_[pair.element] + patchRadius_[pair.patch]);
-    const int ka = far ? 1 : elementQuadrature_[pair.element];
+    const int ka = elementQuadrature_[pair.element];
     float analytic = 0.0f;
     if (ka == 1) {
       analytic = pointToPolygonFormFactor(e.centroid, e.normal, p.polygon, p.normal, receiverSides, sourceSides);

@@ -1,7 +1,8 @@
 // Discretisation (src/mesh/discretise.cpp, src/mesh/orient_faces.cpp): elements tile their faces,
 // budgets and sizes are honoured, patches partition the elements, non-planar quads are split,
 // two-sided materials get twin faces, absurd options throw, and faces wound the wrong way round
-// are repaired by the light they receive.
+// are repaired by the light they receive, but not turned round by the rounding residue of an
+// emitter in their own plane.
 //
 // Scene values used:
 // - builtin::cornellBox(): the measured Cornell box in metres (about 0.55 m a side), light
@@ -9,6 +10,9 @@
 //   the back wall at z = 0.5592 (normal -z, into the box).
 // - Hand-made quads: a unit square in z = 0, a 2 x 1 parallelogram with a 0.5 shear, a non-planar
 //   quad whose 4th corner is lifted 0.2 off the plane.
+// - A closed 2 m box of reflectance 0.5 whose ceiling (y = 2) is a 20 x 20 grid of 0.1 m quad
+//   faces with the central 4 x 4 cells left out, and an emitter (Le = 100, facing down) filling
+//   that hole in the ceiling's plane: one quad, or 4 x 4 cells.
 // - A closed 4 x 2 x 2 box of reflectance 0.5 with a 1 x 1 emitting panel (Le = 10) at x = 0.5
 //   facing +x, and a 1.6 x 1.6 panel at x = 2 (reflectance 0.5) between the emitter and the far
 //   wall.
@@ -22,6 +26,7 @@
 #include "luxel/solve.h"
 #include "luxel/surface.h"
 #include "scene/builtin/builtin_scenes.h"
+#include "scene/builtin/seed_geometry.h"
 
 namespace luxel {
 namespace {
@@ -310,6 +315,67 @@ TEST(Orientation, RepairedSceneSolvesLikeTheOriginal) {
   const double repaired = backWallMean(cornellWithTwoWallsReversed());
   ASSERT_GT(original, 0.0);
   EXPECT_NEAR(repaired, original, 0.02 * original);
+}
+
+// A closed 2 m box (reflectance 0.5), its corner at the origin, whose ceiling at y = 2 is k x k
+// quad faces round a hole of the central fifth each way, filled by an emitter (Le = 100) in the
+// same plane, facing down: one quad (`lampCells` false) or cells of the ceiling's grid.
+// `floorReversed` winds the floor the wrong way round (facing down, out of the box).
+Scene coplanarLampBox(int k, bool lampCells, bool floorReversed = false) {
+  Scene s;
+  s.name = "coplanar lamp box";
+  s.materials = {Material{.name = "wall", .reflectance = Rgb(0.5f)},
+                 Material{.name = "lamp", .reflectance = Rgb(0.5f), .emission = Rgb(100.0f)}};
+  const float e = 2.0f;
+  const Vec3 o(0.0f), X(e, 0, 0), Y(0, e, 0), Z(0, 0, e);
+  Mesh walls;
+  walls.name = "walls";
+  // Floor (z cross x = +y; reversed x cross z = -y), back (+z), front (-z), left (+x), right (-x).
+  if (floorReversed)
+    builtin::addQuad(walls, o, X, X + Z, Z);
+  else
+    builtin::addQuad(walls, o, Z, Z + X, X);
+  builtin::addQuad(walls, o, X, X + Y, Y);
+  builtin::addQuad(walls, Z, Z + Y, Z + Y + X, Z + X);
+  builtin::addQuad(walls, o, Y, Y + Z, Z);
+  builtin::addQuad(walls, X, X + Z, X + Z + Y, X + Y);
+  const int l0 = 2 * k / 5, l1 = 3 * k / 5;
+  Mesh ceiling;
+  ceiling.name = "ceiling";
+  // Origin Y, u = x, v = z: x cross z = -y, facing down into the box.
+  builtin::addCellGrid(ceiling, Y, X, Z, k, k,
+                       [=](int i, int j) { return i >= l0 && i < l1 && j >= l0 && j < l1; });
+  Mesh lamp;
+  lamp.name = "lamp";
+  lamp.material = 1;
+  const float f0 = float(l0) / float(k), fl = float(l1 - l0) / float(k);
+  const Vec3 corner = Y + f0 * X + f0 * Z;
+  if (lampCells)
+    builtin::addCellGrid(lamp, corner, fl * X, fl * Z, l1 - l0, l1 - l0);
+  else
+    builtin::addQuad(lamp, corner, corner + fl * X, corner + fl * X + fl * Z, corner + fl * Z);
+  s.meshes = {walls, ceiling, lamp};
+  return s;
+}
+
+// An emitter in a receiver's plane is seen edge-on from both of the receiver's sides: the front
+// gets an exact 0 and rounding can leave the back a tiny positive value. That must not turn the
+// ceiling's faces round (it turned 2 of them with the one-quad lamp, 12 with the cells).
+TEST(Orientation, CeilingCoplanarWithItsLampIsNotTurnedRound) {
+  for (bool lampCells : {false, true}) {
+    SCOPED_TRACE(lampCells ? "lamp of cells" : "lamp of one quad");
+    const Scene scene = coplanarLampBox(20, lampCells);
+    SurfaceSet set = discretise(scene, DiscretiseOptions{});
+    EXPECT_EQ(set.flippedFaces, 0u);
+    for (const SurfaceFace& f : set.faces)
+      if (f.mesh == 1) EXPECT_NEAR(f.normal.y, -1.0f, 1e-5f);
+  }
+  // The absolute threshold still lets a face wound the wrong way round (the floor) be repaired.
+  SurfaceSet set =
+      discretise(coplanarLampBox(20, false, /*floorReversed=*/true), DiscretiseOptions{});
+  EXPECT_EQ(set.flippedFaces, 1u);
+  EXPECT_TRUE(set.faces[0].flipped);
+  EXPECT_NEAR(set.faces[0].normal.y, 1.0f, 1e-5f);
 }
 
 // A closed 4 x 2 x 2 box (reflectance 0.5) with an emitting 1 x 1 panel at x = 0.5 facing +x,

@@ -1,13 +1,18 @@
 // luxel scene files (docs/scene-format.md): paths, transforms, materials, lights, cameras, errors.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "luxel/error.h"
 #include "luxel/import.h"
+#include "luxel/surface.h"
+#include "scene/import/transform.h"
 
 namespace fs = std::filesystem;
 using luxel::Error;
@@ -132,6 +137,47 @@ TEST(SceneFile, MirroringKeepsFacesFacingTheSameWayInTheMirror) {
                          R"({ "meshes": [ { "file": "models/quad.obj", "scale": [-1, 1, 1] } ] })");
   expectVec(faceNormal(s.meshes[0], 0), Vec3(0, 0, 1));
   expectVec(s.meshes[0].positions[1], Vec3(-1, 0, 0));
+}
+
+// A mirror reverses the winding by swapping corners 1 and 3, so a prescribed element grid
+// (elements along corner 0 -> 1, then along 0 -> 3) must swap its counts too. A 3 x 5 quad with a
+// 3 x 5 grid has unit square elements, and keeps them under any mirror; without the swap they
+// would be 0.6 x 1.67.
+TEST(SceneFile, MirroringSwapsElementGridsWithTheCorners) {
+  auto gridQuad = [] {
+    Scene s;
+    s.name = "grid quad";
+    s.materials.push_back(luxel::Material{.name = "grey", .reflectance = Rgb(0.5f)});
+    luxel::Mesh m;
+    m.name = "quad";
+    m.positions = {Vec3(0, 0, 0), Vec3(3, 0, 0), Vec3(3, 5, 0), Vec3(0, 5, 0)};
+    m.faces.push_back(luxel::Face{{0, 1, 2, 3}});
+    m.elementGrids.push_back({3, 5});
+    s.meshes.push_back(m);
+    return s;
+  };
+  struct Case {
+    Vec3 scale;
+    bool mirrors;
+  };
+  for (const Case& c : {Case{Vec3(-1, 1, 1), true}, Case{Vec3(-1, -1, -1), true},
+                        Case{Vec3(-1, -1, 1), false}, Case{Vec3(2, 2, 2), false}}) {
+    SCOPED_TRACE(::testing::Message() << c.scale.x << " " << c.scale.y << " " << c.scale.z);
+    Scene s = gridQuad();
+    luxel::transformMesh(s.meshes[0], glm::scale(glm::mat4(1.0f), c.scale));
+    const std::array<uint16_t, 2> want =
+        c.mirrors ? std::array<uint16_t, 2>{5, 3} : std::array<uint16_t, 2>{3, 5};
+    ASSERT_EQ(s.meshes[0].elementGrids.size(), 1u);
+    EXPECT_EQ(s.meshes[0].elementGrids[0], want);
+    s.validate();
+    luxel::SurfaceSet set = luxel::discretise(s, luxel::DiscretiseOptions{.orientByLight = false});
+    ASSERT_EQ(set.elements.size(), 15u);
+    const float side = std::abs(c.scale.x);  // the scales are uniform in size
+    for (const luxel::Element& e : set.elements)
+      for (int i = 0; i < e.polygon.count; ++i)
+        EXPECT_NEAR(glm::length(e.polygon.v[(i + 1) % e.polygon.count] - e.polygon.v[i]), side,
+                    1e-4f);
+  }
 }
 
 TEST(SceneFile, OverridesAndAddsMaterialsByName) {

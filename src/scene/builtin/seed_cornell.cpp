@@ -12,9 +12,6 @@ namespace {
 
 // A cube room about the size of the measured Cornell box.
 constexpr float kRoom = 0.55f;
-// The light hangs this far below the ceiling, facing down, so that the ceiling stays one whole
-// face with its own element grid (the thesis's 10,254 = 6 x 41^2 + 12 x 14).
-constexpr float kLightDrop = 0.001f;
 // The box: as wide as the Cornell tall block (0.165 m), 21/9 times as high so that its elements
 // are square at 9 x 9 x 21; it floats at the room's centre, so it can turn any way without
 // touching a wall, turned 20 degrees about the vertical for a less symmetric first pose.
@@ -62,18 +59,48 @@ Scene seedCornell(const char* name, const CornellGrids& g, float lightScale) {
   const Vec3 X(L, 0, 0), Y(0, L, 0), Z(0, 0, L);
   // Inward faces (u x v points into the room); x = 0 is on the camera's left.
   wall("floor", kWhite, Vec3(0), Z, X);
-  wall("ceiling", kWhite, Y, X, Z);
+
+  // The ceiling has a hole for the light, and the light fills it, in the ceiling's plane (as in
+  // `cornell`). A panel hung under a whole ceiling would hide part of the ceiling's patches, and
+  // what those patches shoot at the hidden part would hit the light's back and be lost. The
+  // ceiling is four quads round the hole that keep its wall x wall elements: front and back
+  // strips across the whole width, wall columns each and together wall - lightZ rows, and a left
+  // and a right piece beside the hole, lightZ rows each and together wall columns; so the
+  // ceiling has wall (wall - lightZ) + lightZ wall = wall^2 elements, as a whole face would.
+  // Every quad is written from the same corner coordinates, so shared edges coincide exactly.
+  const float lx = kLargeLightX * lightScale, lz = kLargeLightZ * lightScale;
+  const float x0 = 0.5f * (L - lx), x1 = x0 + lx, z0 = 0.5f * (L - lz), z1 = z0 + lz;
+  // The rectangle [xa, xb] x [za, zb] of the ceiling's plane, nu x nv elements; x cross z = -y,
+  // so it faces down, into the room.
+  auto ceilingQuad = [&](Mesh& m, float xa, float xb, float za, float zb, int nu, int nv) {
+    auto base = uint32_t(m.positions.size());
+    m.positions.insert(m.positions.end(),
+                       {Vec3(xa, L, za), Vec3(xb, L, za), Vec3(xb, L, zb), Vec3(xa, L, zb)});
+    m.uvs.insert(m.uvs.end(), {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)});
+    m.faces.push_back(Face{{base, base + 1, base + 2, base + 3}});
+    m.elementGrids.push_back({uint16_t(nu), uint16_t(nv)});
+  };
+  const int n = g.wall, front = (n - g.lightZ) / 2, back = n - g.lightZ - front, left = n / 2,
+            right = n - left;
+  Mesh ceiling;
+  ceiling.name = "ceiling";
+  ceiling.material = kWhite;
+  ceilingQuad(ceiling, 0, L, 0, z0, n, front);
+  ceilingQuad(ceiling, 0, L, z1, L, n, back);
+  ceilingQuad(ceiling, 0, x0, z0, z1, left, g.lightZ);
+  ceilingQuad(ceiling, x1, L, z0, z1, right, g.lightZ);
+  s.meshes.push_back(std::move(ceiling));
+
   wall("back wall", kWhite, Vec3(0), X, Y);
   wall("front wall", kWhite, Z, Y, X);
   wall("left wall", kRed, Vec3(0), Y, Z);
   wall("right wall", kGreen, X, Z, Y);
 
+  // The light fills the ceiling's hole, from the same corners, facing down.
   Mesh light;
   light.name = "light";
   light.material = kLight;
-  const float lx = kLargeLightX * lightScale, lz = kLargeLightZ * lightScale;
-  addGridQuad(light, Vec3(0.5f * (L - lx), L - kLightDrop, 0.5f * (L - lz)), Vec3(lx, 0, 0),
-              Vec3(0, 0, lz), g.lightX, g.lightZ);  // x cross z = -y: facing down
+  ceilingQuad(light, x0, x1, z0, z1, g.lightX, g.lightZ);
   s.meshes.push_back(std::move(light));
 
   Mesh box;

@@ -28,10 +28,6 @@ const Rgb kLightRadiance(100.4f, 96.8f, 90.0f);
 // The light panel is the ceiling's central fifth in each direction (0.4 x 0.4 m): whole cells of
 // every grid, since k = 10, 20, 40, 50 are all multiples of 5.
 constexpr int kLightFraction = 5;
-// It fills the ceiling's hole 0.1 mm below the ceiling's plane: with the emitter exactly coplanar,
-// rounding noise in the form factor to it made orientation repair turn ceiling cells round. The
-// slot this leaves (1.6 m x 0.1 mm) lets out a negligible 1e-5 of the light.
-constexpr float kLightDrop = 1e-4f;
 
 Scene shaderBoxScene(const std::string& name, int k) {
   Scene s;
@@ -64,13 +60,12 @@ Scene shaderBoxScene(const std::string& name, int k) {
   wall("left wall", kRed, lo, Y, Z);
   wall("right wall", kGreen, Vec3(a, -a, -a), Z, Y);
 
-  // The ceiling's missing cells, emitting downwards.
+  // The ceiling's missing cells, in the ceiling's plane, emitting downwards.
   Mesh light;
   light.name = "light";
   light.material = kLight;
   const float f0 = float(l0) / float(k), fl = float(l1 - l0) / float(k);
-  addCellGrid(light, Vec3(-a, a - kLightDrop, -a) + f0 * X + f0 * Z, fl * X, fl * Z, l1 - l0,
-              l1 - l0);
+  addCellGrid(light, Vec3(-a, a, -a) + f0 * X + f0 * Z, fl * X, fl * Z, l1 - l0, l1 - l0);
   s.meshes.push_back(std::move(light));
 
   // The thesis's camera is 600 units along +z and sees in through the front wall (culled there);

@@ -30,6 +30,9 @@ void transformMesh(Mesh& mesh, const glm::mat4& m) {
         std::swap(f.v[1], f.v[3]);
       }
     }
+    // s ran from corner 0 to corner 1 and t from corner 0 to corner 3: with those corners
+    // swapped, so are the grid's counts along them (a triangle's {n, n} is unchanged).
+    for (auto& grid : mesh.elementGrids) std::swap(grid[0], grid[1]);
   }
 }
 
