@@ -53,6 +53,15 @@ std::vector<Suite> makeSuites() {
                        Row{"cornell-low", 150, 0.0110786, 49, 0.0149107}}) {
     const double unshot = std::string(r.scene) == "indirect-light" ? kIndirectProgressiveUnshot : kSeedProgressiveUnshot;
     seeds.cases.push_back(progressive(r.scene, unshot, {t51, r.progressiveMs, r.progressiveError}));
+    // The fewest rays that still reach the seed's progressive error (sweep in docs/performance.md):
+    // one ray per ordinary pair, 4 near contacts, 16 from emitters, and a looser stop.
+    Case fast = progressive(r.scene, 3 * unshot, {t51, r.progressiveMs, r.progressiveError});
+    fast.name += "-fast";
+    fast.setting += ", 1/4/16 rays (pair/near/emitter)";
+    fast.solve.formFactors.raysPerPair = 1;
+    fast.solve.formFactors.nearRaysPerPair = 4;
+    fast.solve.formFactors.emitterRaysPerPair = 16;
+    seeds.cases.push_back(fast);
     seeds.cases.push_back(gather(r.scene, kSeedGatherResidual, {t51, r.gatherMs, r.gatherError}));
   }
 
@@ -73,12 +82,19 @@ std::vector<Suite> makeSuites() {
     cornell.name = "cornell-obj/progressive";
     cornell.discretise.elementBudget = 10000;
     scenes.cases.push_back(cornell);
+    // Tens of thousands of faces, nearly one patch each: progressive shooting is O(elements x
+    // shots) until face clusters (seed 002) group them, so these run on a time budget and report
+    // the unshot fraction they reach; no reference is feasible at this size.
     Case sibenik = progressive("bench/scenes/sibenik.json", 1e-2, {});
-    sibenik.name = "sibenik/progressive";
+    sibenik.name = "sibenik/progressive-60s";
+    sibenik.setting += ", at most 60 s";
+    sibenik.solve.timeBudget = 60.0;
     sibenik.discretise.elementBudget = 100000;
     scenes.cases.push_back(sibenik);
     Case conference = progressive("bench/scenes/conference.json", 1e-2, {});
-    conference.name = "conference/progressive";
+    conference.name = "conference/progressive-60s";
+    conference.setting += ", at most 60 s";
+    conference.solve.timeBudget = 60.0;
     conference.discretise.elementBudget = 400000;
     scenes.cases.push_back(conference);
   }
