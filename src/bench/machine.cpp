@@ -1,5 +1,6 @@
 // Which machine and which build a benchmark result belongs to, and how much memory a run peaked
 // at (Linux: the VmHWM high-water mark, reset between runs through /proc/self/clear_refs).
+#include <malloc.h>
 #include <sys/resource.h>
 #include <sys/utsname.h>
 #include <unistd.h>
@@ -54,7 +55,9 @@ std::string sourceCommit() {
 }  // namespace
 
 void resetPeakMemory() {
-  // "5" resets the peak resident set size (Linux >= 4.0); harmless where it is not supported.
+  // Hand freed heap back to the system first, or the previous case's memory would count as this
+  // one's; then "5" resets the peak resident set size (Linux >= 4.0).
+  malloc_trim(0);
   std::ofstream("/proc/self/clear_refs") << "5";
 }
 
