@@ -1,7 +1,8 @@
 // Repairing inconsistent winding: a face whose back receives more direct light than its front is
 // turned round, so that a wall modelled "inside out" is lit, not black. Only direct light decides
 // (emitting faces and analytic lights, with shadow rays); faces that receive none keep their
-// winding. Two-sided materials are left alone: both their sides take part anyway.
+// winding, and so do faces whose difference is rounding noise (an emitter in the face's own
+// plane): the back must beat the front by a ratio and by an absolute floor. Two-sided materials are left alone: both their sides take part anyway.
 #pragma once
 
 #include <vector>

@@ -74,20 +74,21 @@ RayTracer::~RayTracer() {
 namespace {
 
 bool visitNear(RTCPointQueryFunctionArguments* args) {
-  (*static_cast<const std::function<void(uint32_t)>*>(args->userPtr))(args->primID);
-  return false;  // the query radius is unchanged
+  if ((*static_cast<const std::function<bool(uint32_t)>*>(args->userPtr))(args->primID)) return false;
+  args->query->radius = 0.0f;  // the visitor has seen enough: shrink the query to end traversal
+  return true;                 // the query radius changed
 }
 
 }  // namespace
 
-void RayTracer::forEachNear(Vec3 p, float radius, const std::function<void(uint32_t)>& visit) const {
+void RayTracer::forEachNear(Vec3 p, float radius, const std::function<bool(uint32_t)>& visit) const {
   RTCPointQuery query;
   query.x = p.x, query.y = p.y, query.z = p.z;
   query.radius = radius;
   query.time = 0.0f;
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
-  rtcPointQuery(scene_, &query, &context, visitNear, const_cast<std::function<void(uint32_t)>*>(&visit));
+  rtcPointQuery(scene_, &query, &context, visitNear, const_cast<std::function<bool(uint32_t)>*>(&visit));
 }
 
 void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {

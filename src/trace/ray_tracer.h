@@ -31,8 +31,9 @@ class RayTracer {
   // along 0->1 and 0->3; triangles: barycentric towards corners 1 and 2).
   void intersect(std::span<RTCRayHit> hits, bool coherent = true) const;
 
-  // Calls visit(polygonIndex) for every polygon whose bounds come within `radius` of `p`.
-  void forEachNear(Vec3 p, float radius, const std::function<void(uint32_t)>& visit) const;
+  // Calls visit(polygonIndex) for every polygon whose bounds come within `radius` of `p`, until
+  // visit returns false.
+  void forEachNear(Vec3 p, float radius, const std::function<bool(uint32_t)>& visit) const;
 
   uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
 

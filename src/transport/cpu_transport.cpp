@@ -21,6 +21,10 @@ namespace {
 constexpr size_t kPairsPerBatch = 128;
 // The densest midpoint rule for the unoccluded factor of a touching pair: 8 x 8 receiver points.
 constexpr int kMaxAnalyticSide = 3;
+// Receiver patches with fewer elements than this are not shaft-tested.
+constexpr size_t kMinElementsToClassify = 4;
+// Faces a shaft test examines before it gives up on proving a pair clear.
+constexpr int kMaxShaftCandidates = 48;
 // Patch-pair classification keeps one byte per pair: up to 64 MiB.
 constexpr size_t kMaxClassifiedPatches = 8192;
 
@@ -105,6 +109,7 @@ void CpuTransport::elementsChanged() {
       float gap = std::numeric_limits<float>::max();
       tracer_.forEachNear(e.centroid, options_.nearFactor * radius, [&](uint32_t face) {
         if (face != e.face) gap = std::min(gap, pointPolygonDistance(e.centroid, facePolygons_[face]));
+        return true;
       });
       gap = std::max(gap, 0.1f * radius);
       elementQuadrature_[ei] = uint8_t(std::clamp(int(std::ceil(options_.nearFactor * radius / gap)), 1, kMaxAnalyticSide));
@@ -135,9 +140,15 @@ bool CpuTransport::shaftIsEmpty(const Patch& a, const Patch& b) const {
   if (!shaft.valid()) return false;
   const Vec3 centre = 0.5f * (shaft.boundsMin() + shaft.boundsMax());
   const float radius = 0.5f * glm::length(shaft.boundsMax() - shaft.boundsMin());
+  // Scenes of many small faces (a wall cut into a thousand quads) put hundreds of faces in every
+  // shaft's bounds; past a few dozen the test costs more than the rays it saves, so the pair is
+  // left to its rays.
   bool empty = true;
+  int candidates = 0;
   tracer_.forEachNear(centre, radius, [&](uint32_t face) {
-    if (empty && face != a.face && face != b.face && shaft.mayIntersect(facePolygons_[face])) empty = false;
+    if (face == a.face || face == b.face) return true;
+    if (++candidates > kMaxShaftCandidates || shaft.mayIntersect(facePolygons_[face])) empty = false;
+    return empty;
   });
   return empty;
 }
@@ -177,7 +188,10 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
       analytic /= float(ka * ka);
     }
     if (analytic <= 0.0f) continue;
-    if (pairVisibility_ && classify(e.patch, pair.patch) == PairVisibility::Clear) {
+    // A shaft test pays for itself over the receiver patch's elements; for a patch of one or two
+    // elements (scenes built of many small faces) it would cost more than their rays.
+    if (pairVisibility_ && surfaces_.patches[e.patch].elements.size() >= kMinElementsToClassify &&
+        classify(e.patch, pair.patch) == PairVisibility::Clear) {
       *pair.out = analytic;
       continue;
     }

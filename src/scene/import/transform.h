@@ -9,7 +9,8 @@
 namespace luxel {
 
 // Transforms positions. A transform that mirrors (negative determinant) would turn every face
-// inside out, so the winding is reversed to keep front faces (and emitters) facing the same way.
+// inside out, so the winding is reversed to keep front faces (and emitters) facing the same way;
+// per-face element grids are swapped with the corners, so they keep covering the same places.
 void transformMesh(Mesh& mesh, const glm::mat4& m);
 
 // Moves a light's position and turns its direction (renormalised). Intensities are unchanged:
