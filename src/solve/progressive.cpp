@@ -88,17 +88,24 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
     const std::vector<float>& f = column(shooter);
     const Rgb shot = patchUnshot[shooter] / sys.patchArea[shooter];
     for (uint32_t e : patches[shooter].elements) unshot[e] = Rgb(0.0f);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 1024), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t e = r.begin(); e < r.end(); ++e) {
-        if (f[e] == 0.0f) continue;
-        Rgb dh = f[e] * shot;
-        Rgb db = sys.reflectance[e] * dh;
-        irradiance[e] += dh;
-        radiosity[e] += db;
-        unshot[e] += db;
+    patchUnshot[shooter] = Rgb(0.0f);
+    // One pass over the receivers, patch by patch, so each patch's unshot power is updated by
+    // the change of its own elements instead of being summed again from scratch.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 8), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t q = r.begin(); q < r.end(); ++q) {
+        Rgb added(0.0f);
+        for (uint32_t e : patches[q].elements) {
+          if (f[e] == 0.0f) continue;
+          Rgb dh = f[e] * shot;
+          Rgb db = sys.reflectance[e] * dh;
+          irradiance[e] += dh;
+          radiosity[e] += db;
+          unshot[e] += db;
+          added += sys.area[e] * db;
+        }
+        patchUnshot[q] += added;
       }
     });
-    updatePatchUnshot();
     ++shots;
   }
   reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction));

@@ -19,8 +19,12 @@ namespace {
 // Pairs handed to Embree in one stream: large enough to amortise the call, small enough to stay
 // in cache.
 constexpr size_t kPairsPerBatch = 128;
-// The densest midpoint rule for the unoccluded factor of a touching pair: 8 x 8 receiver points.
-constexpr int kMaxAnalyticSide = 3;
+// The densest midpoint rule for the unoccluded factor, 2 x 2 receiver points. Every element uses
+// its rule for every patch (so rows sum to 1 in a closed scene), which makes it the largest cost
+// of a solve. Measured against 3 x 3: element radiosities of cornell-large differ by 5e-5 NRMSE
+// (0.05% at most), energy balance of shader-box-774 (the coarsest) 1.0016 against 1.0007; 15% less
+// time. One point (1 x 1) gives 1.0066 there: too coarse for reciprocity near contacts.
+constexpr int kMaxAnalyticSide = 2;
 // Receiver patches with fewer elements than this are not shaft-tested.
 constexpr size_t kMinElementsToClassify = 4;
 // Faces a shaft test examines before it gives up on proving a pair clear.
