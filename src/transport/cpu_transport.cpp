@@ -159,38 +159,81 @@ bool CpuTransport::shaftIsEmpty(const Patch& a, const Patch& b) const {
 
 CpuTransport::Workspace& CpuTransport::workspace() { return threadLocal_->workspaces.local(); }
 
+void CpuTransport::computeAnalytic(std::span<const Pair> pairs, float* out) const {
+  // Pending one-point receivers towards one patch, evaluated four at a time.
+  Vec3 points[4], normals[4];
+  size_t pending[4];
+  int count = 0;
+  uint32_t pendingPatch = 0;
+  auto flush = [&] {
+    if (count == 0) return;
+    const Patch& p = surfaces_.patches[pendingPatch];
+    if (count == 1) {  // rows change patch every pair: one lane would waste three
+      out[pending[0]] = pointToPolygonFormFactor(points[0], normals[0], p.polygon, p.normal, Sides::Front, Sides::Front);
+      count = 0;
+      return;
+    }
+    for (int i = count; i < 4; ++i) points[i] = points[0], normals[i] = normals[0];
+    float f[4];
+    pointToPolygonFormFactors4(points, normals, p.polygon, p.normal, f);
+    for (int i = 0; i < count; ++i) out[pending[i]] = f[i];
+    count = 0;
+  };
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const Element& e = surfaces_.elements[pairs[i].element];
+    const Patch& p = surfaces_.patches[pairs[i].patch];
+    out[i] = 0.0f;
+    if (e.face == p.face) continue;  // a flat face does not see itself
+    const int ka = elementQuadrature_[pairs[i].element];
+    if (ka == 1) {
+      if (count > 0 && pendingPatch != pairs[i].patch) flush();
+      pendingPatch = pairs[i].patch;
+      points[count] = e.centroid, normals[count] = e.normal, pending[count] = i;
+      if (++count == 4) flush();
+      continue;
+    }
+    static_assert(kMaxAnalyticSide <= 2, "the dense rule fills the four lanes of one call");
+    Vec3 rule[4], ruleNormals[4];
+    for (int j = 0; j < 4; ++j) {
+      rule[j] = polygonPoint(e.polygon, (float(j % 2) + 0.5f) * 0.5f, (float(j / 2) + 0.5f) * 0.5f);
+      ruleNormals[j] = e.normal;
+    }
+    float f[4];
+    pointToPolygonFormFactors4(rule, ruleNormals, p.polygon, p.normal, f);
+    out[i] = 0.25f * ((f[0] + f[1]) + (f[2] + f[3]));
+  }
+  flush();
+}
+
 void CpuTransport::computePairs(std::span<const Pair> pairs) {
+  if (pairs.size() > kPairsPerBatch) {
+    for (size_t i = 0; i < pairs.size(); i += kPairsPerBatch)
+      computePairs(pairs.subspan(i, std::min(kPairsPerBatch, pairs.size() - i)));
+    return;
+  }
   Workspace& ws = workspace();
   ws.rays.clear();
   ws.weights.clear();
   ws.targets.clear();
 
-  for (const Pair& pair : pairs) {
+  // A, the unoccluded factor averaged over the receiver by a midpoint rule, for the whole batch
+  // first: four receiver points at a time (an element's 2 x 2 rule, or the centroids of four
+  // elements facing the same patch, as a column batch has them).
+  float analyticOf[kPairsPerBatch];
+  computeAnalytic(pairs, analyticOf);
+
+  for (size_t pi = 0; pi < pairs.size(); ++pi) {
+    const Pair& pair = pairs[pi];
     *pair.out = 0.0f;
     const Element& e = surfaces_.elements[pair.element];
     const Patch& p = surfaces_.patches[pair.patch];
-    if (e.face == p.face) continue;  // a flat face does not see itself
-    // Every element and patch is one-sided: two-sided materials have a twin face for the back.
-    const Sides receiverSides = Sides::Front, sourceSides = Sides::Front;
-
-    // F = A * V (Wallace et al. 1989). A is the unoccluded factor averaged over the receiver by a
-    // midpoint rule. Each element uses one point set for every patch, dense when other geometry is
-    // close: then A's row sums in an enclosure are exactly 1, so closed scenes conserve energy.
-    // V is the fraction of stratified, jittered rays between the two that arrive.
+    // F = A * V (Wallace et al. 1989). Each element uses one point set for every patch, dense
+    // when other geometry is close: then A's row sums in an enclosure are exactly 1, so closed
+    // scenes conserve energy. V is the fraction of stratified, jittered rays between the two
+    // that arrive.
+    const float analytic = analyticOf[pi];
     const float distance = glm::length(e.centroid - p.centroid);
     const bool nearField = distance < options_.nearFactor * (elementRadius_[pair.element] + patchRadius_[pair.patch]);
-    const int ka = elementQuadrature_[pair.element];
-    float analytic = 0.0f;
-    if (ka == 1) {
-      analytic = pointToPolygonFormFactor(e.centroid, e.normal, p.polygon, p.normal, receiverSides, sourceSides);
-    } else {
-      for (int j = 0; j < ka; ++j)
-        for (int i = 0; i < ka; ++i) {
-          Vec3 x = polygonPoint(e.polygon, (float(i) + 0.5f) / float(ka), (float(j) + 0.5f) / float(ka));
-          analytic += pointToPolygonFormFactor(x, e.normal, p.polygon, p.normal, receiverSides, sourceSides);
-        }
-      analytic /= float(ka * ka);
-    }
     if (analytic <= 0.0f) continue;
     // A shaft test pays for itself over the receiver patch's elements; for a patch of one or two
     // elements (scenes built of many small faces) it would cost more than their rays.

@@ -33,7 +33,7 @@ class CpuTransport final : public Transport {
     uint32_t patch;
     float* out;
   };
-  // Computes a batch of pairs on the calling thread: one ray stream for the whole batch.
+  // Computes a batch of pairs (at most 128) on the calling thread: one ray stream for the batch.
   void computePairs(std::span<const Pair> pairs);
 
  private:
@@ -48,6 +48,8 @@ class CpuTransport final : public Transport {
   float rayOffset_ = 0.0f;
   enum class PairVisibility : uint8_t { Unknown, Clear, Partial };
   PairVisibility classify(uint32_t receiverPatch, uint32_t sourcePatch);
+  // The unoccluded factor A of each pair, by each receiver element's midpoint rule.
+  void computeAnalytic(std::span<const Pair> pairs, float* out) const;
   // True when no face other than the two patches' own reaches into the shaft between them.
   bool shaftIsEmpty(const Patch& a, const Patch& b) const;
 

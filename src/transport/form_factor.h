@@ -22,6 +22,14 @@ float pointToPolygonFormFactor(Vec3 p, Vec3 n, const Polygon& poly, Sides receiv
 float pointToPolygonFormFactor(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNormal,
                                Sides receiverSides, Sides sourceSides);
 
+// Four point factors at once, one per receiver point p[i] with unit normal n[i], towards the same
+// one-sided polygon (unit normal polyNormal), front-facing receivers: the numbers of
+// pointToPolygonFormFactor(p[i], n[i], poly, polyNormal, Front, Front) to float rounding. Four
+// SIMD lanes where the polygon lies wholly above or below each receiver's plane; lanes whose
+// plane cuts the polygon are clipped one by one.
+void pointToPolygonFormFactors4(const Vec3 p[4], const Vec3 n[4], const Polygon& poly, Vec3 polyNormal,
+                                float out[4]);
+
 // Area-to-area form factor F(receiver -> source), the point form factor integrated over the
 // receiver with a regular k x k (quads) or k^2 (triangles) midpoint rule.
 double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source, int k,

@@ -5,7 +5,7 @@
 // pair; the shaft cannot.)
 #pragma once
 
-#include <vector>
+#include <array>
 
 #include <glm/glm.hpp>
 
@@ -21,7 +21,7 @@ class Shaft {
   Shaft(const Polygon& a, const Polygon& b, float tolerance);
 
   // False when the hull is degenerate (flat): nothing can be proved about it.
-  bool valid() const { return !planes_.empty(); }
+  bool valid() const { return planeCount_ > 0; }
   Vec3 boundsMin() const { return lo_; }
   Vec3 boundsMax() const { return hi_; }
   // False only when `poly` certainly stays outside the shaft (conservative: may say true for a
@@ -29,8 +29,12 @@ class Shaft {
   bool mayIntersect(const Polygon& poly) const;
 
  private:
-  std::vector<glm::vec4> planes_;  // outward normal, offset: inside where dot(n, x) + w <= 0
-  std::vector<Vec3> points_;
+  // Fixed capacity, no heap: a solve builds tens of thousands of shafts. At most 2 polygon planes
+  // and 2 x 4 x 4 edge-corner planes; 8 corners.
+  std::array<glm::vec4, 34> planes_;  // outward normal, offset: inside where dot(n, x) + w <= 0
+  int planeCount_ = 0;
+  std::array<Vec3, 8> points_;
+  int pointCount_ = 0;
   Vec3 lo_{0.0f}, hi_{0.0f};
   float tolerance_ = 0.0f;
 };
