@@ -16,6 +16,8 @@
 namespace luxel {
 namespace {
 
+// Patches shot together in one pass over the receivers.
+constexpr size_t kShootersPerPass = 8;
 // Form-factor columns are kept while they fit in this much memory.
 constexpr size_t kColumnCacheBytes = size_t(2) << 30;
 
@@ -47,12 +49,14 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
   const double sourcePower = sys.sourcePower();
   std::vector<std::vector<float>> cache(np);
   size_t cachedBytes = 0;
-  std::vector<float> scratch(ne);
-  auto column = [&](uint32_t p) -> const std::vector<float>& {
+  std::vector<std::vector<float>> scratch(kShootersPerPass);
+  // The column of patch p, from the cache or computed (into scratch slot `slot` when the cache
+  // is full).
+  auto column = [&](uint32_t p, int slot) -> const std::vector<float>& {
     if (!cache[p].empty()) return cache[p];
     const auto t = Clock::now();
     const bool keep = cachedBytes + ne * sizeof(float) <= kColumnCacheBytes;
-    std::vector<float>& out = keep ? cache[p] : scratch;
+    std::vector<float>& out = keep ? cache[p] : scratch[size_t(slot)];
     out.resize(ne);
     transport.columns({&p, 1}, out);
     if (keep) cachedBytes += ne * sizeof(float);
@@ -64,17 +68,16 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
   double unshotFraction = 1.0;
   uint64_t shots = 0;
   double lastReported = -1.0;
+  std::vector<std::pair<double, uint32_t>> ranked(np);
   while (true) {
     double total = 0.0;
-    uint32_t shooter = 0;
-    double best = -1.0;
     for (size_t p = 0; p < np; ++p) {
-      double power = channelSum(patchUnshot[p]);
+      const double power = channelSum(patchUnshot[p]);
       total += power;
-      if (power > best) best = power, shooter = uint32_t(p);
+      ranked[p] = {power, uint32_t(p)};
     }
     unshotFraction = sourcePower > 0.0 ? total / sourcePower : 0.0;
-    if (unshotFraction <= options.unshotThreshold || best <= 0.0) break;
+    if (unshotFraction <= options.unshotThreshold) break;
     if (options.shotBudget && shots >= options.shotBudget) break;
     if (options.timeBudget > 0.0 && secondsSince(start) >= options.timeBudget) break;
 
@@ -85,19 +88,32 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
       lastReported = fraction;
     }
 
-    const std::vector<float>& f = column(shooter);
-    const Rgb shot = patchUnshot[shooter] / sys.patchArea[shooter];
-    for (uint32_t e : patches[shooter].elements) unshot[e] = Rgb(0.0f);
-    patchUnshot[shooter] = Rgb(0.0f);
-    // One pass over the receivers, patch by patch, so each patch's unshot power is updated by
-    // the change of its own elements instead of being summed again from scratch.
+    // The patches with the most unshot power shoot together, in one pass over the receivers:
+    // the pass costs memory traffic over every element, which one shooter alone does not repay.
+    size_t batch = std::min<size_t>(kShootersPerPass, np);
+    if (options.shotBudget) batch = std::min<size_t>(batch, options.shotBudget - shots);
+    std::partial_sort(ranked.begin(), ranked.begin() + long(batch), ranked.end(), std::greater<>());
+    while (batch > 0 && ranked[batch - 1].first <= 0.0) --batch;
+    if (batch == 0) break;
+    const float* columns[kShootersPerPass];
+    Rgb shot[kShootersPerPass];
+    for (size_t k = 0; k < batch; ++k) {
+      const uint32_t shooter = ranked[k].second;
+      columns[k] = column(shooter, int(k)).data();
+      shot[k] = patchUnshot[shooter] / sys.patchArea[shooter];
+      for (uint32_t e : patches[shooter].elements) unshot[e] = Rgb(0.0f);
+      patchUnshot[shooter] = Rgb(0.0f);
+    }
+    // Receivers patch by patch, so each patch's unshot power is updated by the change of its own
+    // elements instead of being summed again from scratch.
     tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 8), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t q = r.begin(); q < r.end(); ++q) {
         Rgb added(0.0f);
         for (uint32_t e : patches[q].elements) {
-          if (f[e] == 0.0f) continue;
-          Rgb dh = f[e] * shot;
-          Rgb db = sys.reflectance[e] * dh;
+          Rgb dh(0.0f);
+          for (size_t k = 0; k < batch; ++k) dh += columns[k][e] * shot[k];
+          if (dh.r == 0.0f && dh.g == 0.0f && dh.b == 0.0f) continue;
+          const Rgb db = sys.reflectance[e] * dh;
           irradiance[e] += dh;
           radiosity[e] += db;
           unshot[e] += db;
@@ -106,7 +122,7 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
         patchUnshot[q] += added;
       }
     });
-    ++shots;
+    shots += batch;
   }
   reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction));
 
@@ -135,7 +151,7 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
   sol.directIrradiance = sys.analytic;
   for (uint32_t p = 0; p < np; ++p) {
     if (channelSum(patchEmission[p]) <= 0.0) continue;
-    const std::vector<float>& f = column(p);
+    const std::vector<float>& f = column(p, 0);
     for (size_t e = 0; e < ne; ++e) sol.directIrradiance[e] += f[e] * patchEmission[p];
   }
 

@@ -44,7 +44,7 @@ float upperHemisphereFormFactor(Vec3 p, Vec3 n, const Polygon& poly) {
   bool allAbove = true, allBelow = true;
   for (int i = 0; i < poly.count; ++i) {
     d[i] = glm::dot(n, poly.v[i] - p);
-    allAbove &= d[i] > 0.0f;
+    allAbove &= d[i] >= 0.0f;  // corners in the plane bound the visible part exactly
     allBelow &= d[i] <= 0.0f;
   }
   if (allBelow) return 0.0f;
@@ -117,7 +117,7 @@ void pointToPolygonFormFactors4(const Vec3 p[4], const Vec3 n[4], const Polygon&
   for (int k = 0; k < poly.count; ++k) {
     rx[k] = poly.v[k].x - px, ry[k] = poly.v[k].y - py, rz[k] = poly.v[k].z - pz;
     const Float4 d = nx * rx[k] + ny * ry[k] + nz * rz[k];
-    above &= d > 0.0f;
+    above &= d >= 0.0f;
     below &= d <= 0.0f;
   }
   // A one-sided source radiates only into the half-space its normal points into.
