@@ -47,7 +47,9 @@ int squareCount(int n) { return std::clamp(int(std::sqrt(float(n)) + 1e-3f), 1, 
 // A random permutation of 0..m-1 (m <= 256), to pair strata of two domains without correlation.
 void shuffledStrata(Rng& rng, int m, int* out) {
   for (int i = 0; i < m; ++i) out[i] = i;
-  for (int i = m - 1; i > 0; --i) std::swap(out[i], out[rng.nextUint() % uint32_t(i + 1)]);
+  // Lemire's multiply-shift maps a 32-bit draw onto [0, i] without a division (one per ray).
+  for (int i = m - 1; i > 0; --i)
+    std::swap(out[i], out[uint32_t((uint64_t(rng.nextUint()) * uint64_t(i + 1)) >> 32)]);
 }
 
 }  // namespace

@@ -157,15 +157,6 @@ float pointToPolygonFormFactor(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNor
   return f;
 }
 
-Vec3 polygonPoint(const Polygon& poly, float s, float t) {
-  if (poly.count == 3) {
-    if (s + t > 1.0f) s = 1.0f - s, t = 1.0f - t;
-    return poly.v[0] + s * (poly.v[1] - poly.v[0]) + t * (poly.v[2] - poly.v[0]);
-  }
-  return (1 - s) * (1 - t) * poly.v[0] + s * (1 - t) * poly.v[1] + s * t * poly.v[2] +
-         (1 - s) * t * poly.v[3];
-}
-
 double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source, int k,
                                   Sides receiverSides, Sides sourceSides) {
   const Vec3 n = receiver.normal();

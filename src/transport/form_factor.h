@@ -43,7 +43,15 @@ float polygonSolidAngle(Vec3 p, const Polygon& poly);
 float pointPolygonDistance(Vec3 p, const Polygon& poly);
 
 // A point on the polygon from (s,t) in [0,1)^2: bilinear on quads, folded barycentric on triangles.
-Vec3 polygonPoint(const Polygon& poly, float s, float t);
+// Inline: every visibility ray calls it twice.
+inline Vec3 polygonPoint(const Polygon& poly, float s, float t) {
+  if (poly.count == 3) {
+    if (s + t > 1.0f) s = 1.0f - s, t = 1.0f - t;
+    return poly.v[0] + s * (poly.v[1] - poly.v[0]) + t * (poly.v[2] - poly.v[0]);
+  }
+  return (1 - s) * (1 - t) * poly.v[0] + s * (1 - t) * poly.v[1] + s * t * poly.v[2] +
+         (1 - s) * t * poly.v[3];
+}
 
 // A uniformly distributed point on the part of `poly` strictly above the plane through `p` with
 // normal `n`, by rejection from (s,t) pairs drawn with `next()`; false when none of `tries`
