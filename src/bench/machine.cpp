@@ -35,11 +35,7 @@ std::string trim(std::string s) {
   return s;
 }
 
-// `git describe` of the tree the binary was built from. The source directory is compiled in;
-// when it is gone (an installed binary), the commit is simply unknown.
-std::string sourceCommit() {
-#ifdef LUXEL_SOURCE_DIR
-  std::string cmd = fmt::format("git -C '{}' describe --always --dirty 2>/dev/null", LUXEL_SOURCE_DIR);
+std::string run(const std::string& cmd) {
   std::array<char, 128> buf{};
   std::string out;
   if (FILE* p = popen(cmd.c_str(), "r")) {
@@ -47,6 +43,19 @@ std::string sourceCommit() {
     pclose(p);
   }
   return trim(out);
+}
+
+// The commit of the tree the binary was built from, "-dirty" when its code (not its result
+// files) has uncommitted changes. The source directory is compiled in; when it is gone (an
+// installed binary), the commit is simply unknown.
+std::string sourceCommit() {
+#ifdef LUXEL_SOURCE_DIR
+  const std::string git = fmt::format("git -C '{}' ", LUXEL_SOURCE_DIR);
+  std::string commit = run(git + "rev-parse --short HEAD 2>/dev/null");
+  if (!commit.empty() &&
+      !run(git + "status --porcelain -- src include apps bench/*.cpp CMakeLists.txt 2>/dev/null").empty())
+    commit += "-dirty";
+  return commit;
 #else
   return {};
 #endif
