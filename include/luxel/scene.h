@@ -61,6 +61,9 @@ struct Mesh {
   std::string name;
   std::vector<Vec3> positions;
   std::vector<Vec2> uvs;  // empty, or one per position
+  // Empty, or one per position: a second UV set (glTF TEXCOORD_1) laying the mesh out in a
+  // lightmap, in [0,1] without overlaps (checked by buildLightmapAtlas, lightmap.h).
+  std::vector<Vec2> lightmapUvs;
   std::vector<Face> faces;
   uint32_t material = 0;  // index into Scene::materials
   // Optional element grids, for scenes whose element counts are prescribed (the seed papers' test

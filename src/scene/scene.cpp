@@ -61,6 +61,13 @@ void Scene::validate() const {
     if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
       throw Error(fmt::format("scene '{}': mesh '{}': {} uvs for {} positions", name, mesh.name,
                               mesh.uvs.size(), mesh.positions.size()));
+    if (!mesh.lightmapUvs.empty() && mesh.lightmapUvs.size() != mesh.positions.size())
+      throw Error(fmt::format("scene '{}': mesh '{}': {} lightmap uvs for {} positions", name,
+                              mesh.name, mesh.lightmapUvs.size(), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.lightmapUvs.size(); ++i)
+      if (!std::isfinite(mesh.lightmapUvs[i].x) || !std::isfinite(mesh.lightmapUvs[i].y))
+        throw Error(fmt::format("scene '{}': mesh '{}': lightmap uv {} is not finite", name,
+                                mesh.name, i));
     for (size_t i = 0; i < mesh.positions.size(); ++i)
       if (!finite(mesh.positions[i]))
         throw Error(fmt::format("scene '{}': mesh '{}': vertex {} is not finite", name, mesh.name, i));

@@ -321,6 +321,13 @@ class AssimpImport {
       for (unsigned v = 0; v < am.mNumVertices; ++v)
         mesh.uvs[v] = Vec2(am.mTextureCoords[0][v].x, am.mTextureCoords[0][v].y);
     }
+    // The second set (glTF TEXCOORD_1, a second OBJ/FBX channel) is the lightmap layout, taken
+    // exactly as the first: as Assimp delivers it.
+    if (am.HasTextureCoords(1)) {
+      mesh.lightmapUvs.resize(am.mNumVertices);
+      for (unsigned v = 0; v < am.mNumVertices; ++v)
+        mesh.lightmapUvs[v] = Vec2(am.mTextureCoords[1][v].x, am.mTextureCoords[1][v].y);
+    }
 
     std::vector<std::array<uint32_t, 3>> triangles;
     triangles.reserve(am.mNumFaces);

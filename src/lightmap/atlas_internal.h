@@ -1,0 +1,82 @@
+// The stages of buildLightmapAtlas (lightmap.h), one file each: charts.cpp (segmentation),
+// planar.cpp and lscm.cpp (parameterisation), pack.cpp (packing), existing_uvs.cpp (given UVs),
+// raster.cpp (texel-centre rasterisation, shared by the checks).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "luxel/lightmap.h"
+
+namespace luxel::lightmap {
+
+// A mesh with its vertices welded by position: faces sharing an edge share welded indices.
+struct WeldedMesh {
+  std::vector<Vec3> positions;             // welded
+  std::vector<std::array<uint32_t, 4>> v;  // per face, welded corners (triangles repeat corner 2)
+  std::vector<int> corners;                // per face, 3 or 4
+  std::vector<Vec3> normal;                // per face, unit (zero for degenerate faces)
+  std::vector<float> area;                 // per face
+};
+WeldedMesh weld(const Mesh& mesh);
+
+// A chart: faces of one mesh and, after parameterisation, a UV per face corner (in metres).
+struct Chart {
+  uint32_t mesh = 0;
+  std::vector<uint32_t> faces;
+  std::vector<std::array<Vec2, 4>> uv;  // parallel to faces
+  bool planar = false;                  // flattened by projection (else LSCM)
+};
+
+// Segments a mesh into connected charts of faces whose normals lie within maxAngle (radians) of
+// the chart's area-weighted mean normal.
+std::vector<Chart> segmentCharts(const WeldedMesh& w, uint32_t meshIndex, float maxAngle);
+// Splits a face set into its edge-connected components.
+std::vector<std::vector<uint32_t>> connectedComponents(const WeldedMesh& w,
+                                                       const std::vector<uint32_t>& faces);
+
+// The area-weighted mean normal of a face set (unit; +z when it cancels out).
+Vec3 meanNormal(const WeldedMesh& w, const std::vector<uint32_t>& faces);
+// Largest angle (radians) between a face normal and the mean normal.
+float maxNormalDeviation(const WeldedMesh& w, const std::vector<uint32_t>& faces, Vec3 mean);
+// Projects the chart onto the plane of its mean normal. Returns false when a face flips.
+bool planarProject(const WeldedMesh& w, Chart& chart);
+// Least squares conformal map (Levy et al. 2002). Returns false when the solve fails or a face
+// flips; chart.uv is then unspecified.
+bool lscm(const WeldedMesh& w, Chart& chart);
+// Parameterises every chart: planar when flat, else LSCM, else planar projection, else splits it
+// in two (and again) until every piece flattens without flips. Scales each chart to metres (UV
+// area equals surface area).
+std::vector<Chart> parameterise(const WeldedMesh& w, std::vector<Chart> charts);
+
+// Signed area of a UV triangle.
+inline float signedArea(Vec2 a, Vec2 b, Vec2 c) {
+  return 0.5f * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+}
+
+// Calls f(x, y) for every texel whose centre (x + 0.5, y + 0.5) lies inside the triangle, with a
+// top-left rule so that triangles sharing an edge never both claim a texel. Clipped to [0, size).
+void rasteriseTriangle(Vec2 a, Vec2 b, Vec2 c, int size,
+                       const std::function<void(int, int)>& f);
+
+// Packs charts (UVs in metres) at `density` texels per metre onto pages, writing the texel
+// coordinates into atlas.faces and returning the number of pages used (firstPage onwards).
+// Charts larger than a page are scaled down to fit it.
+struct PackResult {
+  int pages = 0;
+  size_t scaledDown = 0;  // charts larger than a page, scaled down
+};
+PackResult packCharts(const std::vector<Chart>& charts, float density, const AtlasOptions& options,
+                      uint32_t firstPage, uint32_t firstChart, LightmapAtlas* atlas);
+// The number of pages packCharts would use (no output).
+int pagesNeeded(const std::vector<Chart>& charts, float density, const AtlasOptions& options);
+
+// Checks a mesh's lightmapUvs (in [0,1], no two faces claiming a texel at pageSize) and writes
+// them to atlas.faces[meshIndex] on `page`, one chart per UV-connected component, numbered from
+// firstChart. Returns the number of charts. Throws Error naming the mesh.
+size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint32_t page,
+                      uint32_t firstChart, LightmapAtlas& atlas);
+
+}  // namespace luxel::lightmap
