@@ -28,6 +28,7 @@ struct SurfaceFace {
   std::array<Vec2, 4> uvs{};
   bool triangle = false;
   uint32_t mesh = 0;
+  uint32_t meshFace = 0;  // index into Scene::meshes[mesh].faces: the face this was cut from
   uint32_t material = 0;
   Vec3 normal{0.0f};
   int32_t twin = -1;     // the other side of a two-sided face, or -1

@@ -334,6 +334,7 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
       const Face& face = mesh.faces[fi];
       SurfaceFace f;
       f.mesh = mi;
+      f.meshFace = uint32_t(fi);
       f.material = mesh.material;
       for (int i = 0; i < 4; ++i) {
         f.corners[i] = mesh.positions[face.v[i]];

@@ -1,0 +1,77 @@
+// Baking a solution into the scene's own meshes and writing them out as glTF 2.0 binary (.glb),
+// for display in real-time viewers (docs/baking.md).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "luxel/scene.h"
+#include "luxel/solve.h"
+#include "luxel/surface.h"
+
+namespace luxel {
+
+// Per face corner of the scene's meshes: [mesh][face * 4 + corner] (a triangle leaves its 4th
+// entry unused). The layout `GlbOptions` takes for vertex attributes.
+using FaceCornerValues = std::vector<std::vector<Rgb>>;
+
+// The value of a per-element quantity at every face corner of every mesh: the smooth per-vertex
+// value of elementCornerValues (render.h) at the element corner that coincides with the face
+// corner, on the face's front side (the side the solver lit: a face that discretisation turned
+// round takes its turned side; a two-sided face its front, the side of its winding). Faces that
+// discretisation dropped as degenerate take the value other faces of the mesh have at the same
+// vertex (black when none has one).
+FaceCornerValues faceCornerValues(const Scene& scene, const SurfaceSet& surfaces,
+                                  const std::vector<Rgb>& perElement);
+
+// Outgoing radiance B / pi at every face corner (emission included): the colour a camera sees.
+FaceCornerValues bakedRadiance(const Scene& scene, const SurfaceSet& surfaces, const Solution& solution);
+// The same at every element corner (elementCornerValues' layout, 4 per element).
+std::vector<Rgb> elementRadiance(const SurfaceSet& surfaces, const Solution& solution);
+
+// An image embedded in the glb as PNG (e.g. a lightmap page): encoded bytes.
+struct GlbImage {
+  std::string name;
+  std::vector<uint8_t> png;
+};
+
+struct GlbOptions {
+  // COLOR_0, float VEC3, linear, per vertex: empty for none, else FaceCornerValues layout,
+  // finite and >= 0. glTF wants colours in [0,1]: they are written divided by S, the smallest
+  // power of two at or above the largest component (1 when that is <= 1), and S is recorded in
+  // the scene's extras as {"luxel": {"vertexColors": vertexColorQuantity, "vertexColorScale": S}}.
+  FaceCornerValues vertexColors;
+  std::string vertexColorQuantity = "radiance";
+  // Vertex colours on the element tessellation, for meshes too coarse to carry the lighting at
+  // their own vertices (a floor that is one quad): when `elements` is set, every mesh is written
+  // as the elements cut from its faces (their front sides; faces dropped as degenerate are left
+  // out), and COLOR_0 holds `elementColors`, 4 per element in elementCornerValues' layout (render.h),
+  // scaled as above. Excludes vertexColors and secondUvs.
+  const SurfaceSet* elements = nullptr;
+  std::vector<Rgb> elementColors;
+  // TEXCOORD_1 (the lightmap UV set): empty for none, else per mesh, per face corner
+  // ([mesh][face * 4 + corner]), v up as in Mesh::uvs (written flipped, as glTF wants).
+  std::vector<std::vector<Vec2>> secondUvs;
+  // Extra images, embedded with a texture each (after the material textures), in this order.
+  std::vector<GlbImage> images;
+  // Faces that discretisation turned round (SurfaceFace::flipped) are written turned round too,
+  // so that viewers culling back faces show the side the solver lit: one flag per mesh face,
+  // [mesh][face], empty for none. bakeGlbOptions fills it.
+  std::vector<std::vector<uint8_t>> flippedFaces;
+  std::string generator = "luxel";
+};
+
+// The flipped-face flags of `surfaces` in GlbOptions::flippedFaces layout.
+std::vector<std::vector<uint8_t>> flippedFaceFlags(const Scene& scene, const SurfaceSet& surfaces);
+
+// Writes `scene` as a glTF 2.0 binary: one glTF mesh and node per luxel mesh (triangles, quads
+// split along their 0-2 diagonal, flat normals, TEXCOORD_0 when the mesh has uvs), one
+// metallic-roughness material per luxel material (base colour = reflectance and its texture,
+// emissive = emission, with KHR_materials_emissive_strength above 1; metallic 0, roughness 1,
+// doubleSided = twoSided), the cameras, and what `options` adds. Writes atomically; throws Error
+// naming the path on failure or when the options do not match the scene.
+void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOptions& options = {});
+
+}  // namespace luxel

@@ -1,0 +1,405 @@
+// glTF 2.0 binary output through tinygltf (Debian's libtinygltf-dev, its implementation in the
+// shared library: no TINYGLTF_IMPLEMENTATION here). Everything goes into the glb's one binary
+// chunk: one buffer view per accessor, images as PNG buffer views.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <unordered_map>
+
+#include <fmt/format.h>
+#include <glm/gtc/quaternion.hpp>
+#include <stb_image_write.h>
+#include <tiny_gltf.h>
+
+#include "io/atomic_file.h"
+#include "luxel/bake.h"
+#include "luxel/error.h"
+
+namespace luxel {
+namespace {
+
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+
+// Appends `bytes` to the model's one buffer as a new buffer view (4-byte aligned); returns its index.
+int addBufferView(tinygltf::Model& model, const void* bytes, size_t size, int target) {
+  std::vector<unsigned char>& data = model.buffers[0].data;
+  while (data.size() % 4 != 0) data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = size;
+  view.target = target;
+  const auto* p = static_cast<const unsigned char*>(bytes);
+  data.insert(data.end(), p, p + size);
+  model.bufferViews.push_back(view);
+  return int(model.bufferViews.size()) - 1;
+}
+
+template <int N>
+int addFloatAccessor(tinygltf::Model& model, const std::vector<std::array<float, N>>& values, int type,
+                     bool withBounds) {
+  tinygltf::Accessor a;
+  a.bufferView = addBufferView(model, values.data(), values.size() * sizeof(values[0]), kArrayBuffer);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.count = values.size();
+  a.type = type;
+  if (withBounds) {  // POSITION must carry min and max
+    a.minValues.assign(N, std::numeric_limits<double>::max());
+    a.maxValues.assign(N, -std::numeric_limits<double>::max());
+    for (const auto& v : values)
+      for (int i = 0; i < N; ++i) {
+        a.minValues[size_t(i)] = std::min(a.minValues[size_t(i)], double(v[size_t(i)]));
+        a.maxValues[size_t(i)] = std::max(a.maxValues[size_t(i)], double(v[size_t(i)]));
+      }
+  }
+  model.accessors.push_back(a);
+  return int(model.accessors.size()) - 1;
+}
+
+int addIndexAccessor(tinygltf::Model& model, const std::vector<uint32_t>& indices, size_t vertexCount) {
+  tinygltf::Accessor a;
+  if (vertexCount <= 65535) {
+    std::vector<uint16_t> small(indices.begin(), indices.end());
+    a.bufferView = addBufferView(model, small.data(), small.size() * 2, kElementArrayBuffer);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  } else {
+    a.bufferView = addBufferView(model, indices.data(), indices.size() * 4, kElementArrayBuffer);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  }
+  a.count = indices.size();
+  a.type = TINYGLTF_TYPE_SCALAR;
+  model.accessors.push_back(a);
+  return int(model.accessors.size()) - 1;
+}
+
+float linearToSrgb(float x) {
+  x = std::clamp(x, 0.0f, 1.0f);
+  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+}
+
+void appendBytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<uint8_t>*>(context);
+  const auto* p = static_cast<const uint8_t*>(data);
+  out->insert(out->end(), p, p + size);
+}
+
+// A linear texture as an 8-bit sRGB PNG, top row first (glTF's v = 0 is the image's top).
+std::vector<uint8_t> encodeTexture(const Texture& tex) {
+  std::vector<uint8_t> rgb(size_t(tex.width) * size_t(tex.height) * 3);
+  for (int y = 0; y < tex.height; ++y)
+    for (int x = 0; x < tex.width; ++x) {
+      const Rgb& c = tex.texels[size_t(tex.height - 1 - y) * size_t(tex.width) + size_t(x)];
+      for (int k = 0; k < 3; ++k)
+        rgb[(size_t(y) * size_t(tex.width) + size_t(x)) * 3 + size_t(k)] =
+            uint8_t(std::lround(255.0f * linearToSrgb(c[k])));
+    }
+  std::vector<uint8_t> png;
+  if (!stbi_write_png_to_func(appendBytes, &png, tex.width, tex.height, 3, rgb.data(), tex.width * 3))
+    throw Error(fmt::format("cannot encode texture '{}' as PNG", tex.path));
+  return png;
+}
+
+int addImage(tinygltf::Model& model, const std::string& name, const std::vector<uint8_t>& png) {
+  tinygltf::Image image;
+  image.name = name;
+  image.mimeType = "image/png";
+  image.bufferView = addBufferView(model, png.data(), png.size(), 0);
+  model.bufferViews.back().target = 0;  // images are no vertex data
+  model.images.push_back(image);
+  tinygltf::Texture texture;
+  texture.source = int(model.images.size()) - 1;
+  texture.sampler = 0;
+  model.textures.push_back(texture);
+  return int(model.textures.size()) - 1;
+}
+
+struct VertexKeyHash {
+  size_t operator()(const std::array<float, 13>& k) const {
+    size_t h = 1469598103934665603ull;
+    for (float f : k) {
+      uint32_t bits;
+      std::memcpy(&bits, &f, 4);
+      h = (h ^ bits) * 1099511628211ull;
+    }
+    return h;
+  }
+};
+
+void checkOptions(const Scene& scene, const GlbOptions& o) {
+  auto check = [&](size_t outer, auto inner, const char* what, size_t perFace) {
+    if (outer == 0) return;
+    if (outer != scene.meshes.size())
+      throw Error(fmt::format("glb: {} for {} meshes, the scene has {}", what, outer, scene.meshes.size()));
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+      if (inner(m) != scene.meshes[m].faces.size() * perFace)
+        throw Error(fmt::format("glb: mesh '{}': {} has {} entries, expected {}", scene.meshes[m].name, what,
+                                inner(m), scene.meshes[m].faces.size() * perFace));
+  };
+  check(o.vertexColors.size(), [&](size_t m) { return o.vertexColors[m].size(); }, "vertex colours", 4);
+  check(o.secondUvs.size(), [&](size_t m) { return o.secondUvs[m].size(); }, "second uvs", 4);
+  check(o.flippedFaces.size(), [&](size_t m) { return o.flippedFaces[m].size(); }, "flipped-face flags", 1);
+  if (o.elements) {
+    if (!o.vertexColors.empty() || !o.secondUvs.empty())
+      throw Error("glb: element tessellation excludes per-face-corner colours and second uvs");
+    if (o.elementColors.size() != o.elements->elements.size() * 4)
+      throw Error(fmt::format("glb: {} element colours for {} elements, expected 4 each", o.elementColors.size(),
+                              o.elements->elements.size()));
+    for (const SurfaceFace& f : o.elements->faces)
+      if (f.mesh >= scene.meshes.size()) throw Error("glb: the elements come from another scene");
+  }
+}
+
+void addMaterials(const Scene& scene, tinygltf::Model& model) {
+  std::vector<int> textureOf(scene.textures.size(), -1);
+  auto textureFor = [&](int t) {
+    if (t < 0 || size_t(t) >= scene.textures.size()) return -1;
+    if (textureOf[size_t(t)] < 0) {
+      const Texture& tex = scene.textures[size_t(t)];
+      textureOf[size_t(t)] = addImage(model, fmt::format("texture{}", t), encodeTexture(tex));
+    }
+    return textureOf[size_t(t)];
+  };
+  for (const Material& m : scene.materials) {
+    tinygltf::Material g;
+    g.name = m.name;
+    g.pbrMetallicRoughness.baseColorFactor = {m.reflectance.r, m.reflectance.g, m.reflectance.b, 1.0};
+    g.pbrMetallicRoughness.metallicFactor = 0.0;
+    g.pbrMetallicRoughness.roughnessFactor = 1.0;
+    g.pbrMetallicRoughness.baseColorTexture.index = textureFor(m.reflectanceTexture);
+    const float peak = std::max({m.emission.r, m.emission.g, m.emission.b});
+    if (peak > 0.0f) {
+      const float scale = std::max(peak, 1.0f);
+      g.emissiveFactor = {m.emission.r / scale, m.emission.g / scale, m.emission.b / scale};
+      if (peak > 1.0f) {
+        tinygltf::Value::Object strength;
+        strength["emissiveStrength"] = tinygltf::Value(double(peak));
+        g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(strength);
+      }
+      g.emissiveTexture.index = textureFor(m.emissionTexture);
+    }
+    g.doubleSided = m.twoSided;
+    model.materials.push_back(g);
+  }
+  bool strength = false;
+  for (const auto& g : model.materials) strength |= g.extensions.count("KHR_materials_emissive_strength") > 0;
+  if (strength) model.extensionsUsed.push_back("KHR_materials_emissive_strength");
+}
+
+// A node's rotation that turns glTF's camera (looking down -z, +y up) to look from eye to target.
+std::vector<double> cameraRotation(const Camera& c) {
+  const Vec3 f = glm::normalize(c.target - c.eye);
+  Vec3 r = glm::cross(f, c.up);
+  if (glm::length(r) < 1e-6f) r = glm::cross(f, std::abs(f.y) < 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0));
+  r = glm::normalize(r);
+  const Vec3 u = glm::cross(r, f);
+  const glm::quat q = glm::normalize(glm::quat_cast(glm::mat3(r, u, -f)));
+  return {q.x, q.y, q.z, q.w};
+}
+
+// COLOR_0 must lie in [0,1] (the validator's ACCESSOR_NON_CLAMPED): values are divided by the
+// smallest power of two at or above their largest component, which is exact in floating point.
+float vertexColorScale(const GlbOptions& o) {
+  float peak = 0.0f;
+  auto visit = [&](const std::vector<Rgb>& colors) {
+    for (const Rgb& c : colors) {
+      if (!(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b)) || c.r < 0.0f || c.g < 0.0f || c.b < 0.0f)
+        throw Error("glb: vertex colours must be finite and non-negative");
+      peak = std::max({peak, c.r, c.g, c.b});
+    }
+  };
+  for (const auto& mesh : o.vertexColors) visit(mesh);
+  visit(o.elementColors);
+  return peak > 1.0f ? std::exp2(std::ceil(std::log2(peak))) : 1.0f;
+}
+
+// Collects a mesh's vertices, merging exact duplicates, and its triangles.
+struct MeshBuilder {
+  bool hasUv = false, hasUv1 = false, hasColor = false;
+  std::vector<std::array<float, 3>> positions, normals, colors;
+  std::vector<std::array<float, 2>> uv0, uv1;
+  std::vector<uint32_t> indices;
+  std::unordered_map<std::array<float, 13>, uint32_t, VertexKeyHash> seen;
+
+  uint32_t vertex(Vec3 p, Vec3 n, Vec2 t0, Vec2 t1, Rgb c) {
+    // glTF's v runs down the image; luxel's (like OpenGL's) runs up.
+    const std::array<float, 13> key{p.x, p.y, p.z, n.x, n.y, n.z, t0.x, 1.0f - t0.y, t1.x, 1.0f - t1.y,
+                                    c.r, c.g, c.b};
+    auto [it, added] = seen.try_emplace(key, uint32_t(positions.size()));
+    if (added) {
+      positions.push_back({p.x, p.y, p.z});
+      normals.push_back({n.x, n.y, n.z});
+      if (hasUv) uv0.push_back({key[6], key[7]});
+      if (hasUv1) uv1.push_back({key[8], key[9]});
+      if (hasColor) colors.push_back({c.r, c.g, c.b});
+    }
+    return it->second;
+  }
+  // A triangle or quad (along its 0-2 diagonal, as discretisation cuts non-planar ones).
+  void polygon(const uint32_t* corner, int n, bool reversed) {
+    const int tris[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (int t = 0; t < n - 2; ++t) {
+      const auto& k = tris[t];
+      if (reversed) indices.insert(indices.end(), {corner[k[0]], corner[k[2]], corner[k[1]]});
+      else indices.insert(indices.end(), {corner[k[0]], corner[k[1]], corner[k[2]]});
+    }
+  }
+};
+
+// The element tessellation's layout: per mesh, its front-side surface faces; per surface face, its elements.
+struct ElementIndex {
+  std::vector<std::vector<uint32_t>> facesOfMesh;
+  std::vector<std::vector<uint32_t>> elementsOfFace;
+};
+
+ElementIndex indexElements(const Scene& scene, const SurfaceSet& set) {
+  ElementIndex index;
+  index.facesOfMesh.resize(scene.meshes.size());
+  index.elementsOfFace.resize(set.faces.size());
+  for (uint32_t fi = 0; fi < set.faces.size(); ++fi) {
+    const SurfaceFace& f = set.faces[fi];
+    if (f.twin >= 0 && uint32_t(f.twin) < fi) continue;  // the back of a two-sided face
+    index.facesOfMesh[f.mesh].push_back(fi);
+  }
+  for (uint32_t e = 0; e < set.elements.size(); ++e) index.elementsOfFace[set.elements[e].face].push_back(e);
+  return index;
+}
+
+void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScale, const ElementIndex& index,
+             tinygltf::Model& model) {
+  const Mesh& mesh = scene.meshes[mi];
+  MeshBuilder b;
+  b.hasUv = !mesh.uvs.empty();
+  b.hasUv1 = !o.secondUvs.empty();
+  b.hasColor = !o.vertexColors.empty() || o.elements;
+
+  if (o.elements) {
+    const SurfaceSet& set = *o.elements;
+    for (uint32_t fi : index.facesOfMesh[mi]) {
+      const SurfaceFace& f = set.faces[fi];
+      for (uint32_t e : index.elementsOfFace[fi]) {
+        const Element& el = set.elements[e];
+        uint32_t corner[4];
+        for (int c = 0; c < el.polygon.count; ++c)
+          corner[c] = b.vertex(el.polygon.v[size_t(c)], f.normal, b.hasUv ? f.uv(el.param[size_t(c)]) : Vec2(0.0f),
+                               Vec2(0.0f), o.elementColors[size_t(e) * 4 + size_t(c)] / colorScale);
+        b.polygon(corner, el.polygon.count, false);
+      }
+    }
+  } else {
+    for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+      const Face& face = mesh.faces[fi];
+      const int n = face.vertexCount();
+      const bool flipped = !o.flippedFaces.empty() && o.flippedFaces[mi][fi];
+      Polygon poly;
+      poly.count = n;
+      for (int k = 0; k < n; ++k) poly.v[size_t(k)] = mesh.positions[face.v[size_t(k)]];
+      Vec3 normal = poly.normal();
+      if (normal == Vec3(0.0f)) normal = Vec3(0.0f, 0.0f, 1.0f);  // degenerate: any unit vector
+      if (flipped) normal = -normal;
+      uint32_t corner[4];
+      for (int k = 0; k < n; ++k) {
+        const size_t fc = fi * 4 + size_t(k);
+        corner[k] = b.vertex(poly.v[size_t(k)], normal, b.hasUv ? mesh.uvs[face.v[size_t(k)]] : Vec2(0.0f),
+                             b.hasUv1 ? o.secondUvs[mi][fc] : Vec2(0.0f),
+                             o.vertexColors.empty() ? Rgb(0.0f) : o.vertexColors[mi][fc] / colorScale);
+      }
+      b.polygon(corner, n, flipped);
+    }
+  }
+  if (b.indices.empty()) return;  // a mesh without faces: glTF meshes need a primitive
+
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = int(mesh.material);
+  prim.attributes["POSITION"] = addFloatAccessor<3>(model, b.positions, TINYGLTF_TYPE_VEC3, true);
+  prim.attributes["NORMAL"] = addFloatAccessor<3>(model, b.normals, TINYGLTF_TYPE_VEC3, false);
+  if (b.hasUv) prim.attributes["TEXCOORD_0"] = addFloatAccessor<2>(model, b.uv0, TINYGLTF_TYPE_VEC2, false);
+  if (b.hasUv1) prim.attributes["TEXCOORD_1"] = addFloatAccessor<2>(model, b.uv1, TINYGLTF_TYPE_VEC2, false);
+  if (b.hasColor) prim.attributes["COLOR_0"] = addFloatAccessor<3>(model, b.colors, TINYGLTF_TYPE_VEC3, false);
+  prim.indices = addIndexAccessor(model, b.indices, b.positions.size());
+
+  tinygltf::Mesh gm;
+  gm.name = mesh.name;
+  gm.primitives.push_back(prim);
+  model.meshes.push_back(gm);
+  tinygltf::Node node;
+  node.name = mesh.name;
+  node.mesh = int(model.meshes.size()) - 1;
+  model.nodes.push_back(node);
+  model.scenes[0].nodes.push_back(int(model.nodes.size()) - 1);
+}
+
+}  // namespace
+
+void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOptions& options) {
+  checkOptions(scene, options);
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = options.generator;
+  model.buffers.resize(1);
+  model.scenes.resize(1);
+  model.scenes[0].name = scene.name;
+  model.defaultScene = 0;
+  tinygltf::Sampler sampler;
+  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_REPEAT;
+  model.samplers.push_back(sampler);
+
+  addMaterials(scene, model);
+  for (const GlbImage& image : options.images) addImage(model, image.name, image.png);
+  const float colorScale = vertexColorScale(options);
+  const ElementIndex index = options.elements ? indexElements(scene, *options.elements) : ElementIndex{};
+  for (size_t m = 0; m < scene.meshes.size(); ++m) addMesh(scene, m, options, colorScale, index, model);
+  if (!options.vertexColors.empty() || options.elements) {
+    // What COLOR_0 holds and the factor that turns it back into radiance (docs/baking.md); three.js
+    // puts scene extras in gltf.scene.userData.
+    tinygltf::Value::Object info;
+    info["vertexColors"] = tinygltf::Value(options.vertexColorQuantity);
+    info["vertexColorScale"] = tinygltf::Value(double(colorScale));
+    tinygltf::Value::Object extras;
+    extras["luxel"] = tinygltf::Value(info);
+    model.scenes[0].extras = tinygltf::Value(extras);
+  }
+  if (model.meshes.empty()) throw Error(fmt::format("{}: scene '{}' has no faces to write", path.string(), scene.name));
+
+  // Cameras, sized to the scene: clip planes at a thousandth and a hundred times its extent
+  // (tinygltf always writes zfar, so it cannot be left infinite).
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Mesh& m : scene.meshes)
+    for (const Vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const double extent = std::max(double(glm::length(hi - lo)), 1e-6);
+  for (const Camera& c : scene.cameras) {
+    if (glm::length(c.target - c.eye) <= 0.0f) continue;
+    tinygltf::Camera gc;
+    gc.name = c.name;
+    gc.type = "perspective";
+    gc.perspective.yfov = glm::radians(double(c.fovY));
+    gc.perspective.znear = 1e-3 * extent;
+    gc.perspective.zfar = 100.0 * extent;
+    model.cameras.push_back(gc);
+    tinygltf::Node node;
+    node.name = c.name;
+    node.camera = int(model.cameras.size()) - 1;
+    node.translation = {c.eye.x, c.eye.y, c.eye.z};
+    node.rotation = cameraRotation(c);
+    model.nodes.push_back(node);
+    model.scenes[0].nodes.push_back(int(model.nodes.size()) - 1);
+  }
+  if (model.samplers.size() == 1 && model.textures.empty()) model.samplers.clear();
+
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw Error("cannot open for writing");
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model, out, false, true)) throw Error("cannot write the glb");
+    out.close();
+    if (!out) throw Error("write failed (disk full?)");
+  });
+}
+
+}  // namespace luxel

@@ -1,0 +1,289 @@
+// `luxel bake` end to end: the built-in Cornell box baked to a glb with vertex colours, read back
+// with tinygltf (counts, COLOR_0 values where the answer is known: the light's own radiance, a
+// floor lit from above against a corner in shadow), checked by the Khronos glTF validator, and bad
+// input failing cleanly. The face-corner mapping and the TEXCOORD_1 path are checked in process.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include "cli/cli_runner.h"
+#include "luxel/bake.h"
+#include "luxel/error.h"
+#include "luxel/import.h"
+#include "luxel/render.h"
+#include "luxel/solve.h"
+
+namespace {
+
+constexpr int kElements = 2000;
+
+tinygltf::Model loadGlb(const fs::path& path) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path.string())) << err;
+  return model;
+}
+
+// The float VEC3 values of an accessor (tightly packed, as the exporter writes them).
+std::vector<luxel::Vec3> vec3s(const tinygltf::Model& m, int accessor) {
+  const tinygltf::Accessor& a = m.accessors.at(size_t(accessor));
+  EXPECT_EQ(a.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+  EXPECT_EQ(a.type, TINYGLTF_TYPE_VEC3);
+  const tinygltf::BufferView& v = m.bufferViews.at(size_t(a.bufferView));
+  const auto* p = reinterpret_cast<const float*>(m.buffers.at(0).data.data() + v.byteOffset + a.byteOffset);
+  std::vector<luxel::Vec3> out(a.count);
+  for (size_t i = 0; i < a.count; ++i) out[i] = luxel::Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  return out;
+}
+
+size_t triangles(const tinygltf::Model& m) {
+  size_t n = 0;
+  for (const auto& mesh : m.meshes)
+    for (const auto& prim : mesh.primitives) n += m.accessors.at(size_t(prim.indices)).count / 3;
+  return n;
+}
+
+const tinygltf::Primitive& primitiveOf(const tinygltf::Model& m, const std::string& name) {
+  for (const auto& mesh : m.meshes)
+    if (mesh.name == name) return mesh.primitives.at(0);
+  ADD_FAILURE() << "no mesh " << name;
+  return m.meshes.at(0).primitives.at(0);
+}
+
+// The colour (radiance: COLOR_0 times the recorded scale) of the vertex of `mesh` nearest `p`.
+luxel::Rgb radianceNear(const tinygltf::Model& m, const std::string& mesh, luxel::Vec3 p, float scale) {
+  const auto& prim = primitiveOf(m, mesh);
+  const auto pos = vec3s(m, prim.attributes.at("POSITION"));
+  const auto col = vec3s(m, prim.attributes.at("COLOR_0"));
+  size_t best = 0;
+  for (size_t i = 1; i < pos.size(); ++i)
+    if (glm::length(pos[i] - p) < glm::length(pos[best] - p)) best = i;
+  return scale * col[best];
+}
+
+float luminance(luxel::Rgb c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+TEST(BakeCli, CornellVertexColoursRoundTrip) {
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, {"bake", "cornell", "-o", "cornell.glb", "--vertex-colors", "--elements",
+                         std::to_string(kElements), "--threads", "2"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("wrote cornell.glb"), std::string::npos) << r.out;
+  const tinygltf::Model m = loadGlb(dir / "cornell.glb");
+
+  // The same discretisation in process: one triangle per triangular element, two per quad.
+  const luxel::Scene scene = luxel::loadScene("cornell");
+  luxel::DiscretiseOptions d;
+  d.elementBudget = kElements;
+  const luxel::SurfaceSet set = luxel::discretise(scene, d);
+  size_t expected = 0;
+  for (const auto& e : set.elements) expected += size_t(e.polygon.count - 2);
+  EXPECT_EQ(triangles(m), expected);
+  EXPECT_EQ(m.materials.size(), scene.materials.size());
+  EXPECT_EQ(m.meshes.size(), scene.meshes.size());
+  ASSERT_EQ(m.cameras.size(), 1u);
+  EXPECT_EQ(m.materials[3].name, "light");
+  EXPECT_NEAR(m.materials[3].emissiveFactor[0], 1.0, 1e-6);  // 17, 12, 4 normalised...
+  ASSERT_TRUE(m.materials[3].extensions.count("KHR_materials_emissive_strength"));  // ...times 17
+  EXPECT_NEAR(m.materials[3].extensions.at("KHR_materials_emissive_strength").Get("emissiveStrength").GetNumberAsDouble(),
+              17.0, 1e-5);
+
+  // COLOR_0 in [0,1] everywhere, and the scale that turns it back into radiance.
+  const auto& info = m.scenes.at(0).extras.Get("luxel");
+  ASSERT_TRUE(info.IsObject());
+  EXPECT_EQ(info.Get("vertexColors").Get<std::string>(), "radiance");
+  const auto scale = float(info.Get("vertexColorScale").GetNumberAsDouble());
+  EXPECT_EQ(scale, 32.0f);  // the light's 17 W m^-2 sr^-1 rounded up to a power of two
+  for (const auto& mesh : m.meshes) {
+    const auto& prim = mesh.primitives.at(0);
+    ASSERT_TRUE(prim.attributes.count("COLOR_0")) << mesh.name;
+    EXPECT_TRUE(prim.attributes.count("NORMAL")) << mesh.name;
+    for (const luxel::Vec3& c : vec3s(m, prim.attributes.at("COLOR_0")))
+      for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(c[k]) && c[k] >= 0.0f && c[k] <= 1.0f) << mesh.name;
+  }
+
+  // The light shows its emitted radiance (plus a little reflected light: it faces the floor).
+  const luxel::Rgb light = radianceNear(m, "light", {0.278f, 0.5488f, 0.2795f}, scale);
+  EXPECT_GE(light.r, 17.0f);
+  EXPECT_LT(light.r, 17.5f);
+  EXPECT_GE(light.b, 4.0f);
+  EXPECT_LT(light.b, 4.5f);
+  // The floor under the light, in front of the tall block, against the back corner the tall block
+  // shadows: several times brighter. Red: the floor takes the red wall's colour near it.
+  const luxel::Rgb lit = radianceNear(m, "floor", {0.278f, 0.0f, 0.2795f}, scale);
+  const luxel::Rgb corner = radianceNear(m, "floor", {0.5496f, 0.0f, 0.5592f}, scale);
+  EXPECT_GT(luminance(lit), 2.0f * luminance(corner)) << luminance(lit) << " vs " << luminance(corner);
+  // About rho E / pi with E the light's irradiance straight below: 17 x 0.0137 m^2 / 0.549^2 m^2 ~ 0.77.
+  EXPECT_GT(luminance(lit), 0.03f);
+  EXPECT_LT(luminance(lit), 0.5f);
+}
+
+// Runs the Khronos validator on `glb`; returns its report (empty when it is not installed).
+nlohmann::json validate(const fs::path& glb) {
+  const fs::path tool = fs::path(LUXEL_GLTF_VALIDATOR);
+  const fs::path report = glb.string() + ".report.json";
+  const std::string cmd = "node " + quote((tool / "validate.mjs").string()) + " " + quote(glb.string()) + " >" +
+                          quote(report.string()) + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const std::string text = readFile(report);
+  EXPECT_TRUE(code == 0 || code == 1) << text;
+  return nlohmann::json::parse(text, nullptr, false);
+}
+
+TEST(BakeCli, GlbPassesTheKhronosValidator) {
+  if (std::system("node --version >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "node is not installed (scripts/install-deps.sh installs it)";
+  if (!fs::exists(fs::path(LUXEL_GLTF_VALIDATOR) / "node_modules" / "gltf-validator"))
+    GTEST_SKIP() << "the npm package gltf-validator is not installed: run npm ci --prefix tools/gltf-validator"
+                 << " (scripts/install-deps.sh does)";
+  const fs::path dir = scratchDir();
+  for (const bool colours : {true, false}) {
+    std::vector<std::string> args = {"bake", "cornell", "-o", "c.glb", "--elements", "500", "-q"};
+    if (colours) args.push_back("--vertex-colors");
+    CliRun r = luxel(dir, args);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json report = validate(dir / "c.glb");
+    ASSERT_TRUE(report.is_object()) << "the validator printed no JSON";
+    EXPECT_EQ(report["issues"]["numErrors"], 0) << report["issues"].dump(2);
+    EXPECT_EQ(report["issues"]["numWarnings"], 0) << report["issues"].dump(2);
+    EXPECT_EQ(report["info"]["materialCount"], 4);
+  }
+}
+
+TEST(BakeCli, BadOutputsFailWithoutWritingAnything) {
+  const fs::path dir = scratchDir();
+  CliRun ext = luxel(dir, {"bake", "cornell", "-o", "c.gltf", "-q"});
+  EXPECT_EQ(ext.code, 1);
+  EXPECT_NE(ext.err.find(".glb"), std::string::npos) << ext.err;
+  CliRun missing = luxel(dir, {"bake", "cornell", "-o", "nowhere/c.glb", "-q"});
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_NE(missing.err.find("nowhere"), std::string::npos) << missing.err;
+  CliRun scene = luxel(dir, {"bake", "no-such-scene.obj", "-o", "c.glb", "-q"});
+  EXPECT_EQ(scene.code, 1);
+  EXPECT_NE(scene.err.find("no-such-scene"), std::string::npos) << scene.err;
+  CliRun usage = luxel(dir, {"bake", "cornell"});
+  EXPECT_EQ(usage.code, 2);
+  EXPECT_TRUE(fs::is_empty(dir)) << "a failed bake left files behind";
+}
+
+// Geometric normal of triangle t of a primitive, from its winding.
+luxel::Vec3 windingNormal(const tinygltf::Model& m, const tinygltf::Primitive& prim, size_t t) {
+  const auto pos = vec3s(m, prim.attributes.at("POSITION"));
+  const tinygltf::Accessor& a = m.accessors.at(size_t(prim.indices));
+  const auto* base = m.buffers.at(0).data.data() + m.bufferViews.at(size_t(a.bufferView)).byteOffset + a.byteOffset;
+  auto index = [&](size_t i) -> size_t {
+    return a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? reinterpret_cast<const uint16_t*>(base)[i]
+                                                                     : reinterpret_cast<const uint32_t*>(base)[i];
+  };
+  const luxel::Vec3 p0 = pos[index(3 * t)], p1 = pos[index(3 * t + 1)], p2 = pos[index(3 * t + 2)];
+  return glm::normalize(glm::cross(p1 - p0, p2 - p0));
+}
+
+// A two-sided panel and a single-sided one modelled upside down, lit from above: both come out
+// facing the light (winding and NORMAL), lit, in both layouts; the panel's material is doubleSided.
+TEST(Bake, SidesAndTurnedFaces) {
+  using luxel::Vec3;
+  luxel::Scene scene;
+  scene.name = "sides";
+  scene.materials = {luxel::Material{.name = "both", .reflectance = luxel::Rgb(0.5f), .twoSided = true},
+                     luxel::Material{.name = "one", .reflectance = luxel::Rgb(0.5f)}};
+  luxel::Mesh panel{.name = "panel", .material = 0};
+  panel.positions = {Vec3(-1, 0, -1), Vec3(-1, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, -1)};  // faces +y
+  panel.faces = {luxel::Face{{0, 1, 2, 3}}};
+  luxel::Mesh inverted{.name = "inverted", .material = 1};
+  inverted.positions = {Vec3(0.1f, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 1), Vec3(0.1f, 0, 1)};  // faces -y
+  inverted.faces = {luxel::Face{{0, 1, 2, 3}}};
+  scene.meshes = {panel, inverted};
+  scene.lights = {luxel::Light{.type = luxel::Light::Type::Point, .name = "bulb", .intensity = 1.0f,
+                               .position = Vec3(0, 1, 0)}};
+  luxel::DiscretiseOptions d;
+  d.elementBudget = 200;
+  luxel::SurfaceSet set = luxel::discretise(scene, d);
+  ASSERT_EQ(set.flippedFaces, 1u);
+  const luxel::Solution solution = luxel::solve(scene, set, luxel::SolveOptions{});
+
+  const fs::path path = fs::path(LUXEL_TEST_TMP) / "bake-sides.glb";
+  for (const bool elements : {true, false}) {
+    luxel::GlbOptions o;
+    o.flippedFaces = luxel::flippedFaceFlags(scene, set);
+    if (elements) {
+      o.elements = &set;
+      o.elementColors = luxel::elementRadiance(set, solution);
+    } else {
+      o.vertexColors = luxel::bakedRadiance(scene, set, solution);
+    }
+    luxel::writeGlb(scene, path, o);
+    const tinygltf::Model m = loadGlb(path);
+    EXPECT_TRUE(m.materials.at(0).doubleSided);
+    EXPECT_FALSE(m.materials.at(1).doubleSided);
+    for (const auto& mesh : m.meshes) {
+      const auto& prim = mesh.primitives.at(0);
+      const size_t n = m.accessors.at(size_t(prim.indices)).count / 3;
+      for (size_t t = 0; t < n; ++t) EXPECT_GT(windingNormal(m, prim, t).y, 0.99f) << mesh.name << " " << elements;
+      for (const Vec3& normal : vec3s(m, prim.attributes.at("NORMAL"))) EXPECT_GT(normal.y, 0.99f) << mesh.name;
+      // Lit from above: E = I cos / d^2 >= 1 / (sqrt 3)^3 at the far corners, radiance 0.5 E / pi.
+      for (const Vec3& c : vec3s(m, prim.attributes.at("COLOR_0"))) EXPECT_GT(c.r, 0.02f) << mesh.name << " " << elements;
+    }
+  }
+}
+
+// Face corners take the smooth value of the element corner at the same place, on the lit side;
+// and the per-face-corner path writes COLOR_0 and TEXCOORD_1 on the original faces.
+TEST(Bake, FaceCornerValuesAndSecondUvs) {
+  luxel::Scene scene = luxel::loadScene("cornell");
+  luxel::DiscretiseOptions d;
+  d.elementBudget = 300;
+  const luxel::SurfaceSet set = luxel::discretise(scene, d);
+  std::vector<luxel::Rgb> perElement(set.elements.size());
+  for (size_t e = 0; e < perElement.size(); ++e) perElement[e] = luxel::Rgb(float(e % 7), 1.0f, float(e % 3));
+  const auto corners = luxel::elementCornerValues(set, perElement);
+  const luxel::FaceCornerValues values = luxel::faceCornerValues(scene, set, perElement);
+  ASSERT_EQ(values.size(), scene.meshes.size());
+  size_t checked = 0;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const luxel::Mesh& mesh = scene.meshes[m];
+    ASSERT_EQ(values[m].size(), mesh.faces.size() * 4);
+    for (size_t f = 0; f < mesh.faces.size(); ++f)
+      for (int k = 0; k < mesh.faces[f].vertexCount(); ++k) {
+        const luxel::Vec3 p = mesh.positions[mesh.faces[f].v[size_t(k)]];
+        bool found = false;
+        for (size_t e = 0; e < set.elements.size() && !found; ++e) {
+          const auto& face = set.faces[set.elements[e].face];
+          if (face.mesh != m || face.meshFace != f) continue;
+          for (int c = 0; c < set.elements[e].polygon.count; ++c)
+            if (set.elements[e].polygon.v[size_t(c)] == p) {
+              EXPECT_EQ(values[m][f * 4 + size_t(k)], corners[e * 4 + size_t(c)]);
+              found = true;
+              break;
+            }
+        }
+        EXPECT_TRUE(found) << mesh.name << " face " << f << " corner " << k;
+        ++checked;
+      }
+  }
+  EXPECT_EQ(checked, 4 * scene.faceCount());  // all quads
+
+  luxel::GlbOptions o;
+  o.vertexColors = values;
+  o.secondUvs.resize(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    o.secondUvs[m].assign(scene.meshes[m].faces.size() * 4, luxel::Vec2(0.25f, 0.75f));
+  const fs::path path = fs::path(LUXEL_TEST_TMP) / "bake-face-corners.glb";
+  luxel::writeGlb(scene, path, o);
+  const tinygltf::Model model = loadGlb(path);
+  EXPECT_EQ(triangles(model), scene.triangleCount());
+  const auto& floor = primitiveOf(model, "floor");
+  ASSERT_TRUE(floor.attributes.count("TEXCOORD_1"));
+  EXPECT_TRUE(floor.attributes.count("COLOR_0"));
+  EXPECT_EQ(model.scenes.at(0).extras.Get("luxel").Get("vertexColorScale").GetNumberAsDouble(), 8.0);  // 6 -> 8
+
+  o.secondUvs.pop_back();  // one mesh short
+  EXPECT_THROW(luxel::writeGlb(scene, path, o), luxel::Error);
+}
+
+}  // namespace
