@@ -8,7 +8,17 @@ packages=(
   libembree-dev libtbb-dev libassimp-dev libglm-dev libopenexr-dev libstb-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libepoxy-dev libegl-dev libeigen3-dev unzip
+  # Mesa: its EGL driver and llvmpipe give a headless OpenGL 4.5 context with no GPU (tests/gl)
+  libegl-mesa0 libgl1-mesa-dri
 )
+
+# `luxel bake` writes glTF through tinygltf; its test runs the Khronos glTF validator under Node.js.
+# Debian's nodejs and npm unless a Node.js with npm is there already (NodeSource's nodejs bundles
+# npm and conflicts with Debian's npm package).
+packages+=(libtinygltf-dev)
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -17,14 +27,21 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null 2>&1 || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+    SUDO="sudo"
+  fi
+  echo "install-deps: installing ${missing[*]}"
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then
-  command -v sudo >/dev/null 2>&1 || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
-  SUDO="sudo"
+# The Khronos glTF validator (npm package gltf-validator, the version pinned by
+# tools/gltf-validator/package-lock.json) into tools/gltf-validator/node_modules, ignored by git.
+validator="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/gltf-validator"
+if [ ! -f "$validator/node_modules/gltf-validator/package.json" ]; then
+  echo "install-deps: installing the glTF validator (npm ci in tools/gltf-validator)"
+  npm ci --prefix "$validator" --no-audit --no-fund
 fi
-echo "install-deps: installing ${missing[*]}"
-$SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq
-$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"

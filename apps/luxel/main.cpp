@@ -20,6 +20,7 @@
 #include "luxel/import.h"
 #include "luxel/render.h"
 #include "luxel/solve.h"
+#include "bake_command.h"
 #include "bench_command.h"
 #include "progress_bar.h"
 
@@ -37,6 +38,7 @@ struct RenderArgs {
   std::string size = "512x512";
   int spp = 16;
   std::string solver = "progressive";
+  std::string backend = "cpu";
   size_t elements = 0;
   float elementSize = 0.0f;
   int threads = 0;
@@ -155,10 +157,13 @@ int runRender(const RenderArgs& a) {
 
   SolveOptions so;
   so.method = parseSolveMethod(a.solver);
+  so.backend = parseSolveBackend(a.backend);
   so.unshotThreshold = a.unshot;
   so.refineBudget = a.refine;
   if (a.raysPerPair > 0) so.formFactors.raysPerPair = a.raysPerPair;
   Solution solution = solve(scene, surfaces, so, bar.callback());
+  if (!a.quiet)
+    for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
   RenderStats rs;
   Image image = render(scene, surfaces, solution, ro, bar.callback(), &rs);
@@ -173,6 +178,8 @@ int runRender(const RenderArgs& a) {
         {"elements", s.elements},
         {"patches", s.patches},
         {"solver", s.method},
+        {"backend", s.backend},
+        {"device", s.device},
         {"shots", s.shots},
         {"iterations", s.iterations},
         {"rays", s.rays},
@@ -193,8 +200,9 @@ int runRender(const RenderArgs& a) {
     if (!out) throw Error(fmt::format("{}: cannot write statistics", a.statsPath));
   }
   if (!a.quiet) {
-    std::cout << fmt::format("luxel: {} — {} elements in {} patches, {} ({} shots, {} iterations), unshot {:.3f}%\n",
-                             scene.name, s.elements, s.patches, s.method, s.shots, s.iterations, 100.0 * s.unshotFraction);
+    std::cout << fmt::format("luxel: {} — {} elements in {} patches, {} on {}{} ({} shots, {} iterations), unshot {:.3f}%\n",
+                             scene.name, s.elements, s.patches, s.method, s.backend,
+                             s.device.empty() ? "" : " (" + s.device + ")", s.shots, s.iterations, 100.0 * s.unshotFraction);
     std::cout << fmt::format("luxel: solve {:.3f} s (setup {:.3f}, form factors {:.3f}, iterate {:.3f}), {:.1f} M rays/s\n",
                              s.secondsTotal, s.secondsSetup, s.secondsFormFactors, s.secondsSolve, s.raysPerSecond() / 1e6);
     std::cout << fmt::format("luxel: render {}x{} at {} spp ({}) {:.3f} s; total {:.3f} s\n", width, height, a.spp,
@@ -222,6 +230,7 @@ int main(int argc, char** argv) {
   render->add_option("--size", ra.size, "Image size WxH")->capture_default_str();
   render->add_option("--spp", ra.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
   render->add_option("--solver", ra.solver, "progressive or gather")->capture_default_str();
+  render->add_option("--backend", ra.backend, "cpu, gl (OpenGL 4.5 hemicubes, headless) or auto (gl when a context can be made)")->capture_default_str();
   auto* el = render->add_option("--elements", ra.elements, "Element budget (default 10000)");
   render->add_option("--element-size", ra.elementSize, "Element edge length in scene units")->excludes(el);
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
@@ -233,6 +242,19 @@ int main(int argc, char** argv) {
   render->add_option("--unshot", ra.unshot, "progressive: stop below this unshot fraction")->check(CLI::Range(1e-9, 0.999))->capture_default_str();
   render->add_option("--refine", ra.refine, "Adaptive refinement: extra elements allowed (0: off)");
   render->add_option("--rays-per-pair", ra.raysPerPair, "Visibility rays per element-patch pair")->check(CLI::Range(1, 256));
+
+  cli::BakeArgs ka;
+  CLI::App* bake = app.add_subcommand("bake", "Solve a scene and write it as glTF binary with the lighting baked in");
+  bake->add_option("scene", ka.scene, "Built-in name, a scene file (.json) or a mesh file")->required();
+  bake->add_option("-o,--output", ka.output, "Output file (.glb)")->required();
+  bake->add_flag("--vertex-colors", ka.vertexColors, "Bake outgoing radiance into per-vertex colours (COLOR_0)");
+  bake->add_option("--solver", ka.solver, "progressive or gather")->capture_default_str();
+  auto* kel = bake->add_option("--elements", ka.elements, "Element budget (default 10000)");
+  bake->add_option("--element-size", ka.elementSize, "Element edge length in scene units")->excludes(kel);
+  bake->add_option("--unshot", ka.unshot, "progressive: stop below this unshot fraction")->check(CLI::Range(1e-9, 0.999))->capture_default_str();
+  bake->add_option("--refine", ka.refine, "Adaptive refinement: extra elements allowed (0: off)");
+  bake->add_option("--threads", ka.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  bake->add_flag("-q,--quiet", ka.quiet, "Print nothing but errors");
 
   cli::BenchArgs ba;
   CLI::App* bench = app.add_subcommand("bench", "Run a benchmark suite: timings, throughput, memory and error");
@@ -255,6 +277,7 @@ int main(int argc, char** argv) {
   try {
     if (*render) return runRender(ra);
     if (*bench) return cli::runBench(ba);
+    if (*bake) return cli::runBake(ka);
   } catch (const Cancelled&) {
     std::cerr << "\nluxel: cancelled\n";
     return 130;

@@ -40,6 +40,15 @@ struct SolveOptions {
   enum class Method { Progressive, Gather };
   Method method = Method::Progressive;
 
+  // Where form factors are computed: the CPU (Embree + TBB), the GPU (OpenGL 4.5 hemicubes
+  // through EGL, headless), or the GPU when a context can be made and the CPU otherwise (with a
+  // warning in SolveStats::warnings).
+  enum class Backend { Cpu, Gl, Auto };
+  Backend backend = Backend::Cpu;
+  // GL backend: hemicube top-face resolution, and hemicubes per element side (k x k averaged).
+  int hemicubeResolution = 256;
+  int hemicubesPerSide = 2;
+
   // progressive: stop when unshot power / emitted power falls below this...
   double unshotThreshold = 1e-3;
   // ...or after this many seconds or shots (0: no limit).
@@ -64,6 +73,9 @@ struct SolveOptions {
 
 struct SolveStats {
   std::string method;
+  std::string backend;                // "cpu" or "gl"
+  std::string device;                 // the GL renderer when backend is "gl"
+  std::vector<std::string> warnings;  // e.g. why --backend auto fell back to the CPU
   size_t elements = 0;
   size_t patches = 0;
   uint64_t shots = 0;          // progressive: patches shot
@@ -94,6 +106,7 @@ struct Solution {
 Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options,
                const ProgressCallback& progress = {});
 
-SolveOptions::Method parseSolveMethod(const std::string& name);  // "progressive" | "gather"
+SolveOptions::Method parseSolveMethod(const std::string& name);    // "progressive" | "gather"
+SolveOptions::Backend parseSolveBackend(const std::string& name);  // "cpu" | "gl" | "auto"
 
 }  // namespace luxel

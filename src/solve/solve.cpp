@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include <fmt/format.h>
 
 #include "luxel/error.h"
 #include "luxel/solve.h"
 #include "mesh/corner_groups.h"
+#include "gl/gl_context.h"
+#include "gl/gl_transport.h"
 #include "solve/radiosity_system.h"
 #include "solve/solve_with_transport.h"
 #include "transport/cpu_transport.h"
@@ -30,6 +33,9 @@ void validate(const SolveOptions& o) {
   for (int n : {f.raysPerPair, f.nearRaysPerPair, f.emitterRaysPerPair, f.lightSamples})
     if (n < 1 || n > 256) fail(fmt::format("ray and sample counts must be in 1..256 (got {})", n));
   if (!(f.nearFactor >= 0.0f)) fail("near factor must be >= 0");
+  if (o.hemicubeResolution < 8 || o.hemicubeResolution > 4096 || o.hemicubeResolution % 2)
+    fail(fmt::format("hemicube resolution {} must be even, from 8 to 4096", o.hemicubeResolution));
+  if (o.hemicubesPerSide < 1 || o.hemicubesPerSide > 8) fail("hemicubes per element side must be in 1..8");
   if (!(o.refineThreshold > 0.0f)) fail("refine threshold must be > 0");
 }
 
@@ -68,15 +74,47 @@ SolveOptions::Method parseSolveMethod(const std::string& name) {
   throw Error(fmt::format("unknown solver '{}' (expected progressive or gather)", name));
 }
 
+SolveOptions::Backend parseSolveBackend(const std::string& name) {
+  if (name == "cpu") return SolveOptions::Backend::Cpu;
+  if (name == "gl") return SolveOptions::Backend::Gl;
+  if (name == "auto") return SolveOptions::Backend::Auto;
+  throw Error(fmt::format("unknown backend '{}' (expected cpu, gl or auto)", name));
+}
+
 Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options,
                const ProgressCallback& progress) {
   validate(options);
   const auto start = Clock::now();
+  std::vector<std::string> warnings;
+  if (options.backend != SolveOptions::Backend::Cpu) {
+    std::unique_ptr<gl::Context> context;
+    try {
+      context = std::make_unique<gl::Context>([&](const std::string& m) { warnings.push_back(m); });
+    } catch (const Error& e) {
+      if (options.backend == SolveOptions::Backend::Gl) throw;
+      warnings.push_back(fmt::format("{}; using the CPU backend", e.what()));
+    }
+    if (context) {
+      gl::HemicubeOptions h;
+      h.resolution = options.hemicubeResolution;
+      gl::GlTransport transport(scene, surfaces, options.formFactors, h, 1e-4f, options.hemicubesPerSide);
+      const double setup = secondsSince(start);
+      Solution sol = solveWithTransport(scene, surfaces, transport, options, progress);
+      sol.stats.secondsSetup += setup;
+      sol.stats.secondsTotal = secondsSince(start);
+      sol.stats.backend = "gl";
+      sol.stats.device = context->renderer();
+      sol.stats.warnings = std::move(warnings);
+      return sol;
+    }
+  }
   CpuTransport transport(scene, surfaces, options.formFactors);
   const double setup = secondsSince(start);
   Solution sol = solveWithTransport(scene, surfaces, transport, options, progress);
   sol.stats.secondsSetup += setup;
   sol.stats.secondsTotal = secondsSince(start);
+  sol.stats.backend = "cpu";
+  sol.stats.warnings = std::move(warnings);
   return sol;
 }
 

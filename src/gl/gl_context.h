@@ -1,0 +1,38 @@
+// A headless OpenGL 4.5 core context through EGL, for the GPU backend (seeds 000, 001, 003 render
+// hemicubes; any 4.5 driver will do: NVIDIA, AMD, Intel, or Mesa's llvmpipe on machines without
+// a GPU). No window and no X server: EGL's device platform first, then Mesa's surfaceless one.
+// Entry points come from libepoxy.
+#pragma once
+
+#include <functional>
+#include <string>
+
+namespace luxel::gl {
+
+class Context {
+ public:
+  // Where driver messages (KHR_debug) go; empty: dropped. The library never prints.
+  using MessageSink = std::function<void(const std::string&)>;
+
+  // Makes the context current on the calling thread. Throws luxel::Error saying why no 4.5 core
+  // context could be made, platform by platform.
+  explicit Context(MessageSink sink = {});
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  std::string renderer() const;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string version() const;   // e.g. "4.5 (Core Profile) Mesa 22.3.6"
+  std::string platform() const { return platform_; }  // "device" or "surfaceless"
+
+  // Throws luxel::Error naming `what` when glGetError reports an error.
+  static void check(const char* what);
+
+ private:
+  void* display_ = nullptr;
+  void* context_ = nullptr;
+  std::string platform_;
+  MessageSink sink_;
+};
+
+}  // namespace luxel::gl
