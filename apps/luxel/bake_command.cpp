@@ -38,16 +38,11 @@ int runBake(const BakeArgs& a) {
   if (!a.quiet)
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
-  DiscretiseOptions dopt;
-  if (a.elementSize > 0.0f) dopt.elementSize = a.elementSize;
-  if (a.elements > 0) dopt.elementBudget = a.elements;
-  SurfaceSet surfaces = discretise(scene, dopt);
-
-  SolveOptions so;
-  so.method = parseSolveMethod(a.solver);
-  so.unshotThreshold = a.unshot;
-  so.refineBudget = a.refine;
+  const SolveOptions so = solveOptions(a.solve);
+  SurfaceSet surfaces = discretise(scene, discretiseOptions(a.solve));
   Solution solution = solve(scene, surfaces, so, bar.callback());
+  if (!a.quiet)
+    for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
   GlbOptions go;
   go.flippedFaces = flippedFaceFlags(scene, surfaces);

@@ -5,17 +5,15 @@
 #include <cstddef>
 #include <string>
 
+#include "solve_args.h"
+
 namespace luxel::cli {
 
 struct BakeArgs {
   std::string scene;
   std::string output;
   bool vertexColors = false;
-  std::string solver = "progressive";
-  size_t elements = 0;
-  float elementSize = 0.0f;
-  double unshot = 1e-3;
-  size_t refine = 0;
+  SolveArgs solve;
   int threads = 0;
   bool quiet = false;
 };

@@ -21,6 +21,7 @@
 #include "luxel/render.h"
 #include "luxel/solve.h"
 #include "bake_command.h"
+#include "solve_args.h"
 #include "bench_command.h"
 #include "progress_bar.h"
 
@@ -37,19 +38,13 @@ struct RenderArgs {
   float fov = 0.0f;
   std::string size = "512x512";
   int spp = 16;
-  std::string solver = "progressive";
-  std::string backend = "cpu";
-  size_t elements = 0;
-  float elementSize = 0.0f;
+  cli::SolveArgs solve;
   int threads = 0;
   bool quiet = false;
   std::string statsPath;
   std::string mode = "hq";
   std::string toneCurve = "filmic";
   float exposure = 0.0f;
-  double unshot = 1e-3;
-  size_t refine = 0;
-  int raysPerPair = 0;
 };
 
 Vec3 parseVec3(const std::string& text, const char* what) {
@@ -150,17 +145,8 @@ int runRender(const RenderArgs& a) {
   tm.curve = parseToneCurve(a.toneCurve);
   tm.exposure = a.exposure;
 
-  DiscretiseOptions dopt;
-  if (a.elementSize > 0.0f) dopt.elementSize = a.elementSize;
-  if (a.elements > 0) dopt.elementBudget = a.elements;
-  SurfaceSet surfaces = discretise(scene, dopt);
-
-  SolveOptions so;
-  so.method = parseSolveMethod(a.solver);
-  so.backend = parseSolveBackend(a.backend);
-  so.unshotThreshold = a.unshot;
-  so.refineBudget = a.refine;
-  if (a.raysPerPair > 0) so.formFactors.raysPerPair = a.raysPerPair;
+  const SolveOptions so = cli::solveOptions(a.solve);  // before the solve: a bad name fails fast
+  SurfaceSet surfaces = discretise(scene, cli::discretiseOptions(a.solve));
   Solution solution = solve(scene, surfaces, so, bar.callback());
   if (!a.quiet)
     for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
@@ -229,30 +215,20 @@ int main(int argc, char** argv) {
   render->add_option("--fov", ra.fov, "Vertical field of view in degrees")->check(CLI::Range(0.01f, 179.0f));
   render->add_option("--size", ra.size, "Image size WxH")->capture_default_str();
   render->add_option("--spp", ra.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
-  render->add_option("--solver", ra.solver, "progressive or gather")->capture_default_str();
-  render->add_option("--backend", ra.backend, "cpu, gl (OpenGL 4.5 hemicubes, headless) or auto (gl when a context can be made)")->capture_default_str();
-  auto* el = render->add_option("--elements", ra.elements, "Element budget (default 10000)");
-  render->add_option("--element-size", ra.elementSize, "Element edge length in scene units")->excludes(el);
+  cli::addSolveOptions(*render, ra.solve);
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   render->add_flag("-q,--quiet", ra.quiet, "Print nothing but errors");
   render->add_option("--stats", ra.statsPath, "Write statistics as JSON");
   render->add_option("--mode", ra.mode, "hq (exact direct light per pixel) or radiosity (the seeds' display)")->capture_default_str();
   render->add_option("--tonemap", ra.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
   render->add_option("--exposure", ra.exposure, "PNG exposure in stops, on top of auto exposure");
-  render->add_option("--unshot", ra.unshot, "progressive: stop below this unshot fraction")->check(CLI::Range(1e-9, 0.999))->capture_default_str();
-  render->add_option("--refine", ra.refine, "Adaptive refinement: extra elements allowed (0: off)");
-  render->add_option("--rays-per-pair", ra.raysPerPair, "Visibility rays per element-patch pair")->check(CLI::Range(1, 256));
 
   cli::BakeArgs ka;
   CLI::App* bake = app.add_subcommand("bake", "Solve a scene and write it as glTF binary with the lighting baked in");
   bake->add_option("scene", ka.scene, "Built-in name, a scene file (.json) or a mesh file")->required();
   bake->add_option("-o,--output", ka.output, "Output file (.glb)")->required();
   bake->add_flag("--vertex-colors", ka.vertexColors, "Bake outgoing radiance into per-vertex colours (COLOR_0)");
-  bake->add_option("--solver", ka.solver, "progressive or gather")->capture_default_str();
-  auto* kel = bake->add_option("--elements", ka.elements, "Element budget (default 10000)");
-  bake->add_option("--element-size", ka.elementSize, "Element edge length in scene units")->excludes(kel);
-  bake->add_option("--unshot", ka.unshot, "progressive: stop below this unshot fraction")->check(CLI::Range(1e-9, 0.999))->capture_default_str();
-  bake->add_option("--refine", ka.refine, "Adaptive refinement: extra elements allowed (0: off)");
+  cli::addSolveOptions(*bake, ka.solve);
   bake->add_option("--threads", ka.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   bake->add_flag("-q,--quiet", ka.quiet, "Print nothing but errors");
 

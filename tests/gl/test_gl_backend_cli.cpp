@@ -5,20 +5,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_runner.h"
-#include "gl/gl_context.h"
+#include "gl/gl_test_context.h"
 #include "luxel/error.h"
 
 namespace {
 
-bool haveGl(std::string& why) {
-  try {
-    luxel::gl::Context context;
-    return true;
-  } catch (const luxel::Error& e) {
-    why = e.what();
-    return false;
-  }
-}
+bool haveGl(std::string& why) { return luxel::test::glContextOr(why) != nullptr; }
 
 TEST(GlBackendCli, RendersOnTheGpuAndSaysSo) {
   std::string why;

@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "gl/gl_context.h"
+#include "gl/gl_test_context.h"
 #include "gl/gl_transport.h"
 #include "luxel/bench.h"
 #include "luxel/error.h"
@@ -14,15 +14,6 @@
 #include "solve/solve_with_transport.h"
 
 namespace {
-
-std::unique_ptr<luxel::gl::Context> contextOrNull(std::string& why) {
-  try {
-    return std::make_unique<luxel::gl::Context>();
-  } catch (const luxel::Error& e) {
-    why = e.what();
-    return nullptr;
-  }
-}
 
 luxel::SolveOptions gatherOptions() {
   luxel::SolveOptions o;
@@ -33,7 +24,7 @@ luxel::SolveOptions gatherOptions() {
 
 TEST(GlParity, FurnaceReachesTheClosedForm) {
   std::string why;
-  auto context = contextOrNull(why);
+  auto context = luxel::test::glContextOr(why);
   if (!context) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
   const float rho = 0.5f, le = 1.0f;
   luxel::Scene scene = luxel::builtin::furnace(rho, le);
@@ -51,7 +42,7 @@ TEST(GlParity, FurnaceReachesTheClosedForm) {
 
 TEST(GlParity, CornellBoxAgreesWithTheCpuBackend) {
   std::string why;
-  auto context = contextOrNull(why);
+  auto context = luxel::test::glContextOr(why);
   if (!context) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
   luxel::Scene scene = luxel::builtin::cornellBox();
   luxel::DiscretiseOptions d;

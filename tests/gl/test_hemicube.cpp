@@ -6,7 +6,7 @@
 #include <memory>
 #include <numeric>
 
-#include "gl/gl_context.h"
+#include "gl/gl_test_context.h"
 #include "gl/hemicube.h"
 #include "luxel/error.h"
 #include "transport/form_factor.h"
@@ -28,15 +28,6 @@ std::vector<Polygon> insideOfCube() {
           quad({h, l, l}, {h, l, h}, {h, h, h}, {h, h, l})};  // x = +1, -x
 }
 
-std::unique_ptr<luxel::gl::Context> contextOrNull(std::string& why) {
-  try {
-    return std::make_unique<luxel::gl::Context>();
-  } catch (const luxel::Error& e) {
-    why = e.what();
-    return nullptr;
-  }
-}
-
 TEST(DeltaFormFactors, RawSumIsNearOneAndTablesSumToOne) {
   for (int res : {16, 64, 256}) {
     luxel::gl::DeltaFormFactors d(res);
@@ -55,7 +46,7 @@ TEST(DeltaFormFactors, RawSumIsNearOneAndTablesSumToOne) {
 
 TEST(GlHemicube, EnclosingBoxSumsToOneAndMatchesExactFactors) {
   std::string why;
-  auto context = contextOrNull(why);
+  auto context = luxel::test::glContextOr(why);
   if (!context) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
   const std::vector<Polygon> walls = insideOfCube();
   luxel::gl::ItemHemicube hemicube(walls, 3.5f, {.resolution = 64});
@@ -76,7 +67,7 @@ TEST(GlHemicube, EnclosingBoxSumsToOneAndMatchesExactFactors) {
 
 TEST(GlHemicube, AnOccluderTakesItsShareFromWhatItHides) {
   std::string why;
-  auto context = contextOrNull(why);
+  auto context = luxel::test::glContextOr(why);
   if (!context) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
   std::vector<Polygon> scene = insideOfCube();
   // A plate facing down, 0.5 above the receiver, hiding the middle of the ceiling.

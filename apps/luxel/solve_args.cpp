@@ -1,0 +1,35 @@
+#include "solve_args.h"
+
+namespace luxel::cli {
+
+void addSolveOptions(CLI::App& c, SolveArgs& a) {
+  c.add_option("--solver", a.solver, "progressive or gather")->capture_default_str();
+  c.add_option("--backend", a.backend, "cpu, gl (OpenGL 4.5 hemicubes, headless) or auto (gl when a context can be made)")
+      ->capture_default_str();
+  auto* elements = c.add_option("--elements", a.elements, "Element budget (default 10000)");
+  c.add_option("--element-size", a.elementSize, "Element edge length in scene units")->excludes(elements);
+  c.add_option("--unshot", a.unshot, "progressive: stop below this unshot fraction")
+      ->check(CLI::Range(1e-9, 0.999))
+      ->capture_default_str();
+  c.add_option("--refine", a.refine, "Adaptive refinement: extra elements allowed (0: off)");
+  c.add_option("--rays-per-pair", a.raysPerPair, "Visibility rays per element-patch pair")->check(CLI::Range(1, 256));
+}
+
+DiscretiseOptions discretiseOptions(const SolveArgs& a) {
+  DiscretiseOptions d;
+  if (a.elementSize > 0.0f) d.elementSize = a.elementSize;
+  if (a.elements > 0) d.elementBudget = a.elements;
+  return d;
+}
+
+SolveOptions solveOptions(const SolveArgs& a) {
+  SolveOptions o;
+  o.method = parseSolveMethod(a.solver);
+  o.backend = parseSolveBackend(a.backend);
+  o.unshotThreshold = a.unshot;
+  o.refineBudget = a.refine;
+  if (a.raysPerPair > 0) o.formFactors.raysPerPair = a.raysPerPair;
+  return o;
+}
+
+}  // namespace luxel::cli

@@ -1,0 +1,31 @@
+// The options every command that solves a scene shares (render, bake): discretisation, solver,
+// backend. One definition, so the commands cannot drift apart.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "luxel/solve.h"
+#include "luxel/surface.h"
+
+namespace luxel::cli {
+
+struct SolveArgs {
+  std::string solver = "progressive";
+  std::string backend = "cpu";
+  size_t elements = 0;
+  float elementSize = 0.0f;
+  double unshot = 1e-3;
+  size_t refine = 0;
+  int raysPerPair = 0;
+};
+
+// Adds --solver, --backend, --elements / --element-size, --unshot, --refine, --rays-per-pair.
+void addSolveOptions(CLI::App& command, SolveArgs& args);
+
+DiscretiseOptions discretiseOptions(const SolveArgs& args);
+SolveOptions solveOptions(const SolveArgs& args);  // throws Error on an unknown solver or backend
+
+}  // namespace luxel::cli
