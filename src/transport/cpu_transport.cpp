@@ -1,6 +1,7 @@
 #include "transport/cpu_transport.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -43,6 +44,18 @@ std::vector<Polygon> facePolygons(const SurfaceSet& set) {
 }
 
 int squareCount(int n) { return std::clamp(int(std::sqrt(float(n)) + 1e-3f), 1, 16); }
+
+// Stratum i of a k x k grid is cell (i % k, i / k); tabulated for every k up to 16, because the
+// divisions cost more than the rest of generating a ray.
+const std::array<std::array<uint8_t, 2>, 256>& strataCells(int k) {
+  static const auto table = [] {
+    std::array<std::array<std::array<uint8_t, 2>, 256>, 17> t{};
+    for (int n = 1; n <= 16; ++n)
+      for (int i = 0; i < n * n; ++i) t[size_t(n)][size_t(i)] = {uint8_t(i % n), uint8_t(i / n)};
+    return t;
+  }();
+  return table[size_t(k)];
+}
 
 // A random permutation of 0..m-1 (m <= 256), to pair strata of two domains without correlation.
 void shuffledStrata(Rng& rng, int m, int* out) {
@@ -255,11 +268,14 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
     int permutation[256];
     shuffledStrata(rng, m, permutation);
     const size_t first = ws.rays.size();
+    const float invK = 1.0f / float(k);
+    const auto& cells = strataCells(k);  // (column, row) of each stratum: no division per ray
     for (int i = 0; i < m; ++i) {
-      float s = (float(i % k) + rng.next()) / float(k), t = (float(i / k) + rng.next()) / float(k);
+      const auto [ix, iy] = cells[size_t(i)];
+      float s = (float(ix) + rng.next()) * invK, t = (float(iy) + rng.next()) * invK;
       Vec3 x = polygonPoint(e.polygon, s, t);
-      const int j = permutation[i];
-      float su = (float(j % k) + rng.next()) / float(k), sv = (float(j / k) + rng.next()) / float(k);
+      const auto [jx, jy] = cells[size_t(permutation[i])];
+      float su = (float(jx) + rng.next()) * invK, sv = (float(jy) + rng.next()) * invK;
       Vec3 y = polygonPoint(p.polygon, su, sv);
       Vec3 d = y - x;
       // Where the two polygons cross each other's planes, some point pairs face away; A already
