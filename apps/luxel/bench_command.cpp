@@ -56,6 +56,11 @@ nlohmann::json caseJson(const CaseResult& r) {
       {"error", r.error ? nlohmann::json(*r.error) : nlohmann::json(nullptr)},
       {"error_note", r.errorNote},
       {"reference_seconds", r.referenceSeconds},
+      {"device", r.device},
+      {"hemicubes", r.hemicubes},
+      {"hemicubes_per_second", r.hemicubesPerSecond},
+      {"ms_per_row", r.msPerRow},
+      {"ms_per_shot", r.msPerShot},
   };
   if (!c.seed.source.empty())
     j["seed"] = {{"source", c.seed.source}, {"milliseconds", c.seed.milliseconds}, {"error", c.seed.error}};

@@ -26,8 +26,9 @@ struct SeedFigure {
 struct Case {
   std::string name;     // unique in its suite, e.g. "cornell-large/progressive"
   std::string scene;    // a built-in name, a scene file or a mesh file (as `luxel render`)
-  std::string backend = "cpu";
+  std::string backend = "cpu";  // "cpu", or "gl": OpenGL hemicubes (skipped, saying why, without a context)
   std::string setting;  // what this case varies, in words
+  bool glIdShooting = false;  // GL backend: ID-hemicube shooting (4 x 4 per patch) instead of transposed rows
   DiscretiseOptions discretise;
   SolveOptions solve;
   SeedFigure seed;
@@ -43,7 +44,8 @@ struct Suite {
 };
 
 // The named suites: "seeds" (001's four scenes), "shader" (000's boxes), "scenes" (the shared
-// real scenes, which skip when absent), "quick" (a smoke run).
+// real scenes, which skip when absent), "quick" (a smoke run), "gl" (the OpenGL backend on scenes
+// small enough for Mesa's llvmpipe).
 const std::vector<Suite>& suites();
 const Suite& findSuite(const std::string& name);  // throws Error listing the names
 
@@ -79,6 +81,13 @@ struct CaseResult {
   // Embree alone on the rays one run cast (same streams, same threads).
   double limitRaysPerSecond = 0.0;
   double limitFraction = 0.0;  // raysPerSecond / limitRaysPerSecond
+  // GL cases (0 otherwise), median run: hemicubes rendered per run and per second of
+  // form-factor time; milliseconds of form-factor time per element row (gather) and of
+  // form-factor plus solve time per shot (progressive; 0 when none was shot).
+  std::string device;  // the GL renderer
+  uint64_t hemicubes = 0;
+  double hemicubesPerSecond = 0.0;
+  double msPerRow = 0.0, msPerShot = 0.0;
 };
 
 CaseResult runCase(const Case& benchCase, const Options& options);

@@ -106,7 +106,37 @@ std::vector<Suite> makeSuites() {
   Suite quick{"quick", "a smoke run: the built-in Cornell box at 1,000 elements", {}};
   quick.cases.push_back(progressive("cornell", 1e-2, {}));
   quick.cases.back().discretise.elementBudget = 1000;
-  return {seeds, shader, scenes, core, quick};
+
+  // The GL backend (item-buffer hemicubes, default 256 pixels, 2 x 2 per element), on scenes
+  // small enough for Mesa's llvmpipe; the error columns are against the same CPU references as
+  // the CPU cases. Progressive shooting transposes all rows (the first shot renders them), or
+  // renders ID hemicubes on the shooters (the -id case).
+  Suite gl{"gl", "the OpenGL backend's hemicubes on cornell-low and the built-in Cornell box at 1,000 elements", {}};
+  {
+    Case low = gather("cornell-low", kSeedGatherResidual, {t51, 150, 0.0110786});
+    low.name = "cornell-low/gl-gather";
+    low.backend = "gl";
+    low.setting += ", GL hemicubes";
+    gl.cases.push_back(low);
+    Case box = gather("cornell", kSeedGatherResidual, {});
+    box.name = "cornell-1k/gl-gather";
+    box.backend = "gl";
+    box.setting += ", GL hemicubes";
+    box.discretise.elementBudget = 1000;
+    gl.cases.push_back(box);
+    Case shoot = progressive("cornell", 1e-2, {});
+    shoot.name = "cornell-1k/gl-progressive";
+    shoot.backend = "gl";
+    shoot.setting += ", GL hemicubes";
+    shoot.discretise.elementBudget = 1000;
+    gl.cases.push_back(shoot);
+    Case id = shoot;
+    id.name = "cornell-1k/gl-progressive-id";
+    id.setting += ", ID-hemicube shooting";
+    id.glIdShooting = true;
+    gl.cases.push_back(id);
+  }
+  return {seeds, shader, scenes, core, quick, gl};
 }
 
 }  // namespace

@@ -25,9 +25,20 @@ struct DeltaFormFactors {
   explicit DeltaFormFactors(int resolution);
 };
 
+// How a rendered hemicube becomes per-item form factors.
+enum class HemicubeIntegration {
+  // A compute pass reads the five-layer item texture and adds each pixel's delta form factor to
+  // its item's sum with integer atomics on fixed point (shared_layout.h: one unit is 2^-31); only
+  // the per-item sums come back. The default.
+  Compute,
+  // glReadPixels of each face and a sum on the CPU: the reference the compute pass is tested on.
+  ReadBack,
+};
+
 struct HemicubeOptions {
   int resolution = 64;     // top-face pixels per side (001: 64)
   float nearPlane = 1e-4f; // relative to the scene extent: geometry closer than this is clipped
+  HemicubeIntegration integration = HemicubeIntegration::Compute;
 };
 
 // Renders item-buffer hemicubes of a fixed set of polygons (uploaded once) and returns, per
@@ -40,6 +51,10 @@ class ItemHemicube {
 
   // F from a differential area at `p` with unit normal `n` to each polygon, occlusion included.
   std::vector<float> formFactors(Vec3 p, Vec3 n);
+  // The same into `out` (one float per polygon), which is overwritten.
+  void formFactors(Vec3 p, Vec3 n, std::span<float> out);
+
+  HemicubeIntegration integration() const { return integration_; }
 
   const DeltaFormFactors& deltas() const { return deltas_; }
 
@@ -48,6 +63,9 @@ class ItemHemicube {
   std::unique_ptr<Impl> impl_;
   DeltaFormFactors deltas_;
   size_t polygonCount_ = 0;
+  HemicubeIntegration integration_ = HemicubeIntegration::Compute;
+
+  void render(Vec3 p, Vec3 n, std::span<float> out);
 };
 
 }  // namespace luxel::gl

@@ -2,6 +2,8 @@
 
 #include <epoxy/gl.h>
 
+#include <initializer_list>
+
 #include <fmt/format.h>
 
 #include "luxel/error.h"
@@ -21,12 +23,32 @@ GLuint compile(const std::string& name, GLenum stage, const std::string& source)
     glGetShaderInfoLog(shader, sizeof log, nullptr, log);
     glDeleteShader(shader);
     throw Error(fmt::format("OpenGL: {} {} shader does not compile: {}", name,
-                            stage == GL_VERTEX_SHADER ? "vertex" : "fragment", log));
+                            stage == GL_VERTEX_SHADER ? "vertex" : stage == GL_FRAGMENT_SHADER ? "fragment" : "compute", log));
   }
   return shader;
 }
 
+GLuint link(const std::string& name, std::initializer_list<GLuint> shaders) {
+  GLuint program = glCreateProgram();
+  for (GLuint s : shaders) glAttachShader(program, s);
+  glLinkProgram(program);
+  for (GLuint s : shaders) glDeleteShader(s);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw Error(fmt::format("OpenGL: {} program does not link: {}", name, log));
+  }
+  return program;
+}
+
 }  // namespace
+
+ShaderProgram::ShaderProgram(const std::string& name, const std::string& compute) {
+  program_ = link(name, {compile(name, GL_COMPUTE_SHADER, compute)});
+}
 
 ShaderProgram::ShaderProgram(const std::string& name, const std::string& vertex, const std::string& fragment) {
   GLuint vs = compile(name, GL_VERTEX_SHADER, vertex);
@@ -37,20 +59,7 @@ ShaderProgram::ShaderProgram(const std::string& name, const std::string& vertex,
     glDeleteShader(vs);
     throw;
   }
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-    glDeleteProgram(program_);
-    throw Error(fmt::format("OpenGL: {} program does not link: {}", name, log));
-  }
+  program_ = link(name, {vs, fs});
 }
 
 ShaderProgram::~ShaderProgram() {

@@ -9,6 +9,8 @@ class ShaderProgram {
  public:
   // Compiles and links; throws luxel::Error with `name` and the driver's log on failure.
   ShaderProgram(const std::string& name, const std::string& vertex, const std::string& fragment);
+  // A compute program (OpenGL 4.3+), the same way.
+  ShaderProgram(const std::string& name, const std::string& compute);
   ~ShaderProgram();
   ShaderProgram(const ShaderProgram&) = delete;
   ShaderProgram& operator=(const ShaderProgram&) = delete;

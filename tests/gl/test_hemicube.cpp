@@ -3,6 +3,9 @@
 // context (Mesa's llvmpipe is enough); without one, the GL tests skip and say why.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numeric>
 
@@ -82,6 +85,42 @@ TEST(GlHemicube, AnOccluderTakesItsShareFromWhatItHides) {
   EXPECT_NEAR(f[6], plate, 0.01f * plate + 0.002f);
   EXPECT_NEAR(f[1], ceiling - plate, 0.01f * ceiling + 0.002f);  // the plate hides exactly its own solid angle
   EXPECT_NEAR(std::accumulate(f.begin(), f.end(), 0.0), 1.0, 0.005);
+}
+
+TEST(GlHemicube, ComputeIntegrationEqualsReadBack) {
+  std::string why;
+  auto context = luxel::test::glContextOr(why);
+  if (!context) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  std::vector<Polygon> scene = insideOfCube();
+  scene.push_back(Polygon{{Vec3(-0.25f, 0.5f, -0.25f), Vec3(0.25f, 0.5f, -0.25f), Vec3(0.25f, 0.5f, 0.25f),
+                           Vec3(-0.25f, 0.5f, 0.25f)}, 4});
+  for (int res : {64, 256}) {
+    double maxDifference = 0.0;
+    luxel::gl::ItemHemicube compute(scene, 3.5f, {.resolution = res});
+    luxel::gl::ItemHemicube readBack(scene, 3.5f, {.resolution = res, .integration = luxel::gl::HemicubeIntegration::ReadBack});
+    ASSERT_EQ(compute.integration(), luxel::gl::HemicubeIntegration::Compute);
+    struct Receiver {
+      Vec3 p, n;
+    };
+    for (const Receiver& r : {Receiver{{0, 0, 0}, {0, 1, 0}}, Receiver{{0.2f, -0.3f, 0.1f}, glm::normalize(Vec3(0.3f, 1, -0.2f))},
+                              Receiver{{0.5f, -0.99f, -0.4f}, {0, 1, 0}}, Receiver{{-0.9f, 0.1f, 0.3f}, {1, 0, 0}}}) {
+      const std::vector<float> a = compute.formFactors(r.p, r.n), b = readBack.formFactors(r.p, r.n);
+      ASSERT_EQ(a.size(), b.size());
+      double sa = 0, sb = 0;
+      for (size_t w = 0; w < a.size(); ++w) {
+        EXPECT_NEAR(a[w], b[w], 1e-5) << "item " << w << " at " << res << " pixels";
+        maxDifference = std::max(maxDifference, double(std::abs(a[w] - b[w])));
+        sa += a[w], sb += b[w];
+      }
+      EXPECT_NEAR(sa, sb, 1e-5) << res;
+      EXPECT_NEAR(sa, 1.0, 0.005) << res;
+    }
+    RecordProperty("max_difference_" + std::to_string(res), std::to_string(maxDifference));
+    std::printf("compute vs read-back at %d pixels: largest difference %.3g\n", res, maxDifference);
+    // The span overload checks its size.
+    std::vector<float> wrong(3);
+    EXPECT_THROW(compute.formFactors(Vec3(0), Vec3(0, 1, 0), wrong), luxel::Error);
+  }
 }
 
 }  // namespace

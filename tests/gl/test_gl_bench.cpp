@@ -1,0 +1,74 @@
+// `luxel bench`'s GL cases (issue 4): a case with backend "gl" runs through the hemicube transport
+// and reports hemicubes per second, milliseconds per row or shot, and the same error column as the
+// CPU cases; without an OpenGL 4.5 context it throws, saying why, which the bench command reports
+// as a skipped case.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "gl/gl_test_context.h"
+#include "luxel/bench.h"
+#include "luxel/error.h"
+
+namespace {
+
+luxel::bench::Case smallGlCase(luxel::SolveOptions::Method method) {
+  luxel::bench::Case c;
+  c.name = "cornell-200/gl";
+  c.scene = "cornell";
+  c.backend = "gl";
+  c.discretise.elementBudget = 200;
+  c.solve.method = method;
+  c.solve.residualThreshold = 1e-4;
+  c.solve.unshotThreshold = 1e-2;
+  c.solve.hemicubeResolution = 64;
+  return c;
+}
+
+TEST(GlBench, GatherCaseReportsHemicubesRowsAndError) {
+  std::string why;
+  const bool haveGl = luxel::test::glContextOr(why) != nullptr;
+  const std::filesystem::path cache = std::filesystem::temp_directory_path() / "luxel-gl-bench-refs";
+  luxel::bench::Options o;
+  o.runs = 1;
+  o.cacheDir = cache.string();
+  const luxel::bench::Case c = smallGlCase(luxel::SolveOptions::Method::Gather);
+  if (!haveGl) {
+    EXPECT_THROW(luxel::bench::runCase(c, o), luxel::Error);  // reported as skipped, with the reason
+    GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  }
+  const luxel::bench::CaseResult r = luxel::bench::runCase(c, o);
+  EXPECT_FALSE(r.device.empty());
+  EXPECT_EQ(r.hemicubes, 4 * r.elements);  // 2 x 2 per element, each row once
+  EXPECT_GT(r.hemicubesPerSecond, 0.0);
+  EXPECT_GT(r.msPerRow, 0.0);
+  EXPECT_NEAR(r.msPerRow, 1e3 * r.formFactors.median / double(r.elements), 1e-6 + 1e-3 * r.msPerRow);
+  EXPECT_EQ(r.limitRaysPerSecond, 0.0);  // no Embree replay for GL cases
+  ASSERT_TRUE(r.error.has_value()) << r.errorNote;
+  EXPECT_GT(*r.error, 0.0);
+  EXPECT_LT(*r.error, 0.05);
+  std::error_code ec;
+  std::filesystem::remove_all(cache, ec);
+}
+
+TEST(GlBench, ProgressiveCaseReportsMillisecondsPerShot) {
+  std::string why;
+  if (!luxel::test::glContextOr(why)) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  luxel::bench::Options o;
+  o.runs = 1;
+  o.reference = false;
+  const luxel::bench::CaseResult r = luxel::bench::runCase(smallGlCase(luxel::SolveOptions::Method::Progressive), o);
+  EXPECT_GT(r.shots, 0u);
+  EXPECT_GT(r.msPerShot, 0.0);
+  EXPECT_GT(r.hemicubesPerSecond, 0.0);
+  EXPECT_EQ(r.errorNote, "reference off");
+}
+
+TEST(GlBench, TheGlSuiteHasOnlyGlCases) {
+  const luxel::bench::Suite& s = luxel::bench::findSuite("gl");
+  EXPECT_GE(s.cases.size(), 2u);
+  for (const auto& c : s.cases) EXPECT_EQ(c.backend, "gl") << c.name;
+  for (const auto& c : luxel::bench::findSuite("seeds").cases) EXPECT_EQ(c.backend, "cpu") << c.name;
+}
+
+}  // namespace
