@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,7 +12,9 @@
 
 #include "luxel/bake.h"
 #include "luxel/error.h"
+#include "luxel/image.h"
 #include "luxel/import.h"
+#include "luxel/lightmap.h"
 #include "luxel/solve.h"
 #include "progress_bar.h"
 
@@ -39,6 +42,52 @@ int runBake(const BakeArgs& a) {
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
   const SolveOptions so = solveOptions(a.solve);
+  if (a.lightmaps) {
+    if (a.vertexColors) throw Error("--lightmaps and --vertex-colors exclude each other");
+    AtlasOptions ao;
+    ao.texelsPerMetre = a.texelsPerMetre;
+    ao.pageSize = a.lightmapSize;
+    if (ao.texelsPerMetre <= 0.0f) {
+      // Every texel is an element of the solve, so the default density gives about as many texels
+      // as the element budget (--elements, 10,000 by default): a whole 1024 page on the Cornell
+      // box would be half a million elements.
+      double area = 0.0;
+      for (const Mesh& m : scene.meshes)
+        for (const Face& f : m.faces) {
+          const Vec3 p0 = m.positions[f.v[0]], p1 = m.positions[f.v[1]], p2 = m.positions[f.v[2]],
+                     p3 = m.positions[f.v[3]];
+          area += 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+          if (!f.isTriangle()) area += 0.5 * glm::length(glm::cross(p2 - p0, p3 - p0));
+        }
+      const double budget = a.solve.elements > 0 ? double(a.solve.elements) : 10000.0;
+      if (area > 0.0) ao.texelsPerMetre = float(std::sqrt(budget / area));
+    }
+    const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
+    LightmapBakeOptions lo;
+    lo.solve = so;
+    lo.dilation = ao.gutter;
+    const LightmapBake bake = bakeLightmaps(scene, atlas, lo, bar.callback());
+    GlbOptions go;
+    go.flippedFaces = flippedFaceFlags(scene, bake.surfaces.surfaces);
+    addLightmaps(go, scene, atlas, bake);
+    writeGlb(scene, out, go);
+    for (int p = 0; p < int(bake.pages.size()); ++p) {
+      fs::path exr = out;
+      exr.replace_extension(fmt::format(".lightmap{}.exr", p));
+      writeExr(lightmapPageImage(bake, p), exr);
+    }
+    bar.finish();
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!a.quiet) {
+      std::cout << fmt::format("luxel: lightmaps — {} pages of {}², {:.1f} texels per metre, {} texels in {} patches, "
+                               "{} invalid, {} dilated, seams {:.3g} -> {:.3g}; total {:.3f} s\n",
+                               bake.pages.size(), atlas.pageSize, atlas.texelsPerMetre, bake.texels,
+                               bake.surfaces.surfaces.patches.size(), bake.invalidTexels, bake.dilatedTexels,
+                               bake.seamMaxBefore, bake.seamMaxAfter, total);
+      std::cout << "luxel: wrote " << a.output << "\n";
+    }
+    return 0;
+  }
   SurfaceSet surfaces = discretise(scene, discretiseOptions(a.solve));
   Solution solution = solve(scene, surfaces, so, bar.callback());
   if (!a.quiet)
@@ -67,6 +116,14 @@ int runBake(const BakeArgs& a) {
     std::cout << "luxel: wrote " << a.output << "\n";
   }
   return 0;
+}
+
+void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
+  bake.add_flag("--lightmaps", a.lightmaps, "Bake lightmaps (TEXCOORD_1, RGBM pages in the glb, EXR pages beside it)");
+  bake.add_option("--texels-per-metre", a.texelsPerMetre, "Lightmap density (default: about as many texels as --elements)")
+      ->check(CLI::NonNegativeNumber);
+  bake.add_option("--lightmap-size", a.lightmapSize, "Lightmap page size in texels (default 1024)")
+      ->check(CLI::Range(16, 16384));
 }
 
 }  // namespace luxel::cli

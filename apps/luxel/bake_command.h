@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "solve_args.h"
 
 namespace luxel::cli {
@@ -13,11 +15,18 @@ struct BakeArgs {
   std::string scene;
   std::string output;
   bool vertexColors = false;
+  // --lightmaps: bake texels as elements (docs/lightmaps.md) and write TEXCOORD_1, the pages as RGBM
+  // PNGs in the glb and as float EXR files beside it (OUT.lightmapN.exr).
+  bool lightmaps = false;
+  float texelsPerMetre = 0.0f;  // 0: about as many texels as the element budget
+  int lightmapSize = 1024;
   SolveArgs solve;
   int threads = 0;
   bool quiet = false;
 };
 
 int runBake(const BakeArgs& args);
+// Registers --lightmaps, --texels-per-metre and --lightmap-size on the bake subcommand (main.cpp).
+void addLightmapOptions(CLI::App& bake, BakeArgs& args);
 
 }  // namespace luxel::cli

@@ -229,12 +229,13 @@ int main(int argc, char** argv) {
   bake->add_option("-o,--output", ka.output, "Output file (.glb)")->required();
   bake->add_flag("--vertex-colors", ka.vertexColors, "Bake outgoing radiance into per-vertex colours (COLOR_0)");
   cli::addSolveOptions(*bake, ka.solve);
+  cli::addLightmapOptions(*bake, ka);
   bake->add_option("--threads", ka.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   bake->add_flag("-q,--quiet", ka.quiet, "Print nothing but errors");
 
   cli::BenchArgs ba;
   CLI::App* bench = app.add_subcommand("bench", "Run a benchmark suite: timings, throughput, memory and error");
-  bench->add_option("suite", ba.suite, "Suite: seeds, shader, scenes, core or quick (--list shows the cases)")->capture_default_str();
+  bench->add_option("suite", ba.suite, "Suite: seeds, shader, scenes, core, gl or quick (--list shows the cases)")->capture_default_str();
   bench->add_option("--runs", ba.runs, "Timed runs per case")->check(CLI::Range(1, 1000))->capture_default_str();
   bench->add_option("--json", ba.jsonPath, "Write the results as JSON");
   bench->add_option("--case", ba.filter, "Only cases whose name contains this");

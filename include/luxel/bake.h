@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "luxel/lightmap.h"
 #include "luxel/scene.h"
 #include "luxel/solve.h"
 #include "luxel/surface.h"
@@ -35,6 +36,9 @@ std::vector<Rgb> elementRadiance(const SurfaceSet& surfaces, const Solution& sol
 struct GlbImage {
   std::string name;
   std::vector<uint8_t> png;
+  // > 0: a lightmap page in RGBM (value = rgb * alpha * rgbmRange, linear), sampled with
+  // clamp-to-edge and no mipmaps.
+  float rgbmRange = 0.0f;
 };
 
 struct GlbOptions {
@@ -56,6 +60,11 @@ struct GlbOptions {
   std::vector<std::vector<Vec2>> secondUvs;
   // Extra images, embedded with a texture each (after the material textures), in this order.
   std::vector<GlbImage> images;
+  // Lightmaps: per mesh, per face, the index into `images` of its lightmap page (-1 for none), or
+  // empty. Faces are grouped into one primitive per page, with a copy of their material per page
+  // whose extras say {"luxel": {"lightMap": TEXTURE, "lightMapTexCoord": 1, "lightMapEncoding":
+  // "RGBM", "rgbmRange": R, "lightMapQuantity": "irradiance"}} (docs/baking.md). Needs secondUvs.
+  std::vector<std::vector<int32_t>> faceLightmap;
   // Faces that discretisation turned round (SurfaceFace::flipped) are written turned round too,
   // so that viewers culling back faces show the side the solver lit: one flag per mesh face,
   // [mesh][face], empty for none. bakeGlbOptions fills it.
@@ -65,6 +74,10 @@ struct GlbOptions {
 
 // The flipped-face flags of `surfaces` in GlbOptions::flippedFaces layout.
 std::vector<std::vector<uint8_t>> flippedFaceFlags(const Scene& scene, const SurfaceSet& surfaces);
+
+// Adds a lightmap bake to `o`: TEXCOORD_1 from the atlas (texel / page size), every page as an
+// RGBM PNG image (appended to o.images) and the faces' pages (o.faceLightmap).
+void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake);
 
 // Writes `scene` as a glTF 2.0 binary: one glTF mesh and node per luxel mesh (triangles, quads
 // split along their 0-2 diagonal, flat normals, TEXCOORD_0 when the mesh has uvs), one

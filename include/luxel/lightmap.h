@@ -10,7 +10,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "luxel/image.h"
+#include "luxel/progress.h"
 #include "luxel/scene.h"
+#include "luxel/solve.h"
+#include "luxel/surface.h"
 
 namespace luxel {
 
@@ -41,5 +45,79 @@ struct LightmapAtlas {
 
 // Throws Error naming the mesh when given UVs overlap or leave [0,1], or options are absurd.
 LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options = {});
+
+// ---- Baking: texels as elements (docs/lightmaps.md, "Baking") ----------------------------------
+
+// Every covered texel of an atlas as an element of a SurfaceSet, for the ordinary solvers. Faces
+// are the scene's faces, front side only (a two-sided material bakes its front: the side of its
+// winding, or the side discretise would turn it to when its back is the lit one). A texel belongs
+// to the face whose texel-space triangle holds its centre (top-left rule); faces flagged
+// FaceUv::conservative take the free texels they touch. Element: centroid = the world point at the
+// texel centre (clamped into the face for conservative faces), polygon = the texel square clipped
+// to the face (cut down to 4 corners at face corners), area = the exact world area of that clip.
+// Patches: blocks of texelsPerPatchSide^2 texels of one face on one page; the patch polygon is the
+// block square clipped to the face, so patches tile every face exactly where it is convex in
+// texel space and cut down to 4 corners.
+struct TexelSurfaces {
+  SurfaceSet surfaces;
+  struct Texel {
+    uint32_t page = 0;
+    uint32_t x = 0, y = 0;  // texel column and row on the page (row 0 at v = 0, the bottom)
+  };
+  std::vector<Texel> texels;                   // per element of `surfaces`
+  std::vector<std::array<Vec2, 4>> faceTexels; // per face of `surfaces`: corners in texel units, same order
+  std::vector<uint32_t> faceChart;             // per face of `surfaces`
+  std::vector<uint32_t> facePage;              // per face of `surfaces`
+  size_t skippedFaces = 0;                     // faces with no area in space or in texel space
+};
+TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int texelsPerPatchSide = 8,
+                            bool orientByLight = true);
+
+struct LightmapBakeOptions {
+  SolveOptions solve;             // refineBudget is ignored (texels are not split)
+  int texelsPerPatchSide = 8;
+  // Validity: rays per texel (rounded down to a square) over the hemisphere; a texel whose rays
+  // hit more than maxBackfaceShare back faces (of single-sided materials) sees the inside of
+  // geometry: its value is discarded and filled from valid texels of its chart.
+  int validityRays = 16;
+  float maxBackfaceShare = 0.1f;
+  // Seams: edges shared in 3D by faces of different charts whose normals differ by less than
+  // seamAngle degrees get the texels on both sides averaged.
+  bool stitchSeams = true;
+  float seamAngle = 45.0f;
+  // Dilation passes into the empty texels round every chart (the atlas gutter).
+  int dilation = 2;
+};
+
+struct LightmapBake {
+  enum State : uint8_t { Empty = 0, Solved = 1, Filled = 2, Dilated = 3 };
+  int pageSize = 0;
+  // Irradiance H (W m^-2, all light arriving on the front: direct, interreflected and analytic),
+  // per page, [y * pageSize + x], row 0 at v = 0 (the bottom). Outgoing radiance is
+  // reflectance * H / pi + emission: three.js's lightMap convention.
+  std::vector<std::vector<Rgb>> pages;
+  std::vector<std::vector<uint8_t>> state;  // per texel, State
+  TexelSurfaces surfaces;
+  Solution solution;
+  std::vector<uint8_t> valid;  // per element: passed the backface test
+  size_t texels = 0;           // covered texels (elements)
+  size_t invalidTexels = 0;    // failed the backface test (then filled)
+  size_t unfilledTexels = 0;   // invalid with no valid texel in their chart (left at their solved value)
+  size_t dilatedTexels = 0;
+  size_t seamEdges = 0, seamSamples = 0;
+  float seamMaxBefore = 0.0f;  // largest relative difference (|a-b| summed over channels / mean) across seams
+  float seamMaxAfter = 0.0f;
+  double secondsSurfaces = 0, secondsValidity = 0, secondsSolve = 0, secondsPost = 0;
+};
+
+LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options = {},
+                           const ProgressCallback& progress = {});
+
+// A page as an image, row 0 at the top (v = 1), for writeExr.
+Image lightmapPageImage(const LightmapBake& bake, int page);
+// RGBM, 8 bits per channel, linear (no sRGB curve): value = rgb/255 * alpha/255 * range, with
+// range the smallest power of two at or above the page's largest component (at least 1).
+float rgbmRange(const Image& image);
+std::vector<uint8_t> encodeRgbmPng(const Image& image, float range);
 
 }  // namespace luxel

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -103,7 +104,7 @@ std::vector<uint8_t> encodeTexture(const Texture& tex) {
   return png;
 }
 
-int addImage(tinygltf::Model& model, const std::string& name, const std::vector<uint8_t>& png) {
+int addImage(tinygltf::Model& model, const std::string& name, const std::vector<uint8_t>& png, int sampler = 0) {
   tinygltf::Image image;
   image.name = name;
   image.mimeType = "image/png";
@@ -112,7 +113,7 @@ int addImage(tinygltf::Model& model, const std::string& name, const std::vector<
   model.images.push_back(image);
   tinygltf::Texture texture;
   texture.source = int(model.images.size()) - 1;
-  texture.sampler = 0;
+  texture.sampler = sampler;
   model.textures.push_back(texture);
   return int(model.textures.size()) - 1;
 }
@@ -142,6 +143,13 @@ void checkOptions(const Scene& scene, const GlbOptions& o) {
   check(o.vertexColors.size(), [&](size_t m) { return o.vertexColors[m].size(); }, "vertex colours", 4);
   check(o.secondUvs.size(), [&](size_t m) { return o.secondUvs[m].size(); }, "second uvs", 4);
   check(o.flippedFaces.size(), [&](size_t m) { return o.flippedFaces[m].size(); }, "flipped-face flags", 1);
+  check(o.faceLightmap.size(), [&](size_t m) { return o.faceLightmap[m].size(); }, "face lightmaps", 1);
+  if (!o.faceLightmap.empty()) {
+    if (o.secondUvs.empty()) throw Error("glb: lightmaps need second uvs (TEXCOORD_1)");
+    for (const auto& mesh : o.faceLightmap)
+      for (int32_t i : mesh)
+        if (i < -1 || i >= int32_t(o.images.size())) throw Error(fmt::format("glb: lightmap image {} does not exist", i));
+  }
   if (o.elements) {
     if (!o.vertexColors.empty() || !o.secondUvs.empty())
       throw Error("glb: element tessellation excludes per-face-corner colours and second uvs");
@@ -268,6 +276,37 @@ ElementIndex indexElements(const Scene& scene, const SurfaceSet& set) {
   return index;
 }
 
+template <class Keep>
+void addFaces(const Mesh& mesh, size_t mi, const GlbOptions& o, float colorScale, MeshBuilder& b, Keep keep);
+tinygltf::Primitive makePrimitive(tinygltf::Model& model, MeshBuilder& b, int material);
+
+// Lightmap pages: image index -> texture index and RGBM range; (material, page) -> material copy.
+struct LightmapTextures {
+  std::vector<int> texture;
+  std::vector<float> range;
+  std::map<std::pair<uint32_t, int32_t>, int> copies;
+};
+LightmapTextures* gLightmaps = nullptr;  // set by writeGlb for the duration of one call
+
+int lightmapMaterial(tinygltf::Model& model, uint32_t material, int32_t page) {
+  auto [it, added] = gLightmaps->copies.try_emplace({material, page}, int(model.materials.size()));
+  if (added) {
+    tinygltf::Material g = model.materials[material];
+    g.name = fmt::format("{}@lightmap{}", g.name, page);
+    tinygltf::Value::Object info;
+    info["lightMap"] = tinygltf::Value(gLightmaps->texture[size_t(page)]);
+    info["lightMapTexCoord"] = tinygltf::Value(1);
+    info["lightMapEncoding"] = tinygltf::Value(std::string("RGBM"));
+    info["rgbmRange"] = tinygltf::Value(double(gLightmaps->range[size_t(page)]));
+    info["lightMapQuantity"] = tinygltf::Value(std::string("irradiance"));
+    tinygltf::Value::Object extras;
+    extras["luxel"] = tinygltf::Value(info);
+    g.extras = tinygltf::Value(extras);
+    model.materials.push_back(g);
+  }
+  return it->second;
+}
+
 void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScale, const ElementIndex& index,
              tinygltf::Model& model) {
   const Mesh& mesh = scene.meshes[mi];
@@ -289,8 +328,48 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
         b.polygon(corner, el.polygon.count, false);
       }
     }
+  } else if (!o.faceLightmap.empty()) {
+    // One primitive per lightmap page, each with its material's copy for that page.
+    std::vector<int32_t> pages(o.faceLightmap[mi].begin(), o.faceLightmap[mi].end());
+    std::sort(pages.begin(), pages.end());
+    pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
+    tinygltf::Mesh gm;
+    gm.name = mesh.name;
+    for (int32_t page : pages) {
+      MeshBuilder pb;
+      pb.hasUv = b.hasUv, pb.hasUv1 = true, pb.hasColor = b.hasColor;
+      addFaces(mesh, mi, o, colorScale, pb, [&](size_t fi) { return o.faceLightmap[mi][fi] == page; });
+      if (pb.indices.empty()) continue;
+      gm.primitives.push_back(makePrimitive(model, pb, page < 0 ? int(mesh.material) : lightmapMaterial(model, mesh.material, page)));
+    }
+    if (gm.primitives.empty()) return;
+    model.meshes.push_back(gm);
+    tinygltf::Node node;
+    node.name = mesh.name;
+    node.mesh = int(model.meshes.size()) - 1;
+    model.nodes.push_back(node);
+    model.scenes[0].nodes.push_back(int(model.nodes.size()) - 1);
+    return;
   } else {
+    addFaces(mesh, mi, o, colorScale, b, [](size_t) { return true; });
+  }
+  if (b.indices.empty()) return;  // a mesh without faces: glTF meshes need a primitive
+  tinygltf::Mesh gm;
+  gm.name = mesh.name;
+  gm.primitives.push_back(makePrimitive(model, b, int(mesh.material)));
+  model.meshes.push_back(gm);
+  tinygltf::Node node;
+  node.name = mesh.name;
+  node.mesh = int(model.meshes.size()) - 1;
+  model.nodes.push_back(node);
+  model.scenes[0].nodes.push_back(int(model.nodes.size()) - 1);
+}
+
+template <class Keep>
+void addFaces(const Mesh& mesh, size_t mi, const GlbOptions& o, float colorScale, MeshBuilder& b, Keep keep) {
+  {
     for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+      if (!keep(fi)) continue;
       const Face& face = mesh.faces[fi];
       const int n = face.vertexCount();
       const bool flipped = !o.flippedFaces.empty() && o.flippedFaces[mi][fi];
@@ -310,27 +389,19 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
       b.polygon(corner, n, flipped);
     }
   }
-  if (b.indices.empty()) return;  // a mesh without faces: glTF meshes need a primitive
+}
 
+tinygltf::Primitive makePrimitive(tinygltf::Model& model, MeshBuilder& b, int material) {
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.material = int(mesh.material);
+  prim.material = material;
   prim.attributes["POSITION"] = addFloatAccessor<3>(model, b.positions, TINYGLTF_TYPE_VEC3, true);
   prim.attributes["NORMAL"] = addFloatAccessor<3>(model, b.normals, TINYGLTF_TYPE_VEC3, false);
   if (b.hasUv) prim.attributes["TEXCOORD_0"] = addFloatAccessor<2>(model, b.uv0, TINYGLTF_TYPE_VEC2, false);
   if (b.hasUv1) prim.attributes["TEXCOORD_1"] = addFloatAccessor<2>(model, b.uv1, TINYGLTF_TYPE_VEC2, false);
   if (b.hasColor) prim.attributes["COLOR_0"] = addFloatAccessor<3>(model, b.colors, TINYGLTF_TYPE_VEC3, false);
   prim.indices = addIndexAccessor(model, b.indices, b.positions.size());
-
-  tinygltf::Mesh gm;
-  gm.name = mesh.name;
-  gm.primitives.push_back(prim);
-  model.meshes.push_back(gm);
-  tinygltf::Node node;
-  node.name = mesh.name;
-  node.mesh = int(model.meshes.size()) - 1;
-  model.nodes.push_back(node);
-  model.scenes[0].nodes.push_back(int(model.nodes.size()) - 1);
+  return prim;
 }
 
 }  // namespace
@@ -351,10 +422,27 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
   model.samplers.push_back(sampler);
 
   addMaterials(scene, model);
-  for (const GlbImage& image : options.images) addImage(model, image.name, image.png);
+  LightmapTextures lightmaps;
+  for (const GlbImage& image : options.images) {
+    int sampler = 0;
+    if (image.rgbmRange > 0.0f) {  // lightmaps: no mipmaps (they would blend charts), clamped
+      if (model.samplers.size() < 2) {
+        tinygltf::Sampler s;
+        s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+        s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+        s.wrapS = s.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+        model.samplers.push_back(s);
+      }
+      sampler = 1;
+    }
+    lightmaps.texture.push_back(addImage(model, image.name, image.png, sampler));
+    lightmaps.range.push_back(image.rgbmRange);
+  }
+  gLightmaps = &lightmaps;
   const float colorScale = vertexColorScale(options);
   const ElementIndex index = options.elements ? indexElements(scene, *options.elements) : ElementIndex{};
   for (size_t m = 0; m < scene.meshes.size(); ++m) addMesh(scene, m, options, colorScale, index, model);
+  gLightmaps = nullptr;
   if (!options.vertexColors.empty() || options.elements) {
     // What COLOR_0 holds and the factor that turns it back into radiance (docs/baking.md); three.js
     // puts scene extras in gltf.scene.userData.

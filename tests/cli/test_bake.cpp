@@ -286,4 +286,39 @@ TEST(Bake, FaceCornerValuesAndSecondUvs) {
   EXPECT_THROW(luxel::writeGlb(scene, path, o), luxel::Error);
 }
 
+// Lightmaps (library path; `luxel bake --lightmaps` needs addLightmapOptions registered in main.cpp):
+// TEXCOORD_1, RGBM pages with material extras, and the validator's approval.
+TEST(Bake, LightmapGlbPassesTheValidator) {
+  luxel::Scene scene = luxel::loadScene("cornell");
+  luxel::AtlasOptions ao;
+  ao.texelsPerMetre = 16.0f / 0.55f;
+  ao.pageSize = 128;
+  const luxel::LightmapAtlas atlas = luxel::buildLightmapAtlas(scene, ao);
+  const luxel::LightmapBake bake = luxel::bakeLightmaps(scene, atlas);
+  luxel::GlbOptions o;
+  o.flippedFaces = luxel::flippedFaceFlags(scene, bake.surfaces.surfaces);
+  luxel::addLightmaps(o, scene, atlas, bake);
+  fs::create_directories(fs::path(LUXEL_TEST_TMP));
+  const fs::path path = fs::path(LUXEL_TEST_TMP) / "bake-lightmaps.glb";
+  luxel::writeGlb(scene, path, o);
+  const tinygltf::Model m = loadGlb(path);
+  const auto& floor = primitiveOf(m, "floor");
+  ASSERT_TRUE(floor.attributes.count("TEXCOORD_1"));
+  const auto& extras = m.materials.at(size_t(floor.material)).extras.Get("luxel");
+  ASSERT_TRUE(extras.IsObject());
+  EXPECT_EQ(extras.Get("lightMapEncoding").Get<std::string>(), "RGBM");
+  EXPECT_GE(extras.Get("rgbmRange").GetNumberAsDouble(), 1.0);
+  const int tex = extras.Get("lightMap").GetNumberAsInt();
+  ASSERT_GE(tex, 0);
+  ASSERT_LT(size_t(tex), m.textures.size());
+  EXPECT_EQ(m.images.at(size_t(m.textures[size_t(tex)].source)).name, "lightmap0");
+  if (std::system("node --version >/dev/null 2>&1") != 0 ||
+      !fs::exists(fs::path(LUXEL_GLTF_VALIDATOR) / "node_modules" / "gltf-validator"))
+    GTEST_SKIP() << "the glTF validator is not installed";
+  const nlohmann::json report = validate(path);
+  ASSERT_TRUE(report.is_object());
+  EXPECT_EQ(report["issues"]["numErrors"], 0) << report["issues"].dump(2);
+  EXPECT_EQ(report["issues"]["numWarnings"], 0) << report["issues"].dump(2);
+}
+
 }  // namespace

@@ -1,0 +1,356 @@
+// bakeLightmaps (lightmap.h): solve on texels, then discard texels that see the inside of
+// geometry and fill them from their chart, stitch seams, dilate into the gutters; page images and
+// the RGBM encoding.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <stb_image_write.h>
+#include <tbb/parallel_for.h>
+
+#include "lightmap/texel_geometry.h"
+#include "luxel/error.h"
+#include "luxel/lightmap.h"
+#include "trace/ray_tracer.h"
+
+namespace luxel {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+float channelSum(Rgb c) { return c.r + c.g + c.b; }
+
+// Per element: 1 when at most maxShare of its hemisphere rays hit the back of a single-sided face.
+std::vector<uint8_t> validity(const Scene& scene, const SurfaceSet& set, int rays, float maxShare) {
+  std::vector<Polygon> polys;
+  polys.reserve(set.faces.size());
+  for (const SurfaceFace& f : set.faces) polys.push_back(Polygon{f.corners, f.triangle ? 3 : 4});
+  RayTracer tracer(polys);
+  const int side = std::max(1, int(std::sqrt(double(std::max(rays, 1)))));
+  const float offset = rayOffsetFor(set.sceneExtent);
+  std::vector<uint8_t> valid(set.elements.size(), 1);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, set.elements.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<RTCRayHit> hits(size_t(side * side));
+    std::vector<Vec3> dirs(hits.size());
+    for (size_t ei = r.begin(); ei < r.end(); ++ei) {
+      const Element& e = set.elements[ei];
+      const Vec3 n = e.normal;
+      const Vec3 a = std::abs(n.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+      const Vec3 tu = glm::normalize(glm::cross(a, n)), tv = glm::cross(n, tu);
+      uint32_t h = uint32_t(ei) * 2654435761u + 12345u;
+      auto rnd = [&] {
+        h ^= h << 13, h ^= h >> 17, h ^= h << 5;
+        return float(h & 0xFFFFFF) / float(0x1000000);
+      };
+      for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+          const float u1 = (float(i) + rnd()) / float(side), u2 = (float(j) + rnd()) / float(side);
+          const float rr = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
+          const Vec3 d = rr * std::cos(phi) * tu + rr * std::sin(phi) * tv + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
+          const size_t k = size_t(j * side + i);
+          dirs[k] = d;
+          RTCRayHit& rh = hits[k];
+          rh.ray = makeRay(e.centroid + offset * n, d, 0.0f, std::numeric_limits<float>::infinity());
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        }
+      tracer.intersect(hits, false);
+      int back = 0;
+      for (size_t k = 0; k < hits.size(); ++k) {
+        if (hits[k].hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+        const SurfaceFace& f = set.faces[hits[k].hit.primID];
+        if (scene.materials[f.material].twoSided) continue;
+        if (glm::dot(dirs[k], f.normal) > 0.0f) ++back;
+      }
+      valid[ei] = float(back) <= maxShare * float(hits.size()) ? 1 : 0;
+    }
+  });
+  return valid;
+}
+
+}  // namespace
+
+LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options,
+                           const ProgressCallback& progress) {
+  if (options.validityRays < 0 || options.dilation < 0 || !(options.maxBackfaceShare >= 0.0f))
+    throw Error("lightmap bake: validity rays, dilation and backface share must be >= 0");
+  LightmapBake bake;
+  bake.pageSize = atlas.pageSize;
+  const int size = atlas.pageSize;
+  auto t0 = Clock::now();
+  bake.surfaces = texelSurfaces(scene, atlas, options.texelsPerPatchSide);
+  SurfaceSet& set = bake.surfaces.surfaces;
+  bake.texels = set.elements.size();
+  bake.secondsSurfaces = since(t0);
+
+  t0 = Clock::now();
+  bake.valid = options.validityRays > 0 ? validity(scene, set, options.validityRays, options.maxBackfaceShare)
+                                        : std::vector<uint8_t>(set.elements.size(), 1);
+  // Texels inside geometry take no part in their patch's mean: their light is not real.
+  for (size_t e = 0; e < set.elements.size(); ++e)
+    if (!bake.valid[e]) set.elements[e].area *= 1e-6f, ++bake.invalidTexels;
+  bake.secondsValidity = since(t0);
+
+  t0 = Clock::now();
+  SolveOptions so = options.solve;
+  so.refineBudget = 0;
+  bake.solution = solve(scene, set, so, progress);
+  bake.secondsSolve = since(t0);
+
+  t0 = Clock::now();
+  const auto pages = size_t(atlas.pageCount);
+  const size_t n = size_t(size) * size_t(size);
+  bake.pages.assign(pages, std::vector<Rgb>(n, Rgb(0.0f)));
+  bake.state.assign(pages, std::vector<uint8_t>(n, LightmapBake::Empty));
+  std::vector<std::vector<int32_t>> chartOf(pages, std::vector<int32_t>(n, -1));
+  std::vector<std::vector<int32_t>> elementOf(pages, std::vector<int32_t>(n, -1));
+  const auto& texels = bake.surfaces.texels;
+  for (size_t e = 0; e < set.elements.size(); ++e) {
+    const auto& t = texels[e];
+    const size_t i = size_t(t.y) * size_t(size) + t.x;
+    bake.pages[t.page][i] = bake.solution.irradiance[e];
+    bake.state[t.page][i] = bake.valid[e] ? LightmapBake::Solved : LightmapBake::Filled;
+    chartOf[t.page][i] = int32_t(bake.surfaces.faceChart[set.elements[e].face]);
+    elementOf[t.page][i] = int32_t(e);
+  }
+
+  // Invalid texels: the mean of their valid (or already filled) 8-neighbours in the same chart,
+  // wave by wave outwards from the valid ones.
+  {
+    std::vector<std::vector<uint8_t>> known(pages);
+    for (size_t p = 0; p < pages; ++p) {
+      known[p].resize(n);
+      for (size_t i = 0; i < n; ++i) known[p][i] = bake.state[p][i] == LightmapBake::Solved;
+    }
+    size_t left = bake.invalidTexels;
+    while (left > 0) {
+      std::vector<std::pair<size_t, size_t>> wave;
+      std::vector<Rgb> values;
+      for (size_t e = 0; e < set.elements.size(); ++e) {
+        const auto& t = texels[e];
+        const size_t i = size_t(t.y) * size_t(size) + t.x;
+        if (known[t.page][i]) continue;
+        Rgb sum(0.0f);
+        int count = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = int(t.x) + dx, y = int(t.y) + dy;
+            if ((dx == 0 && dy == 0) || x < 0 || y < 0 || x >= size || y >= size) continue;
+            const size_t j = size_t(y) * size_t(size) + size_t(x);
+            if (known[t.page][j] && chartOf[t.page][j] == chartOf[t.page][i]) sum += bake.pages[t.page][j], ++count;
+          }
+        if (count > 0) wave.emplace_back(t.page, i), values.push_back(sum / float(count));
+      }
+      if (wave.empty()) break;
+      for (size_t k = 0; k < wave.size(); ++k) {
+        bake.pages[wave[k].first][wave[k].second] = values[k];
+        known[wave[k].first][wave[k].second] = 1;
+      }
+      left -= wave.size();
+    }
+    bake.unfilledTexels = left;
+  }
+
+  // Seams: edges shared in 3D by faces of different charts on one smooth surface.
+  if (options.stitchSeams) {
+    const auto& faces = set.faces;
+    std::vector<lightmap::FaceMap> maps;
+    maps.reserve(faces.size());
+    for (size_t f = 0; f < faces.size(); ++f) maps.emplace_back(faces[f], bake.surfaces.faceTexels[f]);
+    const float cosLimit = std::cos(options.seamAngle * std::numbers::pi_v<float> / 180.0f);
+    const float eps = 1e-5f * set.sceneExtent;
+    struct Edge {
+      uint32_t face;
+      Vec3 a, b;
+    };
+    std::vector<Edge> edges;
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+      const int c = faces[f].triangle ? 3 : 4;
+      for (int k = 0; k < c; ++k) edges.push_back({f, faces[f].corners[size_t(k)], faces[f].corners[size_t((k + 1) % c)]});
+    }
+    // The texel of face f's chart nearest to the point at texel coordinates q (nudged inside).
+    auto texelFor = [&](uint32_t f, Vec3 p, size_t* out) {
+      const lightmap::FaceMap& m = maps[f];
+      glm::dvec2 q = m.clampInside(m.texelOf(p));
+      glm::dvec2 mid(0.0);
+      for (auto& v : m.clip) mid += v;
+      q += 1e-3 * (mid / double(m.clip.size()) - q);
+      const uint32_t page = bake.surfaces.facePage[f];
+      const int chart = int(bake.surfaces.faceChart[f]);
+      int bx = -1, by = -1;
+      double bd = 1e300;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = int(std::floor(q.x)) + dx, y = int(std::floor(q.y)) + dy;
+          if (x < 0 || y < 0 || x >= size || y >= size) continue;
+          if (chartOf[page][size_t(y) * size_t(size) + size_t(x)] != chart) continue;
+          const double d = (x + 0.5 - q.x) * (x + 0.5 - q.x) + (y + 0.5 - q.y) * (y + 0.5 - q.y);
+          if (d < bd) bd = d, bx = x, by = y;
+        }
+      if (bx < 0) return false;
+      *out = page * n + size_t(by) * size_t(size) + size_t(bx);
+      return true;
+    };
+    std::vector<std::pair<size_t, size_t>> pairs;  // (page * n + index) on both sides
+    if (edges.size() <= 20000) {  // all pairs: fine for thousands of faces, skipped beyond {
+      for (size_t i = 0; i < edges.size(); ++i)
+        for (size_t j = i + 1; j < edges.size(); ++j) {
+          const Edge &e0 = edges[i], &e1 = edges[j];
+          if (e0.face == e1.face) continue;
+          if (bake.surfaces.faceChart[e0.face] == bake.surfaces.faceChart[e1.face]) continue;
+          if (glm::dot(faces[e0.face].normal, faces[e1.face].normal) < cosLimit) continue;
+          const Vec3 d = e0.b - e0.a;
+          const float len = glm::length(d);
+          if (len <= eps) continue;
+          const Vec3 u = d / len;
+          // Collinear: both ends of e1 on e0's line.
+          auto off = [&](Vec3 p) { return glm::length(glm::cross(p - e0.a, u)); };
+          if (off(e1.a) > eps || off(e1.b) > eps) continue;
+          const float s0 = std::max(0.0f, std::min(glm::dot(e1.a - e0.a, u), glm::dot(e1.b - e0.a, u)));
+          const float s1 = std::min(len, std::max(glm::dot(e1.a - e0.a, u), glm::dot(e1.b - e0.a, u)));
+          if (s1 - s0 <= eps) continue;
+          ++bake.seamEdges;
+          const float density = float(std::sqrt(maps[e0.face].texelArea /
+                                                std::max(1e-30, double(Polygon{faces[e0.face].corners, maps[e0.face].n}.area()))));
+          const int samples = std::max(2, int(std::ceil((s1 - s0) * density * 2.0f)));
+          for (int k = 0; k < samples; ++k) {
+            const Vec3 p = e0.a + u * (s0 + (s1 - s0) * (float(k) + 0.5f) / float(samples));
+            size_t a, b;
+            if (texelFor(e0.face, p, &a) && texelFor(e1.face, p, &b) && a != b) pairs.emplace_back(a, b);
+          }
+        }
+    }
+    bake.seamSamples = pairs.size();
+    auto value = [&](size_t k) -> Rgb& { return bake.pages[k / n][k % n]; };
+    auto worst = [&] {
+      float w = 0.0f;
+      for (auto [a, b] : pairs) {
+        const float mean = 0.5f * (channelSum(value(a)) + channelSum(value(b)));
+        if (mean > 0.0f) w = std::max(w, channelSum(glm::abs(value(a) - value(b))) / mean);
+      }
+      return w;
+    };
+    bake.seamMaxBefore = worst();
+    // A texel may sit on several pairs: average repeatedly, Jacobi style, until they agree.
+    for (int pass = 0; pass < 64 && !pairs.empty(); ++pass) {
+      std::vector<std::pair<size_t, Rgb>> updates;
+      for (auto [a, b] : pairs) {
+        const Rgb m = 0.5f * (value(a) + value(b));
+        updates.emplace_back(a, m), updates.emplace_back(b, m);
+      }
+      std::sort(updates.begin(), updates.end(), [](auto& x, auto& y) { return x.first < y.first; });
+      for (size_t i = 0; i < updates.size();) {
+        size_t j = i;
+        Rgb sum(0.0f);
+        while (j < updates.size() && updates[j].first == updates[i].first) sum += updates[j].second, ++j;
+        value(updates[i].first) = sum / float(j - i);
+        i = j;
+      }
+      if (worst() < 1e-5f) break;
+    }
+    bake.seamMaxAfter = worst();
+  }
+
+  // Dilation into the empty texels round the charts.
+  for (int pass = 0; pass < options.dilation; ++pass) {
+    for (size_t p = 0; p < pages; ++p) {
+      std::vector<std::pair<size_t, Rgb>> fill;
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+          const size_t i = size_t(y) * size_t(size) + size_t(x);
+          if (bake.state[p][i] != LightmapBake::Empty) continue;
+          Rgb sum(0.0f);
+          int count = 0;
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              const int xx = x + dx, yy = y + dy;
+              if (xx < 0 || yy < 0 || xx >= size || yy >= size) continue;
+              const size_t j = size_t(yy) * size_t(size) + size_t(xx);
+              if (bake.state[p][j] != LightmapBake::Empty) sum += bake.pages[p][j], ++count;
+            }
+          if (count > 0) fill.emplace_back(i, sum / float(count));
+        }
+      for (auto& [i, v] : fill) bake.pages[p][i] = v, bake.state[p][i] = LightmapBake::Dilated;
+      bake.dilatedTexels += fill.size();
+    }
+  }
+  bake.secondsPost = since(t0);
+  return bake;
+}
+
+Image lightmapPageImage(const LightmapBake& bake, int page) {
+  if (page < 0 || size_t(page) >= bake.pages.size()) throw Error(fmt::format("lightmap page {} does not exist", page));
+  const int s = bake.pageSize;
+  Image image(s, s);
+  for (int y = 0; y < s; ++y)
+    for (int x = 0; x < s; ++x) image.at(x, s - 1 - y) = bake.pages[size_t(page)][size_t(y) * size_t(s) + size_t(x)];
+  return image;
+}
+
+float rgbmRange(const Image& image) {
+  float peak = 0.0f;
+  for (const Rgb& c : image.pixels) peak = std::max({peak, c.r, c.g, c.b});
+  return peak > 1.0f ? std::exp2(std::ceil(std::log2(peak))) : 1.0f;
+}
+
+namespace {
+void appendBytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<uint8_t>*>(context);
+  const auto* p = static_cast<const uint8_t*>(data);
+  out->insert(out->end(), p, p + size);
+}
+}  // namespace
+
+std::vector<uint8_t> encodeRgbmPng(const Image& image, float range) {
+  if (!(range > 0.0f)) throw Error("RGBM range must be positive");
+  std::vector<uint8_t> rgba(image.pixels.size() * 4);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    Rgb c = glm::clamp(image.pixels[i] / range, Rgb(0.0f), Rgb(1.0f));
+    if (!(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b))) c = Rgb(0.0f);
+    const float m = std::max({c.r, c.g, c.b, 1e-6f});
+    const int a = std::clamp(int(std::ceil(m * 255.0f)), 1, 255);
+    const float scale = 255.0f / float(a);
+    for (int k = 0; k < 3; ++k) rgba[i * 4 + size_t(k)] = uint8_t(std::clamp(std::lround(c[k] * scale * 255.0f), 0L, 255L));
+    rgba[i * 4 + 3] = uint8_t(a);
+  }
+  std::vector<uint8_t> png;
+  if (!stbi_write_png_to_func(appendBytes, &png, image.width, image.height, 4, rgba.data(), image.width * 4))
+    throw Error("cannot encode a lightmap page as PNG");
+  return png;
+}
+
+}  // namespace luxel
+
+#include "luxel/bake.h"
+
+namespace luxel {
+
+void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake) {
+  const float s = float(atlas.pageSize);
+  o.secondUvs.assign(scene.meshes.size(), {});
+  o.faceLightmap.assign(scene.meshes.size(), {});
+  const int32_t first = int32_t(o.images.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    o.secondUvs[m].assign(scene.meshes[m].faces.size() * 4, Vec2(0.0f));
+    o.faceLightmap[m].assign(scene.meshes[m].faces.size(), -1);
+    for (size_t f = 0; f < scene.meshes[m].faces.size(); ++f) {
+      const auto& uv = atlas.faces[m][f];
+      for (int k = 0; k < 4; ++k) o.secondUvs[m][f * 4 + size_t(k)] = uv.texel[size_t(k)] / s;
+      o.faceLightmap[m][f] = first + int32_t(uv.page);
+    }
+  }
+  for (int p = 0; p < int(bake.pages.size()); ++p) {
+    const Image image = lightmapPageImage(bake, p);
+    GlbImage g;
+    g.name = fmt::format("lightmap{}", p);
+    g.rgbmRange = rgbmRange(image);
+    g.png = encodeRgbmPng(image, g.rgbmRange);
+    o.images.push_back(std::move(g));
+  }
+}
+
+}  // namespace luxel
