@@ -47,21 +47,10 @@ int runBake(const BakeArgs& a) {
     AtlasOptions ao;
     ao.texelsPerMetre = a.texelsPerMetre;
     ao.pageSize = a.lightmapSize;
-    if (ao.texelsPerMetre <= 0.0f) {
-      // Every texel is an element of the solve, so the default density gives about as many texels
-      // as the element budget (--elements, 10,000 by default): a whole 1024 page on the Cornell
-      // box would be half a million elements.
-      double area = 0.0;
-      for (const Mesh& m : scene.meshes)
-        for (const Face& f : m.faces) {
-          const Vec3 p0 = m.positions[f.v[0]], p1 = m.positions[f.v[1]], p2 = m.positions[f.v[2]],
-                     p3 = m.positions[f.v[3]];
-          area += 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
-          if (!f.isTriangle()) area += 0.5 * glm::length(glm::cross(p2 - p0, p3 - p0));
-        }
-      const double budget = a.solve.elements > 0 ? double(a.solve.elements) : 10000.0;
-      if (area > 0.0) ao.texelsPerMetre = float(std::sqrt(budget / area));
-    }
+    // Every texel is an element of the solve: by default, about as many texels as the element
+    // budget (a whole 1024 page on the Cornell box would be half a million elements).
+    if (ao.texelsPerMetre <= 0.0f)
+      ao.texelsPerMetre = texelsPerMetreForBudget(scene, a.solve.elements > 0 ? a.solve.elements : 10000);
     const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
     LightmapBakeOptions lo;
     lo.solve = so;

@@ -18,6 +18,7 @@
 #include "luxel/error.h"
 #include "luxel/image.h"
 #include "luxel/import.h"
+#include "luxel/lightmap.h"
 #include "luxel/render.h"
 #include "luxel/solve.h"
 #include "bake_command.h"
@@ -140,19 +141,35 @@ int runRender(const RenderArgs& a) {
   ro.camera = chooseCamera(scene, a);
   ro.width = width, ro.height = height;
   ro.samplesPerPixel = a.spp;
-  ro.mode = parseRenderMode(a.mode);
+  // "lightmap": bake lightmaps and show them as an engine would (luxel::renderLightmapped).
+  const bool lightmapped = a.mode == "lightmap";
+  ro.mode = lightmapped ? RenderOptions::Mode::Radiosity : parseRenderMode(a.mode);
   ToneMap tm;
   tm.curve = parseToneCurve(a.toneCurve);
   tm.exposure = a.exposure;
 
   const SolveOptions so = cli::solveOptions(a.solve);  // before the solve: a bad name fails fast
-  SurfaceSet surfaces = discretise(scene, cli::discretiseOptions(a.solve));
-  Solution solution = solve(scene, surfaces, so, bar.callback());
+  Solution solution;
+  Image image;
+  RenderStats rs;
+  if (lightmapped) {
+    AtlasOptions ao;
+    ao.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize
+                                                   : texelsPerMetreForBudget(scene, a.solve.elements > 0 ? a.solve.elements : 10000);
+    const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
+    LightmapBakeOptions lo;
+    lo.solve = so;
+    lo.dilation = ao.gutter;
+    const LightmapBake bake = bakeLightmaps(scene, atlas, lo, bar.callback());
+    solution = bake.solution;
+    image = renderLightmapped(scene, atlas, bake, ro, bar.callback(), &rs);
+  } else {
+    SurfaceSet surfaces = discretise(scene, cli::discretiseOptions(a.solve));
+    solution = solve(scene, surfaces, so, bar.callback());
+    image = render(scene, surfaces, solution, ro, bar.callback(), &rs);
+  }
   if (!a.quiet)
     for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
-
-  RenderStats rs;
-  Image image = render(scene, surfaces, solution, ro, bar.callback(), &rs);
   for (const std::string& o : a.outputs) writeImage(image, o, tm);
   bar.finish();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -219,7 +236,7 @@ int main(int argc, char** argv) {
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   render->add_flag("-q,--quiet", ra.quiet, "Print nothing but errors");
   render->add_option("--stats", ra.statsPath, "Write statistics as JSON");
-  render->add_option("--mode", ra.mode, "hq (exact direct light per pixel) or radiosity (the seeds' display)")->capture_default_str();
+  render->add_option("--mode", ra.mode, "hq (exact direct light per pixel), radiosity (the seeds' display) or lightmap (bake lightmaps and show them as an engine would)")->capture_default_str();
   render->add_option("--tonemap", ra.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
   render->add_option("--exposure", ra.exposure, "PNG exposure in stops, on top of auto exposure");
 

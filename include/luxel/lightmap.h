@@ -12,6 +12,7 @@
 
 #include "luxel/image.h"
 #include "luxel/progress.h"
+#include "luxel/render.h"
 #include "luxel/scene.h"
 #include "luxel/solve.h"
 #include "luxel/surface.h"
@@ -119,5 +120,14 @@ Image lightmapPageImage(const LightmapBake& bake, int page);
 // range the smallest power of two at or above the page's largest component (at least 1).
 float rgbmRange(const Image& image);
 std::vector<uint8_t> encodeRgbmPng(const Image& image, float range);
+
+// The density that gives about `texels` texels over the scene's faces (0 for an empty scene).
+float texelsPerMetreForBudget(const Scene& scene, size_t texels);
+
+// Renders the scene as a real-time engine shows the bake: primary rays against the scene's faces,
+// L = Le + rho / pi * H with H sampled bilinearly from the lightmap pages (src/render/lightmap_renderer.cpp).
+Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
+                        const RenderOptions& options, const ProgressCallback& progress = {},
+                        RenderStats* stats = nullptr);
 
 }  // namespace luxel

@@ -1,0 +1,135 @@
+// Rendering from baked lightmaps, as a real-time engine shows them: ray-cast primary visibility
+// against the scene's own faces, radiance L = Le + rho(x) / pi * H(x) with the irradiance H
+// sampled bilinearly from the lightmap page at the hit's lightmap coordinate (three.js's
+// lightMap convention). It shows the bake itself, texel grid, dilation and seams included.
+#include <atomic>
+#include <chrono>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "core/random.h"
+#include "luxel/error.h"
+#include "luxel/lightmap.h"
+#include "render/camera_frame.h"
+#include "trace/ray_tracer.h"
+#include "transport/light_sampling.h"
+
+namespace luxel {
+namespace {
+
+constexpr float kInvPi = std::numbers::inv_pi_v<float>;
+
+struct FaceRef {
+  uint32_t mesh, face;
+};
+
+// Bilinear lookup at (x, y) in texel units (texel centres at half-integers), clamped to the page.
+Rgb samplePage(const std::vector<Rgb>& page, int size, Vec2 t) {
+  const float fx = std::clamp(t.x - 0.5f, 0.0f, float(size - 1)), fy = std::clamp(t.y - 0.5f, 0.0f, float(size - 1));
+  const int x0 = int(fx), y0 = int(fy), x1 = std::min(x0 + 1, size - 1), y1 = std::min(y0 + 1, size - 1);
+  const float ax = fx - float(x0), ay = fy - float(y0);
+  auto at = [&](int x, int y) { return page[size_t(y) * size_t(size) + size_t(x)]; };
+  return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x1, y0)) + ay * ((1 - ax) * at(x0, y1) + ax * at(x1, y1));
+}
+
+// Barycentric weights of p in triangle (a, b, c); all >= 0 (to rounding) when p lies inside.
+Vec3 barycentric(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
+  const Vec3 n = glm::cross(b - a, c - a);
+  const float inv = 1.0f / glm::dot(n, n);
+  const float wb = glm::dot(glm::cross(p - a, c - a), n) * inv, wc = glm::dot(glm::cross(b - a, p - a), n) * inv;
+  return Vec3(1.0f - wb - wc, wb, wc);
+}
+
+}  // namespace
+
+Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
+                        const RenderOptions& options, const ProgressCallback& progress, RenderStats* stats) {
+  validateRenderOptions(options);
+  if (atlas.faces.size() != scene.meshes.size() || bake.pageSize != atlas.pageSize)
+    throw Error("lightmapped render: the atlas or the bake does not belong to this scene");
+  const auto start = std::chrono::steady_clock::now();
+
+  std::vector<Polygon> polygons;
+  std::vector<FaceRef> refs;
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
+      Polygon p;
+      p.count = mesh.faces[f].vertexCount();
+      for (int k = 0; k < 4; ++k) p.v[size_t(k)] = mesh.positions[mesh.faces[f].v[size_t(k)]];
+      polygons.push_back(p);
+      refs.push_back({m, f});
+    }
+  }
+  RayTracer tracer(polygons);
+  const Vec3 up = glm::normalize(scene.up);
+  std::vector<const Light*> skies;
+  for (const Light& l : scene.lights)
+    if (l.type == Light::Type::Sky || l.type == Light::Type::CieOvercastSky) skies.push_back(&l);
+
+  Image image(options.width, options.height);
+  const CameraFrame cam(options.camera, options.width, options.height);
+  const int spp = options.samplesPerPixel;
+  std::atomic<int> rowsDone{0};
+  std::atomic<bool> cancelled{false};
+  tbb::parallel_for(0, options.height, [&](int y) {
+    if (cancelled.load(std::memory_order_relaxed)) return;
+    std::vector<RTCRayHit> hits(size_t(options.width) * size_t(spp));
+    for (int x = 0; x < options.width; ++x)
+      for (int s = 0; s < spp; ++s) {
+        Rng rng(hashCombine(hashCombine(options.seed, uint32_t(y * options.width + x)), uint32_t(s)));
+        const float sx = (float(x) + rng.next()) / float(options.width), sy = (float(y) + rng.next()) / float(options.height);
+        hits[size_t(x) * spp + size_t(s)].ray = makeRay(cam.eye, cam.direction(sx, sy), 0.0f, std::numeric_limits<float>::infinity());
+      }
+    tracer.intersect(hits);
+    for (int x = 0; x < options.width; ++x) {
+      Rgb sum(0.0f);
+      for (int s = 0; s < spp; ++s) {
+        const RTCRayHit& rh = hits[size_t(x) * spp + size_t(s)];
+        const Vec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+          for (const Light* sky : skies) sum += skyRadiance(*sky, dir, up);
+          continue;
+        }
+        const FaceRef ref = refs[rh.hit.primID];
+        const Mesh& mesh = scene.meshes[ref.mesh];
+        const Face& face = mesh.faces[ref.face];
+        const Polygon& poly = polygons[rh.hit.primID];
+        const Material& mat = scene.materials[mesh.material];
+        if (!mat.twoSided && glm::dot(poly.normal(), dir) >= 0.0f) continue;  // a one-sided back is black
+        // The bake rasterised quads as triangles (0,1,2) and (0,2,3); find the hit's triangle.
+        const Vec3 p = cam.eye + dir * rh.ray.tfar;
+        int i1 = 1, i2 = 2;
+        Vec3 w = barycentric(p, poly.v[0], poly.v[1], poly.v[2]);
+        if (poly.count == 4 && (w.y < 0.0f || w.z < 0.0f || w.x < 0.0f)) {
+          i1 = 2, i2 = 3;
+          w = barycentric(p, poly.v[0], poly.v[2], poly.v[3]);
+        }
+        const LightmapAtlas::FaceUv& fuv = atlas.faces[ref.mesh][ref.face];
+        const Vec2 texel = w.x * fuv.texel[0] + w.y * fuv.texel[size_t(i1)] + w.z * fuv.texel[size_t(i2)];
+        const Rgb irradiance = samplePage(bake.pages[fuv.page], bake.pageSize, texel);
+        Rgb rho = mat.reflectance, le = mat.emission;
+        if (!mesh.uvs.empty() && (mat.reflectanceTexture >= 0 || mat.emissionTexture >= 0)) {
+          const Vec2 uv = w.x * mesh.uvs[face.v[0]] + w.y * mesh.uvs[face.v[size_t(i1)]] + w.z * mesh.uvs[face.v[size_t(i2)]];
+          if (mat.reflectanceTexture >= 0) rho *= scene.textures[size_t(mat.reflectanceTexture)].sample(uv);
+          if (mat.emissionTexture >= 0 && mat.isEmissive()) le *= scene.textures[size_t(mat.emissionTexture)].sample(uv);
+        }
+        sum += le + rho * kInvPi * irradiance;
+      }
+      image.at(x, y) = sum / float(spp);
+    }
+    const int done = ++rowsDone;
+    if (progress && (done % 16 == 0 || done == options.height))
+      if (!progress(ProgressEvent{"render", double(done) / options.height, {}})) cancelled = true;
+  });
+  if (cancelled) throw Cancelled();
+  if (stats) {
+    stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->rays = tracer.raysTraced();
+  }
+  return image;
+}
+
+}  // namespace luxel
