@@ -26,4 +26,6 @@ const report = await validator.validateBytes(bytes, {
     readFile(path.resolve(path.dirname(file), decodeURIComponent(uri))).then((b) => new Uint8Array(b)),
 });
 console.log(JSON.stringify(report, null, 2));
-process.exit(report.issues.numErrors > 0 ? 1 : 0);
+// exitCode, not exit(): stdout to a pipe is written asynchronously, and exit() would cut a long
+// report short.
+process.exitCode = report.issues.numErrors > 0 ? 1 : 0;
