@@ -69,8 +69,14 @@ void shuffledStrata(Rng& rng, int m, int* out) {
 
 struct CpuTransport::Workspace {
   std::vector<RTCRay> rays;
-  std::vector<float> weights;
-  std::vector<float*> targets;
+  // The pairs that cast rays: their rays are rays[first, first + count), each arriving one
+  // adding `weight` to *out.
+  struct Traced {
+    float* out;
+    uint32_t first, count;
+    float weight;
+  };
+  std::vector<Traced> traced;
 };
 
 struct CpuTransport::ThreadLocal {
@@ -228,8 +234,7 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
   }
   Workspace& ws = workspace();
   ws.rays.clear();
-  ws.weights.clear();
-  ws.targets.clear();
+  ws.traced.clear();
 
   // A, the unoccluded factor averaged over the receiver by a midpoint rule, for the whole batch
   // first: four receiver points at a time (an element's 2 x 2 rule, or the centroids of four
@@ -247,8 +252,6 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
     // scenes conserve energy. V is the fraction of stratified, jittered rays between the two
     // that arrive.
     const float analytic = analyticOf[pi];
-    const float distance = glm::length(e.centroid - p.centroid);
-    const bool nearField = distance < options_.nearFactor * (elementRadius_[pair.element] + patchRadius_[pair.patch]);
     if (analytic <= 0.0f) continue;
     // A shaft test pays for itself over the receiver patch's elements; for a patch of one or two
     // elements (scenes built of many small faces) it would cost more than their rays.
@@ -258,6 +261,8 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
       continue;
     }
 
+    const float distance = glm::length(e.centroid - p.centroid);
+    const bool nearField = distance < options_.nearFactor * (elementRadius_[pair.element] + patchRadius_[pair.patch]);
     int wanted = patchEmits_[pair.patch] ? options_.emitterRaysPerPair : options_.raysPerPair;
     if (nearField) wanted = std::max(wanted, options_.nearRaysPerPair);
     const int k = squareCount(wanted);
@@ -284,19 +289,21 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
       Vec3 xo = x + e.normal * rayOffset_;
       Vec3 yo = y + p.normal * rayOffset_;
       ws.rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
-      ws.targets.push_back(pair.out);
     }
     const size_t valid = ws.rays.size() - first;
     if (valid == 0) {
       *pair.out = analytic;  // a sliver no sample pair straddles: too small to test, assume visible
       continue;
     }
-    ws.weights.resize(ws.rays.size(), analytic / float(valid));
+    ws.traced.push_back({pair.out, uint32_t(first), uint32_t(valid), analytic / float(valid)});
   }
 
   tracer_.occluded(ws.rays);
-  for (size_t i = 0; i < ws.rays.size(); ++i)
-    if (!isOccluded(ws.rays[i])) *ws.targets[i] += ws.weights[i];
+  for (const Workspace::Traced& t : ws.traced) {
+    uint32_t arrived = 0;
+    for (uint32_t i = t.first; i < t.first + t.count; ++i) arrived += isOccluded(ws.rays[i]) ? 0u : 1u;
+    *t.out = t.weight * float(arrived);
+  }
 }
 
 void CpuTransport::columns(std::span<const uint32_t> patches, std::span<float> out) {
