@@ -3,6 +3,7 @@
 // the error of the last run against the cached reference.
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <memory>
 
 #include <fmt/format.h>
@@ -39,49 +40,47 @@ struct Run {
   uint64_t hemicubes = 0, rows = 0;  // GL runs
 };
 
-// The GL backend's run: as solveOnce, with the hemicube transport (needs a current context).
-Run solveOnceGl(const Scene& scene, const Case& c) {
-  Run r;
-  const auto start = Clock::now();
-  SurfaceSet surfaces = discretise(scene, c.discretise);
-  r.patches = surfaces.patches.size();
+// The case's backend over `surfaces`: GL hemicubes (a context must be current) or the CPU.
+std::unique_ptr<Transport> makeTransport(const Scene& scene, const SurfaceSet& surfaces, const Case& c) {
+  if (c.backend != "gl") return std::make_unique<CpuTransport>(scene, surfaces, c.solve.formFactors);
   gl::HemicubeOptions h;
   h.resolution = c.solve.hemicubeResolution;
-  gl::GlTransport transport(scene, surfaces, c.solve.formFactors, h, 1e-4f, c.solve.hemicubesPerSide);
+  auto transport = std::make_unique<gl::GlTransport>(scene, surfaces, c.solve.formFactors, h, 1e-4f,
+                                                     c.solve.hemicubesPerSide);
   // 4 x 4 hemicubes per shooting patch: 0.040 NRMSE against the CPU on the 1,000-element Cornell
   // box, where 2 x 2 gives 0.060 (tests/gl/test_gl_parity.cpp).
-  if (c.glIdShooting) transport.setShooting(gl::GlTransport::Shooting::IdHemicube, 4);
-  r.setup = secondsSince(start);
-  r.solution = solveWithTransport(scene, surfaces, transport, c.solve);
-  r.formFactors = r.solution.stats.secondsFormFactors;
-  r.solve = r.solution.stats.secondsSolve;
-  r.total = secondsSince(start);
-  r.hemicubes = transport.hemicubesRendered();
-  r.rows = transport.rowsComputed();
-  return r;
+  if (c.glIdShooting) transport->setShooting(gl::GlTransport::Shooting::IdHemicube, 4);
+  return transport;
 }
 
-Run solveOnce(const Scene& scene, const Case& c, RayTracer::RayRecording* recording) {
+// One run of the whole static solve: discretise, build the transport, solve. `before` and `after`
+// see the transport around the solve (recording rays, reading the GL counters).
+Run solveOnce(const Scene& scene, const Case& c, const std::function<void(Transport&)>& before = {},
+              const std::function<void(Transport&)>& after = {}) {
   Run r;
   const auto start = Clock::now();
   SurfaceSet surfaces = discretise(scene, c.discretise);
   r.patches = surfaces.patches.size();
-  CpuTransport transport(scene, surfaces, c.solve.formFactors);
+  std::unique_ptr<Transport> transport = makeTransport(scene, surfaces, c);
   r.setup = secondsSince(start);
-  if (recording) transport.tracer().recordOcclusionRays(recording);
-  r.solution = solveWithTransport(scene, surfaces, transport, c.solve);
+  if (before) before(*transport);
+  r.solution = solveWithTransport(scene, surfaces, *transport, c.solve);
   r.formFactors = r.solution.stats.secondsFormFactors;
   r.solve = r.solution.stats.secondsSolve;
   r.total = secondsSince(start);
+  if (auto* glTransport = dynamic_cast<gl::GlTransport*>(transport.get())) {
+    r.hemicubes = glTransport->hemicubesRendered();
+    r.rows = glTransport->rowsComputed();
+  }
+  if (after) after(*transport);
   return r;
 }
 
 // Embree alone on the recorded streams, on the same threads, as the solver issued them (one
-// stream per call, many calls in parallel). The best of three passes: the limit, not a typical.
-double embreeRawRaysPerSecond(const Scene& scene, const Case& c, const RayTracer::RayRecording& rec) {
+// stream per call, many calls in parallel), through the BVH the solver used. The best of three
+// passes: the limit, not a typical.
+double embreeRawRaysPerSecond(const RayTracer& tracer, const RayTracer::RayRecording& rec) {
   if (rec.rays.empty()) return 0.0;
-  SurfaceSet surfaces = discretise(scene, c.discretise);
-  CpuTransport transport(scene, surfaces, c.solve.formFactors);
   std::vector<size_t> offsets(rec.streamSizes.size() + 1, 0);
   for (size_t i = 0; i < rec.streamSizes.size(); ++i) offsets[i + 1] = offsets[i] + rec.streamSizes[i];
   double best = 0.0;
@@ -92,7 +91,7 @@ double embreeRawRaysPerSecond(const Scene& scene, const Case& c, const RayTracer
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rec.streamSizes.size(), 1),
                       [&](const tbb::blocked_range<size_t>& r) {
                         for (size_t s = r.begin(); s < r.end(); ++s)
-                          transport.tracer().occluded({work.data() + offsets[s], rec.streamSizes[s]});
+                          tracer.occluded({work.data() + offsets[s], rec.streamSizes[s]});
                       });
     best = std::max(best, double(work.size()) / secondsSince(start));
   }
@@ -126,7 +125,7 @@ CaseResult runCase(const Case& c, const Options& options) {
   for (int i = 0; i < options.runs; ++i) {
     reportProgress(options.progress, c.name, double(i) / options.runs, fmt::format("run {} of {}", i + 1, options.runs));
     if (i == 0) resetPeakMemory();
-    Run r = gl ? solveOnceGl(scene, c) : solveOnce(scene, c, nullptr);
+    Run r = solveOnce(scene, c);
     if (i == 0) result.peakMemoryBytes = peakMemoryBytes();
     setup.push_back(r.setup), ff.push_back(r.formFactors), sol.push_back(r.solve), total.push_back(r.total);
     if (gl) {
@@ -160,8 +159,13 @@ CaseResult runCase(const Case& c, const Options& options) {
   if (options.hardwareLimit && s.rays > 0 && !gl) {
     reportProgress(options.progress, c.name, 1.0, "hardware limit");
     RayTracer::RayRecording rec;
-    Run recorded = solveOnce(scene, c, &rec);
-    result.limitRaysPerSecond = embreeRawRaysPerSecond(scene, c, rec);
+    auto tracerOf = [](Transport& t) -> RayTracer& { return static_cast<CpuTransport&>(t).tracer(); };
+    solveOnce(
+        scene, c, [&](Transport& t) { tracerOf(t).recordOcclusionRays(&rec); },
+        [&](Transport& t) {
+          tracerOf(t).recordOcclusionRays(nullptr);
+          result.limitRaysPerSecond = embreeRawRaysPerSecond(tracerOf(t), rec);
+        });
     if (result.limitRaysPerSecond > 0) result.limitFraction = result.raysPerSecond / result.limitRaysPerSecond;
   }
 

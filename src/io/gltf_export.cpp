@@ -286,18 +286,17 @@ struct LightmapTextures {
   std::vector<float> range;
   std::map<std::pair<uint32_t, int32_t>, int> copies;
 };
-LightmapTextures* gLightmaps = nullptr;  // set by writeGlb for the duration of one call
 
-int lightmapMaterial(tinygltf::Model& model, uint32_t material, int32_t page) {
-  auto [it, added] = gLightmaps->copies.try_emplace({material, page}, int(model.materials.size()));
+int lightmapMaterial(tinygltf::Model& model, LightmapTextures& lightmaps, uint32_t material, int32_t page) {
+  auto [it, added] = lightmaps.copies.try_emplace({material, page}, int(model.materials.size()));
   if (added) {
     tinygltf::Material g = model.materials[material];
     g.name = fmt::format("{}@lightmap{}", g.name, page);
     tinygltf::Value::Object info;
-    info["lightMap"] = tinygltf::Value(gLightmaps->texture[size_t(page)]);
+    info["lightMap"] = tinygltf::Value(lightmaps.texture[size_t(page)]);
     info["lightMapTexCoord"] = tinygltf::Value(1);
     info["lightMapEncoding"] = tinygltf::Value(std::string("RGBM"));
-    info["rgbmRange"] = tinygltf::Value(double(gLightmaps->range[size_t(page)]));
+    info["rgbmRange"] = tinygltf::Value(double(lightmaps.range[size_t(page)]));
     info["lightMapQuantity"] = tinygltf::Value(std::string("irradiance"));
     tinygltf::Value::Object extras;
     extras["luxel"] = tinygltf::Value(info);
@@ -308,12 +307,14 @@ int lightmapMaterial(tinygltf::Model& model, uint32_t material, int32_t page) {
 }
 
 void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScale, const ElementIndex& index,
-             tinygltf::Model& model) {
+             LightmapTextures& lightmaps, tinygltf::Model& model) {
   const Mesh& mesh = scene.meshes[mi];
   MeshBuilder b;
   b.hasUv = !mesh.uvs.empty();
   b.hasUv1 = !o.secondUvs.empty();
   b.hasColor = !o.vertexColors.empty() || o.elements;
+  tinygltf::Mesh gm;
+  gm.name = mesh.name;
 
   if (o.elements) {
     const SurfaceSet& set = *o.elements;
@@ -333,30 +334,19 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
     std::vector<int32_t> pages(o.faceLightmap[mi].begin(), o.faceLightmap[mi].end());
     std::sort(pages.begin(), pages.end());
     pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
-    tinygltf::Mesh gm;
-    gm.name = mesh.name;
     for (int32_t page : pages) {
       MeshBuilder pb;
       pb.hasUv = b.hasUv, pb.hasUv1 = true, pb.hasColor = b.hasColor;
       addFaces(mesh, mi, o, colorScale, pb, [&](size_t fi) { return o.faceLightmap[mi][fi] == page; });
       if (pb.indices.empty()) continue;
-      gm.primitives.push_back(makePrimitive(model, pb, page < 0 ? int(mesh.material) : lightmapMaterial(model, mesh.material, page)));
+      gm.primitives.push_back(
+          makePrimitive(model, pb, page < 0 ? int(mesh.material) : lightmapMaterial(model, lightmaps, mesh.material, page)));
     }
-    if (gm.primitives.empty()) return;
-    model.meshes.push_back(gm);
-    tinygltf::Node node;
-    node.name = mesh.name;
-    node.mesh = int(model.meshes.size()) - 1;
-    model.nodes.push_back(node);
-    model.scenes[0].nodes.push_back(int(model.nodes.size()) - 1);
-    return;
   } else {
     addFaces(mesh, mi, o, colorScale, b, [](size_t) { return true; });
   }
-  if (b.indices.empty()) return;  // a mesh without faces: glTF meshes need a primitive
-  tinygltf::Mesh gm;
-  gm.name = mesh.name;
-  gm.primitives.push_back(makePrimitive(model, b, int(mesh.material)));
+  if (!b.indices.empty()) gm.primitives.push_back(makePrimitive(model, b, int(mesh.material)));
+  if (gm.primitives.empty()) return;  // a mesh without faces: glTF meshes need a primitive
   model.meshes.push_back(gm);
   tinygltf::Node node;
   node.name = mesh.name;
@@ -438,11 +428,9 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
     lightmaps.texture.push_back(addImage(model, image.name, image.png, sampler));
     lightmaps.range.push_back(image.rgbmRange);
   }
-  gLightmaps = &lightmaps;
   const float colorScale = vertexColorScale(options);
   const ElementIndex index = options.elements ? indexElements(scene, *options.elements) : ElementIndex{};
-  for (size_t m = 0; m < scene.meshes.size(); ++m) addMesh(scene, m, options, colorScale, index, model);
-  gLightmaps = nullptr;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) addMesh(scene, m, options, colorScale, index, lightmaps, model);
   if (!options.vertexColors.empty() || options.elements) {
     // What COLOR_0 holds and the factor that turns it back into radiance (docs/baking.md); three.js
     // puts scene extras in gltf.scene.userData.

@@ -86,34 +86,30 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
   validate(options);
   const auto start = Clock::now();
   std::vector<std::string> warnings;
+  std::unique_ptr<gl::Context> context;  // outlives the transport (declared first)
   if (options.backend != SolveOptions::Backend::Cpu) {
-    std::unique_ptr<gl::Context> context;
     try {
       context = std::make_unique<gl::Context>([&](const std::string& m) { warnings.push_back(m); });
     } catch (const Error& e) {
       if (options.backend == SolveOptions::Backend::Gl) throw;
       warnings.push_back(fmt::format("{}; using the CPU backend", e.what()));
     }
-    if (context) {
-      gl::HemicubeOptions h;
-      h.resolution = options.hemicubeResolution;
-      gl::GlTransport transport(scene, surfaces, options.formFactors, h, 1e-4f, options.hemicubesPerSide);
-      const double setup = secondsSince(start);
-      Solution sol = solveWithTransport(scene, surfaces, transport, options, progress);
-      sol.stats.secondsSetup += setup;
-      sol.stats.secondsTotal = secondsSince(start);
-      sol.stats.backend = "gl";
-      sol.stats.device = context->renderer();
-      sol.stats.warnings = std::move(warnings);
-      return sol;
-    }
   }
-  CpuTransport transport(scene, surfaces, options.formFactors);
+  std::unique_ptr<Transport> transport;
+  if (context) {
+    gl::HemicubeOptions h;
+    h.resolution = options.hemicubeResolution;
+    transport = std::make_unique<gl::GlTransport>(scene, surfaces, options.formFactors, h, 1e-4f,
+                                                  options.hemicubesPerSide);
+  } else {
+    transport = std::make_unique<CpuTransport>(scene, surfaces, options.formFactors);
+  }
   const double setup = secondsSince(start);
-  Solution sol = solveWithTransport(scene, surfaces, transport, options, progress);
+  Solution sol = solveWithTransport(scene, surfaces, *transport, options, progress);
   sol.stats.secondsSetup += setup;
   sol.stats.secondsTotal = secondsSince(start);
-  sol.stats.backend = "cpu";
+  sol.stats.backend = context ? "gl" : "cpu";
+  if (context) sol.stats.device = context->renderer();
   sol.stats.warnings = std::move(warnings);
   return sol;
 }
