@@ -59,7 +59,7 @@ nlohmann::json caseJson(const CaseResult& r) {
       {"device", r.device},
       {"hemicubes", r.hemicubes},
       {"hemicubes_per_second", r.hemicubesPerSecond},
-      {"ms_per_row", r.msPerRow},
+      {"ms_per_gather", r.msPerGather},
       {"ms_per_shot", r.msPerShot},
   };
   if (!c.seed.source.empty())

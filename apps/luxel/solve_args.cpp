@@ -13,6 +13,15 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
       ->capture_default_str();
   c.add_option("--refine", a.refine, "Adaptive refinement: extra elements allowed (0: off)");
   c.add_option("--rays-per-pair", a.raysPerPair, "Visibility rays per element-patch pair")->check(CLI::Range(1, 256));
+  c.add_option("--hemicube-resolution", a.hemicubeResolution,
+               "GL: hemicube top-face pixels a side (default 64 shooting, 256 gathering)")
+      ->check(CLI::Range(8, 4096));
+  c.add_option("--hemicubes-per-side", a.hemicubesPerSide,
+               "GL: k x k hemicubes per shooting patch (default 3) or per gathering element (default 2)")
+      ->check(CLI::Range(1, 8));
+  c.add_option("--hemicube-visibility", a.hemicubeVisibility,
+               "GL progressive: distance (depth hemicubes, seed 003) or item (ID hemicubes, seed 001)")
+      ->capture_default_str();
 }
 
 DiscretiseOptions discretiseOptions(const SolveArgs& a) {
@@ -29,6 +38,11 @@ SolveOptions solveOptions(const SolveArgs& a) {
   o.unshotThreshold = a.unshot;
   o.refineBudget = a.refine;
   if (a.raysPerPair > 0) o.formFactors.raysPerPair = a.raysPerPair;
+  o.hemicubeVisibility = parseHemicubeVisibility(a.hemicubeVisibility);
+  for (SolveOptions::HemicubeSampling* h : {&o.shootingHemicubes, &o.gatheringHemicubes}) {
+    if (a.hemicubeResolution > 0) h->resolution = a.hemicubeResolution;
+    if (a.hemicubesPerSide > 0) h->perSide = a.hemicubesPerSide;
+  }
   return o;
 }
 

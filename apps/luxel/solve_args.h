@@ -20,9 +20,13 @@ struct SolveArgs {
   double unshot = 1e-3;
   size_t refine = 0;
   int raysPerPair = 0;
+  int hemicubeResolution = 0;  // 0: the method's default
+  int hemicubesPerSide = 0;
+  std::string hemicubeVisibility = "distance";
 };
 
-// Adds --solver, --backend, --elements / --element-size, --unshot, --refine, --rays-per-pair.
+// Adds --solver, --backend, --elements / --element-size, --unshot, --refine, --rays-per-pair, and
+// the GL backend's --hemicube-resolution, --hemicubes-per-side, --hemicube-visibility.
 void addSolveOptions(CLI::App& command, SolveArgs& args);
 
 DiscretiseOptions discretiseOptions(const SolveArgs& args);

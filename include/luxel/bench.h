@@ -28,7 +28,6 @@ struct Case {
   std::string scene;    // a built-in name, a scene file or a mesh file (as `luxel render`)
   std::string backend = "cpu";  // "cpu", or "gl": OpenGL hemicubes (skipped, saying why, without a context)
   std::string setting;  // what this case varies, in words
-  bool glIdShooting = false;  // GL backend: ID-hemicube shooting (4 x 4 per patch) instead of transposed rows
   DiscretiseOptions discretise;
   SolveOptions solve;
   SeedFigure seed;
@@ -82,12 +81,13 @@ struct CaseResult {
   double limitRaysPerSecond = 0.0;
   double limitFraction = 0.0;  // raysPerSecond / limitRaysPerSecond
   // GL cases (0 otherwise), median run: hemicubes rendered per run and per second of
-  // form-factor time; milliseconds of form-factor time per element row (gather) and of
-  // form-factor plus solve time per shot (progressive; 0 when none was shot).
+  // form-factor time; milliseconds of form-factor time per element gathered (gather: its k x k
+  // hemicubes) and of form-factor plus solve time per shot (progressive; 0 when none was shot).
   std::string device;  // the GL renderer
   uint64_t hemicubes = 0;
   double hemicubesPerSecond = 0.0;
-  double msPerRow = 0.0, msPerShot = 0.0;
+  double msPerGather = 0.0;  // gather: one element's hemicubes, once
+  double msPerShot = 0.0;    // progressive: a pass's time over its shooters
 };
 
 CaseResult runCase(const Case& benchCase, const Options& options);

@@ -12,8 +12,6 @@
 
 #include "bench/memory.h"
 #include "bench/reference.h"
-#include "gl/gl_context.h"
-#include "gl/gl_transport.h"
 #include "luxel/bench.h"
 #include "luxel/error.h"
 #include "luxel/import.h"
@@ -37,42 +35,33 @@ struct Run {
   double setup = 0, formFactors = 0, solve = 0, total = 0;
   Solution solution;
   size_t patches = 0;
-  uint64_t hemicubes = 0, rows = 0;  // GL runs
 };
 
-// The case's backend over `surfaces`: GL hemicubes (a context must be current) or the CPU.
-std::unique_ptr<Transport> makeTransport(const Scene& scene, const SurfaceSet& surfaces, const Case& c) {
-  if (c.backend != "gl") return std::make_unique<CpuTransport>(scene, surfaces, c.solve.formFactors);
-  gl::HemicubeOptions h;
-  h.resolution = c.solve.hemicubeResolution;
-  auto transport = std::make_unique<gl::GlTransport>(scene, surfaces, c.solve.formFactors, h, 1e-4f,
-                                                     c.solve.hemicubesPerSide);
-  // 4 x 4 hemicubes per shooting patch: 0.040 NRMSE against the CPU on the 1,000-element Cornell
-  // box, where 2 x 2 gives 0.060 (tests/gl/test_gl_parity.cpp).
-  if (c.glIdShooting) transport->setShooting(gl::GlTransport::Shooting::IdHemicube, 4);
-  return transport;
-}
-
 // One run of the whole static solve: discretise, build the transport, solve. `before` and `after`
-// see the transport around the solve (recording rays, reading the GL counters).
+// see the CPU transport around the solve (recording rays). A GL case runs solve() itself, as a
+// user's --backend gl does: its context, hemicubes and GPU-resident solvers are all timed.
 Run solveOnce(const Scene& scene, const Case& c, const std::function<void(Transport&)>& before = {},
               const std::function<void(Transport&)>& after = {}) {
   Run r;
   const auto start = Clock::now();
   SurfaceSet surfaces = discretise(scene, c.discretise);
   r.patches = surfaces.patches.size();
-  std::unique_ptr<Transport> transport = makeTransport(scene, surfaces, c);
-  r.setup = secondsSince(start);
-  if (before) before(*transport);
-  r.solution = solveWithTransport(scene, surfaces, *transport, c.solve);
+  if (c.backend == "gl") {
+    SolveOptions o = c.solve;
+    o.backend = SolveOptions::Backend::Gl;
+    const double discretised = secondsSince(start);
+    r.solution = solve(scene, surfaces, o);
+    r.setup = discretised + r.solution.stats.secondsSetup;
+  } else {
+    CpuTransport transport(scene, surfaces, c.solve.formFactors);
+    r.setup = secondsSince(start);
+    if (before) before(transport);
+    r.solution = solveWithTransport(scene, surfaces, transport, c.solve);
+    if (after) after(transport);
+  }
   r.formFactors = r.solution.stats.secondsFormFactors;
   r.solve = r.solution.stats.secondsSolve;
   r.total = secondsSince(start);
-  if (auto* glTransport = dynamic_cast<gl::GlTransport*>(transport.get())) {
-    r.hemicubes = glTransport->hemicubesRendered();
-    r.rows = glTransport->rowsComputed();
-  }
-  if (after) after(*transport);
   return r;
 }
 
@@ -108,19 +97,14 @@ CaseResult runCase(const Case& c, const Options& options) {
   CaseResult result;
   result.benchCase = c;
   result.runs = options.runs;
-  // Without an OpenGL 4.5 context the case throws, and the bench command reports it skipped with
-  // the reason, as it does a missing scene.
-  std::unique_ptr<gl::Context> context;
-  if (gl) {
-    context = std::make_unique<gl::Context>();
-    result.device = context->renderer();
-  }
+  // Without an OpenGL 4.5 context a GL case throws, and the bench command reports it skipped
+  // with the reason, as it does a missing scene.
   reportProgress(options.progress, c.name, 0.0, "loading");
   const auto loadStart = Clock::now();
   const Scene scene = loadScene(c.scene);
   result.loadSeconds = secondsSince(loadStart);
 
-  std::vector<double> setup, ff, sol, total, hemicubeRates, rowMs, shotMs;
+  std::vector<double> setup, ff, sol, total, hemicubeRates, gatherMs, shotMs;
   Run last;
   for (int i = 0; i < options.runs; ++i) {
     reportProgress(options.progress, c.name, double(i) / options.runs, fmt::format("run {} of {}", i + 1, options.runs));
@@ -129,10 +113,13 @@ CaseResult runCase(const Case& c, const Options& options) {
     if (i == 0) result.peakMemoryBytes = peakMemoryBytes();
     setup.push_back(r.setup), ff.push_back(r.formFactors), sol.push_back(r.solve), total.push_back(r.total);
     if (gl) {
-      hemicubeRates.push_back(r.formFactors > 0 ? double(r.hemicubes) / r.formFactors : 0.0);
-      rowMs.push_back(r.rows > 0 ? 1e3 * r.formFactors / double(r.rows) : 0.0);
-      const uint64_t shots = r.solution.stats.shots;
-      shotMs.push_back(shots > 0 ? 1e3 * (r.formFactors + r.solve) / double(shots) : 0.0);
+      const SolveStats& st = r.solution.stats;
+      hemicubeRates.push_back(r.formFactors > 0 ? double(st.hemicubes) / r.formFactors : 0.0);
+      // An element gathered once is perSide^2 hemicubes; a shot is a whole pass's share.
+      const double perElement = double(c.solve.gatheringHemicubes.perSide * c.solve.gatheringHemicubes.perSide);
+      const bool gathering = c.solve.method == SolveOptions::Method::Gather;
+      gatherMs.push_back(gathering && st.hemicubes ? 1e3 * r.formFactors * perElement / double(st.hemicubes) : 0.0);
+      shotMs.push_back(st.shots > 0 ? 1e3 * (r.formFactors + r.solve) / double(st.shots) : 0.0);
     }
     last = std::move(r);
   }
@@ -149,9 +136,10 @@ CaseResult runCase(const Case& c, const Options& options) {
   result.unshot = s.unshotFraction;
   result.raysPerSecond = result.formFactors.median > 0 ? double(s.rays) / result.formFactors.median : 0.0;
   if (gl) {
-    result.hemicubes = last.hemicubes;
+    result.device = s.device;
+    result.hemicubes = s.hemicubes;
     result.hemicubesPerSecond = spreadOf(hemicubeRates).median;
-    result.msPerRow = spreadOf(rowMs).median;
+    result.msPerGather = spreadOf(gatherMs).median;
     result.msPerShot = spreadOf(shotMs).median;
   }
 

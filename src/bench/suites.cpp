@@ -46,12 +46,16 @@ std::vector<Suite> makeSuites() {
   struct Row {
     const char* scene;
     double gatherMs, gatherError, progressiveMs, progressiveError;
+    double unshot() const {
+      return std::string(scene) == "indirect-light" ? kIndirectProgressiveUnshot : kSeedProgressiveUnshot;
+    }
   };
-  for (const Row& r : {Row{"indirect-light", 4757, 0.0522469, 265, 0.0631117},
-                       Row{"cornell-large", 2437, 0.00225834, 116, 0.00675699},
-                       Row{"cornell-small", 2440, 0.0028034, 87, 0.0098088},
-                       Row{"cornell-low", 150, 0.0110786, 49, 0.0149107}}) {
-    const double unshot = std::string(r.scene) == "indirect-light" ? kIndirectProgressiveUnshot : kSeedProgressiveUnshot;
+  const Row rows[] = {{"indirect-light", 4757, 0.0522469, 265, 0.0631117},
+                      {"cornell-large", 2437, 0.00225834, 116, 0.00675699},
+                      {"cornell-small", 2440, 0.0028034, 87, 0.0098088},
+                      {"cornell-low", 150, 0.0110786, 49, 0.0149107}};
+  for (const Row& r : rows) {
+    const double unshot = r.unshot();
     seeds.cases.push_back(progressive(r.scene, unshot, {t51, r.progressiveMs, r.progressiveError}));
     // The fewest rays that still reach the seed's progressive error (sweep in docs/performance.md):
     // one ray per ordinary pair, 4 near contacts, 16 from emitters, and a looser stop.
@@ -107,34 +111,34 @@ std::vector<Suite> makeSuites() {
   quick.cases.push_back(progressive("cornell", 1e-2, {}));
   quick.cases.back().discretise.elementBudget = 1000;
 
-  // The GL backend (item-buffer hemicubes, default 256 pixels, 2 x 2 per element), on scenes
-  // small enough for Mesa's llvmpipe; the error columns are against the same CPU references as
-  // the CPU cases. Progressive shooting transposes all rows (the first shot renders them), or
-  // renders ID hemicubes on the shooters (the -id case).
-  Suite gl{"gl", "the OpenGL backend's hemicubes on cornell-low and the built-in Cornell box at 1,000 elements", {}};
+  // The GL backend on scenes small enough for Mesa's llvmpipe, with the same CPU references as
+  // the CPU cases: gathering with item hemicubes (256 pixels, 2 x 2 per element) and progressive
+  // refinement resident on the GPU (64 pixels, 3 x 3 per shooting patch), with depth hemicubes
+  // (seed 003, the default) and ID hemicubes (seed 001).
+  Suite gl{"gl", "the OpenGL backend on cornell-low, cornell-large, indirect-light and the Cornell box at 1,000 elements", {}};
   {
-    Case low = gather("cornell-low", kSeedGatherResidual, {t51, 150, 0.0110786});
-    low.name = "cornell-low/gl-gather";
-    low.backend = "gl";
-    low.setting += ", GL hemicubes";
-    gl.cases.push_back(low);
-    Case box = gather("cornell", kSeedGatherResidual, {});
-    box.name = "cornell-1k/gl-gather";
-    box.backend = "gl";
-    box.setting += ", GL hemicubes";
+    auto onGl = [](Case c, const std::string& name) {
+      c.name = name;
+      c.backend = "gl";
+      c.setting += ", GL hemicubes";
+      return c;
+    };
+    gl.cases.push_back(onGl(gather("cornell-low", kSeedGatherResidual, {t51, rows[3].gatherMs, rows[3].gatherError}),
+                            "cornell-low/gl-gather"));
+    Case box = onGl(gather("cornell", kSeedGatherResidual, {}), "cornell-1k/gl-gather");
     box.discretise.elementBudget = 1000;
     gl.cases.push_back(box);
-    Case shoot = progressive("cornell", 1e-2, {});
-    shoot.name = "cornell-1k/gl-progressive";
-    shoot.backend = "gl";
-    shoot.setting += ", GL hemicubes";
-    shoot.discretise.elementBudget = 1000;
-    gl.cases.push_back(shoot);
-    Case id = shoot;
-    id.name = "cornell-1k/gl-progressive-id";
-    id.setting += ", ID-hemicube shooting";
-    id.glIdShooting = true;
-    gl.cases.push_back(id);
+    for (const Row& r : rows) {
+      if (std::string(r.scene) == "cornell-small") continue;  // cornell-large's geometry
+      Case shoot = onGl(progressive(r.scene, r.unshot(), {t51, r.progressiveMs, r.progressiveError}),
+                        fmt::format("{}/gl-progressive", r.scene));
+      gl.cases.push_back(shoot);
+      Case id = shoot;
+      id.name += "-id";
+      id.setting += ", ID hemicubes";
+      id.solve.hemicubeVisibility = SolveOptions::HemicubeVisibility::Item;
+      gl.cases.push_back(id);
+    }
   }
   return {seeds, shader, scenes, core, quick, gl};
 }

@@ -10,7 +10,7 @@ namespace luxel::gl {
 
 GlTransport::GlTransport(const Scene& scene, const SurfaceSet& surfaces, const FormFactorOptions& formFactors,
                          const HemicubeOptions& hemicube, float offset, int samplesPerSide)
-    : surfaces_(surfaces), samplesPerSide_(samplesPerSide), hemicubeOptions_(hemicube), analytic_(std::make_unique<CpuTransport>(scene, surfaces, formFactors)) {
+    : surfaces_(surfaces), samplesPerSide_(samplesPerSide), analytic_(std::make_unique<CpuTransport>(scene, surfaces, formFactors)) {
   std::vector<Polygon> patchPolygons(surfaces.patches.size());
   for (size_t p = 0; p < surfaces.patches.size(); ++p) patchPolygons[p] = surfaces.patches[p].polygon;
   hemicube_ = std::make_unique<ItemHemicube>(patchPolygons, surfaces.sceneExtent, hemicube);
@@ -47,7 +47,6 @@ void GlTransport::rows(std::span<const uint32_t> elements, std::span<float> out)
 }
 
 void GlTransport::columns(std::span<const uint32_t> patches, std::span<float> out) {
-  if (shooting_ == Shooting::IdHemicube) return shootColumns(patches, out);
   const size_t ne = surfaces_.elements.size(), np = surfaces_.patches.size();
   if (matrix_.empty()) {
     std::vector<uint32_t> all(ne);
@@ -59,45 +58,12 @@ void GlTransport::columns(std::span<const uint32_t> patches, std::span<float> ou
     for (size_t e = 0; e < ne; ++e) out[c * ne + e] = matrix_[e * np + patches[c]];
 }
 
-void GlTransport::shootColumns(std::span<const uint32_t> patches, std::span<float> out) {
-  const size_t ne = surfaces_.elements.size();
-  if (!elementHemicube_) {
-    std::vector<Polygon> elementPolygons(ne);
-    for (size_t e = 0; e < ne; ++e) elementPolygons[e] = surfaces_.elements[e].polygon;
-    elementHemicube_ = std::make_unique<ItemHemicube>(elementPolygons, surfaces_.sceneExtent, hemicubeOptions_);
-  }
-  shot_.resize(ne);
-  const int k = shootSamplesPerSide_ > 0 ? shootSamplesPerSide_ : samplesPerSide_;
-  for (size_t c = 0; c < patches.size(); ++c) {
-    const Patch& patch = surfaces_.patches[patches[c]];
-    std::span<float> column = out.subspan(c * ne, ne);
-    std::fill(column.begin(), column.end(), 0.0f);
-    // F[p -> e], averaged over a k x k midpoint rule on the patch (a shooter is a whole patch,
-    // several elements wide: one hemicube at its centre would be a point source).
-    for (int j = 0; j < k; ++j)
-      for (int q = 0; q < k; ++q) {
-        const Vec3 x = polygonPoint(patch.polygon, (float(q) + 0.5f) / float(k), (float(j) + 0.5f) / float(k));
-        elementHemicube_->formFactors(x + offset_ * patch.normal, patch.normal, shot_);
-        for (size_t e = 0; e < ne; ++e) column[e] += shot_[e] / float(k * k);
-        ++hemicubes_;
-      }
-    for (size_t e = 0; e < ne; ++e) {
-      const Element& el = surfaces_.elements[e];
-      // The hemicube sees only the patch's front; the element must face the patch too (a receiver
-      // gathers over its front hemisphere), and no face lights itself, as in rows().
-      const bool facing = glm::dot(el.normal, patch.centroid - el.centroid) > 0.0f;
-      column[e] = (facing && el.face != patch.face && el.area > 0.0f) ? column[e] * patch.area / el.area : 0.0f;
-    }
-  }
-}
-
 void GlTransport::analyticIrradiance(std::span<Rgb> out) { analytic_->analyticIrradiance(out); }
 
 uint64_t GlTransport::raysTraced() const { return analytic_->raysTraced(); }
 
 void GlTransport::elementsChanged() {
   matrix_.clear();
-  elementHemicube_.reset();
   analytic_->elementsChanged();
 }
 

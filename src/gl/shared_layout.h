@@ -2,9 +2,11 @@
 // #defines from glslPreamble(), so a vertex attribute or binding cannot drift between the two.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <fmt/format.h>
+#include <glm/glm.hpp>
 
 namespace luxel::gl {
 
@@ -23,6 +25,61 @@ constexpr int kIntegrateGroup = 8;  // 8 x 8 = 64 pixel rows per work group
 // of a 64-pixel hemicube, 4.6e-5 at 256), and in practice far closer since the roundings cancel.
 constexpr double kFixedPointScale = 2147483648.0;
 
+// GPU progressive refinement (progressive_gl.cpp): shader storage bindings of its passes, the
+// texture unit of the shooters' distance layers, and work-group sizes.
+constexpr int kElementBinding = 0;         // GpuElement[], read only
+constexpr int kPatchBinding = 1;           // GpuPatch[], read only
+constexpr int kPatchElementBinding = 2;    // uint[]: each patch's elements, in GpuPatch::ids.x/.y
+constexpr int kPatchStateBinding = 3;      // GpuPatchState[]: unshot power this pass, shot yet
+constexpr int kShooterBinding = 4;         // GpuShooter[]: one per hemicube of the pass
+constexpr int kSolverStateBinding = 5;     // GpuSolverState
+constexpr int kElementStateBinding = 6;    // GpuElementState[]: the solution
+constexpr int kDistanceTextureUnit = 1;    // R32F distances of the shooters' hemicubes
+constexpr int kPowerGroup = 64;
+constexpr int kSelectGroup = 256;          // one work group chooses the shooters
+constexpr int kReconstructGroup = 64;
+constexpr int kMaxShootersPerPass = 32;
+
+// Records shared by C++ (which writes them) and GLSL (which reads them), std430, vec4-aligned so
+// that the two layouts are the same by construction; the GLSL declarations are in glslPreamble().
+struct GpuElement {
+  glm::vec4 corners[4];    // the polygon; corners[0].w = corner count (3 or 4)
+  glm::vec4 normalArea;    // xyz unit normal, w area
+  glm::vec4 reflectance;   // rgb
+  glm::uvec4 ids;          // x item (canonical face + 1), y patch, z face
+};
+struct GpuPatch {
+  glm::vec4 corners[4];    // the polygon; corners[0].w = corner count (3 or 4)
+  glm::vec4 normalArea;    // xyz unit normal, w area (sum of its elements' areas)
+  glm::vec4 emission;      // rgb area-weighted mean emitted exitance
+  glm::uvec4 ids;          // x first index into the patch-element list, y count, z face
+};
+// Written on the GPU only, from here on.
+struct GpuPatchState {
+  float power;    // sum over its elements of A (r + g + b) of the unshot radiosity
+  uint32_t shot;  // 1 once it has shot (its first shot carries its emission: direct light)
+};
+// One per hemicube of a pass (shooter slot x sample).
+struct GpuShooter {
+  glm::vec4 eye;       // xyz hemicube centre (a point on the patch, lifted by the offset)
+  glm::vec4 normal;    // xyz the patch's normal
+  glm::vec4 unshot;    // rgb the patch's mean unshot radiosity, shot this pass
+  glm::vec4 emission;  // rgb the patch's emission when this is its first shot, else 0
+  glm::uvec4 ids;      // x patch, y active (0: an empty slot, drawn off screen)
+};
+struct GpuSolverState {
+  float unshotPower;   // before this pass's shots: sum over elements of A (r + g + b)
+  uint32_t chosen;     // shooters this pass
+  uint32_t shots;      // shooters so far
+  uint32_t passes;
+  uint32_t chosenPatch[kMaxShootersPerPass];
+};
+struct GpuElementState {
+  glm::vec4 radiosity, unshot, irradiance, direct;
+};
+static_assert(sizeof(GpuElement) == 112 && sizeof(GpuPatch) == 112 && sizeof(GpuShooter) == 80 && sizeof(GpuPatchState) == 8);
+static_assert(sizeof(GpuSolverState) == 16 + 4 * kMaxShootersPerPass && sizeof(GpuElementState) == 64);
+
 inline std::string glslPreamble() {
   return fmt::format(
       "#version 450 core\n"
@@ -31,8 +88,28 @@ inline std::string glslPreamble() {
       "#define DELTA_BINDING {}\n"
       "#define ITEM_SUM_BINDING {}\n"
       "#define ITEM_TEXTURE_UNIT {}\n"
-      "#define INTEGRATE_GROUP {}\n",
-      kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup);
+      "#define INTEGRATE_GROUP {}\n"
+      "#define ELEMENT_BINDING {}\n"
+      "#define PATCH_BINDING {}\n"
+      "#define PATCH_ELEMENT_BINDING {}\n"
+      "#define PATCH_STATE_BINDING {}\n"
+      "#define SHOOTER_BINDING {}\n"
+      "#define SOLVER_STATE_BINDING {}\n"
+      "#define ELEMENT_STATE_BINDING {}\n"
+      "#define DISTANCE_TEXTURE_UNIT {}\n"
+      "#define POWER_GROUP {}\n"
+      "#define SELECT_GROUP {}\n"
+      "#define RECONSTRUCT_GROUP {}\n"
+      "#define MAX_SHOOTERS_PER_PASS {}\n"
+      "struct GpuElement {{ vec4 corners[4]; vec4 normalArea; vec4 reflectance; uvec4 ids; }};\n"
+      "struct GpuPatch {{ vec4 corners[4]; vec4 normalArea; vec4 emission; uvec4 ids; }};\n"
+      "struct GpuPatchState {{ float power; uint shot; }};\n"
+      "struct GpuShooter {{ vec4 eye; vec4 normal; vec4 unshot; vec4 emission; uvec4 ids; }};\n"
+      "struct GpuElementState {{ vec4 radiosity; vec4 unshot; vec4 irradiance; vec4 direct; }};\n",
+      kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup,
+      kElementBinding, kPatchBinding, kPatchElementBinding, kPatchStateBinding, kShooterBinding,
+      kSolverStateBinding, kElementStateBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
+      kReconstructGroup, kMaxShootersPerPass);
 }
 
 }  // namespace luxel::gl

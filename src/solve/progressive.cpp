@@ -126,25 +126,7 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
   }
   reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction));
 
-  if (options.ambient) {
-    // Ambient term (Cohen et al. 1988, section 4): the unshot radiosity, spread uniformly and
-    // multiplied by the interreflection factor 1 / (1 - mean reflectance).
-    double totalArea = 0.0;
-    Rgb meanRho(0.0f), unshotSum(0.0f);
-    for (size_t e = 0; e < ne; ++e) {
-      totalArea += sys.area[e];
-      meanRho += sys.area[e] * sys.reflectance[e];
-      unshotSum += sys.area[e] * unshot[e];
-    }
-    if (totalArea > 0.0) {
-      meanRho /= float(totalArea);
-      Rgb ambient = unshotSum / float(totalArea) / glm::max(Rgb(1.0f) - meanRho, Rgb(1e-3f));
-      for (size_t e = 0; e < ne; ++e) {
-        irradiance[e] += ambient;
-        radiosity[e] += sys.reflectance[e] * ambient;
-      }
-    }
-  }
+  if (options.ambient) addAmbientTerm(sys, unshot, radiosity, irradiance);
 
   // Direct irradiance: the analytic lights plus one bounce from emitting patches.
   const std::vector<Rgb> patchEmission = sys.patchMeans(sys.emission);

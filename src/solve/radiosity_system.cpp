@@ -35,4 +35,22 @@ double RadiositySystem::sourcePower() const {
   return p;
 }
 
+void addAmbientTerm(const RadiositySystem& sys, const std::vector<Rgb>& unshot, std::vector<Rgb>& radiosity,
+                    std::vector<Rgb>& irradiance) {
+  double totalArea = 0.0;
+  Rgb meanRho(0.0f), unshotSum(0.0f);
+  for (size_t e = 0; e < sys.elementCount(); ++e) {
+    totalArea += sys.area[e];
+    meanRho += sys.area[e] * sys.reflectance[e];
+    unshotSum += sys.area[e] * unshot[e];
+  }
+  if (totalArea <= 0.0) return;
+  meanRho /= float(totalArea);
+  const Rgb ambient = unshotSum / float(totalArea) / glm::max(Rgb(1.0f) - meanRho, Rgb(1e-3f));
+  for (size_t e = 0; e < sys.elementCount(); ++e) {
+    irradiance[e] += ambient;
+    radiosity[e] += sys.reflectance[e] * ambient;
+  }
+}
+
 }  // namespace luxel

@@ -35,6 +35,11 @@ Solution solveProgressive(const RadiositySystem& system, Transport& transport,
 Solution solveGather(const RadiositySystem& system, Transport& transport, const SolveOptions& options,
                      const ProgressCallback& progress, double& formFactorSeconds);
 
+// Cohen et al. 1988's ambient term, for display: the unshot radiosity spread uniformly and
+// multiplied by the interreflection factor 1 / (1 - mean reflectance), added to B and H.
+void addAmbientTerm(const RadiositySystem& system, const std::vector<Rgb>& unshot, std::vector<Rgb>& radiosity,
+                    std::vector<Rgb>& irradiance);
+
 inline double channelSum(const Rgb& c) { return double(c.r) + double(c.g) + double(c.b); }
 
 }  // namespace luxel

@@ -13,6 +13,7 @@
 #include "mesh/corner_groups.h"
 #include "gl/gl_context.h"
 #include "gl/gl_transport.h"
+#include "gl/progressive_gl.h"
 #include "solve/radiosity_system.h"
 #include "solve/solve_with_transport.h"
 #include "transport/cpu_transport.h"
@@ -33,9 +34,11 @@ void validate(const SolveOptions& o) {
   for (int n : {f.raysPerPair, f.nearRaysPerPair, f.emitterRaysPerPair, f.lightSamples})
     if (n < 1 || n > 256) fail(fmt::format("ray and sample counts must be in 1..256 (got {})", n));
   if (!(f.nearFactor >= 0.0f)) fail("near factor must be >= 0");
-  if (o.hemicubeResolution < 8 || o.hemicubeResolution > 4096 || o.hemicubeResolution % 2)
-    fail(fmt::format("hemicube resolution {} must be even, from 8 to 4096", o.hemicubeResolution));
-  if (o.hemicubesPerSide < 1 || o.hemicubesPerSide > 8) fail("hemicubes per element side must be in 1..8");
+  for (const SolveOptions::HemicubeSampling& h : {o.shootingHemicubes, o.gatheringHemicubes}) {
+    if (h.resolution < 8 || h.resolution > 4096 || h.resolution % 2)
+      fail(fmt::format("hemicube resolution {} must be even, from 8 to 4096", h.resolution));
+    if (h.perSide < 1 || h.perSide > 8) fail(fmt::format("hemicubes per side {} must be in 1..8", h.perSide));
+  }
   if (!(o.refineThreshold > 0.0f)) fail("refine threshold must be > 0");
 }
 
@@ -74,6 +77,12 @@ SolveOptions::Method parseSolveMethod(const std::string& name) {
   throw Error(fmt::format("unknown solver '{}' (expected progressive or gather)", name));
 }
 
+SolveOptions::HemicubeVisibility parseHemicubeVisibility(const std::string& name) {
+  if (name == "item") return SolveOptions::HemicubeVisibility::Item;
+  if (name == "distance") return SolveOptions::HemicubeVisibility::Distance;
+  throw Error(fmt::format("unknown hemicube visibility '{}' (expected item or distance)", name));
+}
+
 SolveOptions::Backend parseSolveBackend(const std::string& name) {
   if (name == "cpu") return SolveOptions::Backend::Cpu;
   if (name == "gl") return SolveOptions::Backend::Gl;
@@ -95,18 +104,31 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
       warnings.push_back(fmt::format("{}; using the CPU backend", e.what()));
     }
   }
+  // Progressive refinement on GL runs wholly on the GPU (gl/progressive_gl.h), with the CPU
+  // transport for analytic lights only; gathering on GL reads hemicube rows into the CPU solver.
   std::unique_ptr<Transport> transport;
-  if (context) {
+  SystemSolver gpuSolver;
+  if (context && options.method == SolveOptions::Method::Progressive) {
+    transport = std::make_unique<CpuTransport>(scene, surfaces, options.formFactors);
+    gl::GlProgressiveOptions g;
+    g.resolution = options.shootingHemicubes.resolution;
+    g.samplesPerSide = options.shootingHemicubes.perSide;
+    g.visibility = options.hemicubeVisibility;
+    gpuSolver = [&options, &progress, g](const RadiositySystem& system, double& formFactorSeconds) {
+      return gl::solveProgressiveGl(system, options, g, progress, formFactorSeconds);
+    };
+  } else if (context) {
     gl::HemicubeOptions h;
-    h.resolution = options.hemicubeResolution;
+    h.resolution = options.gatheringHemicubes.resolution;
     transport = std::make_unique<gl::GlTransport>(scene, surfaces, options.formFactors, h, 1e-4f,
-                                                  options.hemicubesPerSide);
+                                                  options.gatheringHemicubes.perSide);
   } else {
     transport = std::make_unique<CpuTransport>(scene, surfaces, options.formFactors);
   }
   const double setup = secondsSince(start);
-  Solution sol = solveWithTransport(scene, surfaces, *transport, options, progress);
+  Solution sol = solveWithTransport(scene, surfaces, *transport, options, progress, gpuSolver);
   sol.stats.secondsSetup += setup;
+  if (auto* rows = dynamic_cast<gl::GlTransport*>(transport.get())) sol.stats.hemicubes = rows->hemicubesRendered();
   sol.stats.secondsTotal = secondsSince(start);
   sol.stats.backend = context ? "gl" : "cpu";
   if (context) sol.stats.device = context->renderer();
@@ -115,7 +137,8 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
 }
 
 Solution solveWithTransport(const Scene& scene, SurfaceSet& surfaces, Transport& transport,
-                            const SolveOptions& options, const ProgressCallback& progress) {
+                            const SolveOptions& options, const ProgressCallback& progress,
+                            const SystemSolver& solver) {
   validate(options);
   const auto start = Clock::now();
   SolveStats stats;
@@ -124,6 +147,7 @@ Solution solveWithTransport(const Scene& scene, SurfaceSet& surfaces, Transport&
   Solution sol;
   double formFactorSeconds = 0.0, solveSeconds = 0.0;
   size_t refined = 0;
+  uint64_t hemicubes = 0;
   std::vector<Rgb> analytic;
   for (int pass = 0;; ++pass) {
     t = Clock::now();
@@ -134,11 +158,12 @@ Solution solveWithTransport(const Scene& scene, SurfaceSet& surfaces, Transport&
     RadiositySystem system(surfaces, analytic);
     t = Clock::now();
     double ff = 0.0;
-    sol = options.method == SolveOptions::Method::Gather
-              ? solveGather(system, transport, options, progress, ff)
-              : solveProgressive(system, transport, options, progress, ff);
+    sol = solver ? solver(system, ff)
+          : options.method == SolveOptions::Method::Gather ? solveGather(system, transport, options, progress, ff)
+                                                           : solveProgressive(system, transport, options, progress, ff);
     formFactorSeconds += ff;
     solveSeconds += secondsSince(t) - ff;
+    hemicubes += sol.stats.hemicubes;
 
     if (refined >= options.refineBudget) break;
     std::vector<uint32_t> split = elementsToRefine(surfaces, sol.radiosity, options, options.refineBudget - refined);
@@ -154,6 +179,7 @@ Solution solveWithTransport(const Scene& scene, SurfaceSet& surfaces, Transport&
   stats.method = solverStats.method;
   stats.shots = solverStats.shots;
   stats.iterations = solverStats.iterations;
+  stats.hemicubes = hemicubes;
   stats.residual = solverStats.residual;
   stats.unshotFraction = solverStats.unshotFraction;
   stats.elements = surfaces.elements.size();

@@ -1,0 +1,429 @@
+#include "gl/progressive_gl.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "gl/gl_context.h"
+#include "gl/hemicube_glsl.h"
+#include "gl/shader_program.h"
+#include "gl/shared_layout.h"
+#include "gl/shooter_hemicubes.h"
+#include "luxel/error.h"
+
+namespace luxel::gl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// The buffers as each pass declares them (std430; layouts in shared_layout.h).
+const char* kBuffersGlsl = R"(
+layout(std430, binding = ELEMENT_BINDING) readonly buffer Elements { GpuElement elements[]; };
+layout(std430, binding = PATCH_BINDING) readonly buffer Patches { GpuPatch patches[]; };
+layout(std430, binding = PATCH_ELEMENT_BINDING) readonly buffer PatchElements { uint patchElements[]; };
+layout(std430, binding = PATCH_STATE_BINDING) buffer PatchStates { GpuPatchState patchStates[]; };
+layout(std430, binding = SHOOTER_BINDING) buffer Shooters { GpuShooter shooters[]; };
+layout(std430, binding = SOLVER_STATE_BINDING) buffer SolverState {
+  float unshotPower; uint chosen; uint shots; uint passes; uint chosenPatch[MAX_SHOOTERS_PER_PASS];
+} state;
+layout(std430, binding = ELEMENT_STATE_BINDING) buffer ElementStates { GpuElementState states[]; };
+)";
+
+// 1. Unshot power per patch: one thread per patch over its elements.
+const char* kPowerCompute = R"(
+layout(local_size_x = POWER_GROUP) in;
+uniform uint patchCount;
+void main() {
+  uint p = gl_GlobalInvocationID.x;
+  if (p >= patchCount) return;
+  uvec4 ids = patches[p].ids;
+  float sum = 0.0;
+  for (uint i = ids.x; i < ids.x + ids.y; ++i) {
+    uint e = patchElements[i];
+    vec3 u = states[e].unshot.rgb;
+    sum += elements[e].normalArea.w * (u.r + u.g + u.b);
+  }
+  patchStates[p].power = sum;
+}
+)";
+
+// 2. The shooters of this pass, chosen by one work group: the total unshot power (the stopping
+// test), then `batch` rounds of arg-max over the patches not yet chosen (ties to the lower index,
+// so the choice is deterministic), then one GpuShooter per hemicube.
+const char* kSelectCompute = R"(
+layout(local_size_x = SELECT_GROUP) in;
+uniform uint patchCount, batch, shotLimit, samplesPerSide;
+uniform float stopPower, offset;
+shared float sValue[SELECT_GROUP];
+shared uint sIndex[SELECT_GROUP];
+shared uint sChosen[MAX_SHOOTERS_PER_PASS];
+shared vec3 sUnshot[MAX_SHOOTERS_PER_PASS];
+void main() {
+  const uint tid = gl_LocalInvocationIndex;
+  float sum = 0.0;
+  for (uint p = tid; p < patchCount; p += SELECT_GROUP) sum += patchStates[p].power;
+  sValue[tid] = sum;
+  barrier();
+  for (uint w = SELECT_GROUP / 2; w > 0u; w >>= 1) {
+    if (tid < w) sValue[tid] += sValue[tid + w];
+    barrier();
+  }
+  const float total = sValue[0];
+  const uint shotsBefore = state.shots;
+  barrier();
+  const uint limit = total > stopPower ? min(batch, shotLimit - min(shotLimit, shotsBefore)) : 0u;
+  uint chosen = 0u;
+  for (uint k = 0u; k < limit; ++k) {
+    float best = 0.0;
+    uint bestIndex = 0xFFFFFFFFu;
+    for (uint p = tid; p < patchCount; p += SELECT_GROUP) {
+      float v = patchStates[p].power;
+      if (v <= best) continue;
+      bool taken = false;
+      for (uint j = 0u; j < k; ++j) taken = taken || sChosen[j] == p;
+      if (!taken) { best = v; bestIndex = p; }
+    }
+    sValue[tid] = best;
+    sIndex[tid] = bestIndex;
+    barrier();
+    for (uint w = SELECT_GROUP / 2; w > 0u; w >>= 1) {
+      if (tid < w) {
+        float v = sValue[tid + w];
+        uint i = sIndex[tid + w];
+        if (v > sValue[tid] || (v == sValue[tid] && i < sIndex[tid])) { sValue[tid] = v; sIndex[tid] = i; }
+      }
+      barrier();
+    }
+    const bool found = sValue[0] > 0.0;
+    if (found && tid == 0u) sChosen[k] = sIndex[0];
+    barrier();
+    if (!found) break;
+    chosen = k + 1u;
+  }
+  // Each chosen patch shoots its area-weighted mean unshot radiosity.
+  if (tid < chosen) {
+    GpuPatch P = patches[sChosen[tid]];
+    vec3 u = vec3(0.0);
+    for (uint i = P.ids.x; i < P.ids.x + P.ids.y; ++i) {
+      uint e = patchElements[i];
+      u += elements[e].normalArea.w * states[e].unshot.rgb;
+    }
+    sUnshot[tid] = P.normalArea.w > 0.0 ? u / P.normalArea.w : vec3(0.0);
+  }
+  barrier();
+  const uint samples = samplesPerSide * samplesPerSide;
+  for (uint r = tid; r < batch * samples; r += SELECT_GROUP) {
+    const uint k = r / samples, j = r % samples;
+    GpuShooter s;
+    s.eye = vec4(0.0); s.normal = vec4(0.0, 0.0, 1.0, 0.0); s.unshot = vec4(0.0); s.emission = vec4(0.0);
+    s.ids = uvec4(0u);
+    if (k < chosen) {
+      const uint p = sChosen[k];
+      GpuPatch P = patches[p];
+      const float ks = float(samplesPerSide);
+      vec3 x = polygonPoint(P.corners, int(P.corners[0].w), (float(j % samplesPerSide) + 0.5) / ks,
+                            (float(j / samplesPerSide) + 0.5) / ks);
+      s.eye = vec4(x + offset * P.normalArea.xyz, 0.0);
+      s.normal = vec4(P.normalArea.xyz, 0.0);
+      s.unshot = vec4(sUnshot[k], 0.0);
+      s.emission = vec4(patchStates[p].shot == 0u ? P.emission.rgb : vec3(0.0), 0.0);
+      s.ids = uvec4(p, 1u, 0u, 0u);
+    }
+    shooters[r] = s;
+  }
+  memoryBarrierBuffer();
+  barrier();  // every shot flag read before any is set
+  if (tid < chosen) patchStates[sChosen[tid]].shot = 1u;
+  if (tid == 0u) {
+    state.unshotPower = total;
+    state.chosen = chosen;
+    state.shots = shotsBefore + chosen;
+    state.passes += 1u;
+    for (uint k = 0u; k < chosen; ++k) state.chosenPatch[k] = sChosen[k];
+  }
+}
+)";
+
+// 4. Reconstruction: one thread per element gathers the pass's shots ("gathered writes", 001
+// section 4.3.1), so no two threads write one element.
+const char* kReconstructCompute = R"(
+layout(local_size_x = RECONSTRUCT_GROUP) in;
+layout(binding = ITEM_TEXTURE_UNIT) uniform usampler2DArray items;
+layout(binding = DISTANCE_TEXTURE_UNIT) uniform sampler2DArray distances;
+uniform uint elementCount, samples;
+uniform int resolution, visibility;  // visibility 0: item ids, 1: distances
+uniform float nearPlane, farPlane;
+
+// Whether hemicube h sees point x (on the face with item id `item`, normal n): the four pixels
+// nearest x's projection (001: fewer false negatives at low resolution), any one suffices.
+bool visible(uint h, vec3 x, vec3 n, uint item) {
+  GpuShooter s = shooters[h];
+  HemicubeFrame f = hemicubeFrame(s.normal.xyz);
+  vec3 r = x - s.eye.xyz;
+  int face = hemicubeFace(r, f);
+  vec4 c = hemicubeClip(x, s.eye.xyz, f, face, nearPlane, farPlane);
+  if (c.w <= 0.0) return false;
+  vec2 pixel = (c.xy / c.w * 0.5 + 0.5) * float(resolution) - 0.5;
+  ivec2 base = ivec2(floor(pixel));
+  int layer = int(h) * 5 + face;
+  // Depth: a pixel's centre ray meets x's plane up to about a pixel's angle times the slope of
+  // the plane away from x, so the test allows that much (and a little for float depth).
+  float d = length(r);
+  float cosine = max(dot(n, -r) / d, 1e-3);
+  float slope = min(sqrt(max(1.0 - cosine * cosine, 0.0)) / cosine, 8.0);
+  float reach = d * (1.0 - 3.0 * slope / float(resolution) - 1e-4);
+  // The pixel nearest the projection decides: any of the four nearest (001) would shrink every
+  // shadow by up to a pixel (the Cornell box's floor came out 10% bright at 64 pixels). Seen at
+  // a grazing angle, an element's own face is a sliver the nearest pixel can miss: there, its
+  // item may be in any of the four.
+  ivec3 q = ivec3(clamp(ivec2(floor(pixel + 0.5)), ivec2(0), ivec2(resolution - 1)), layer);
+  if (visibility == 1) return texelFetch(distances, q, 0).r >= reach;
+  if (texelFetch(items, q, 0).r == item) return true;
+  if (slope < 1.0) return false;  // steeper than 45 degrees
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      q = ivec3(clamp(base + ivec2(i, j), ivec2(0), ivec2(resolution - 1)), layer);
+      if (texelFetch(items, q, 0).r == item) return true;
+    }
+  return false;
+}
+
+void main() {
+  const uint e = gl_GlobalInvocationID.x;
+  if (e >= elementCount) return;
+  GpuElement el = elements[e];
+  const vec3 n = el.normalArea.xyz;
+  const int corners = int(el.corners[0].w);
+  // A 2 x 2 midpoint rule over the element, for the factor and the visibility alike: both vary
+  // over an element next to its source or in a penumbra, which its centre alone misses.
+  vec3 x[4];
+  for (int q = 0; q < 4; ++q) x[q] = polygonPoint(el.corners, corners, 0.25 + 0.5 * float(q & 1), 0.25 + 0.5 * float(q >> 1));
+  vec3 dh = vec3(0.0), dd = vec3(0.0);
+  bool shooter = false;
+  for (uint k = 0u; k < state.chosen; ++k) {
+    GpuShooter s = shooters[k * samples];
+    const uint p = s.ids.x;
+    shooter = shooter || p == el.ids.y;
+    GpuPatch P = patches[p];
+    if (P.ids.z == el.ids.z) continue;  // no face lights itself
+    float F = 0.0;
+    for (int q = 0; q < 4; ++q) {
+      float f = pointToPolygonFormFactor(x[q], n, P.corners, int(P.corners[0].w), P.normalArea.xyz);
+      if (f <= 0.0) continue;
+      // The share of the hemicubes in front of the point's plane that see it: f integrates only
+      // the part of the patch in front, and from behind the plane its own surface hides it.
+      uint seen = 0u, front = 0u;
+      for (uint j = 0u; j < samples; ++j) {
+        const uint h = k * samples + j;
+        if (dot(n, shooters[h].eye.xyz - x[q]) <= 0.0) continue;
+        ++front;
+        if (visible(h, x[q], n, el.ids.x)) ++seen;
+      }
+      F += front > 0u ? f * float(seen) / float(front) : 0.0;
+    }
+    F *= 0.25;
+    dh += F * s.unshot.rgb;
+    dd += F * s.emission.rgb;
+  }
+  if (!shooter && dh == vec3(0.0)) return;
+  GpuElementState st = states[e];
+  const vec3 db = el.reflectance.rgb * dh;
+  st.radiosity.rgb += db;
+  st.irradiance.rgb += dh;
+  st.direct.rgb += dd;
+  st.unshot.rgb = (shooter ? vec3(0.0) : st.unshot.rgb) + db;
+  states[e] = st;
+}
+)";
+
+GLuint storage(const void* data, size_t bytes, GLbitfield flags) {
+  GLuint b = 0;
+  glCreateBuffers(1, &b);
+  glNamedBufferStorage(b, GLsizeiptr(std::max<size_t>(bytes, 16)), nullptr, flags | GL_DYNAMIC_STORAGE_BIT);
+  if (data && bytes) glNamedBufferSubData(b, 0, GLsizeiptr(bytes), data);
+  return b;
+}
+
+// The GL objects of one solve, released on every path out (exceptions included).
+struct Buffers {
+  GLuint elements = 0, patches = 0, patchElements = 0, patchStates = 0, shooters = 0, state = 0, elementStates = 0;
+  ~Buffers() {
+    const GLuint all[] = {elements, patches, patchElements, patchStates, shooters, state, elementStates};
+    glDeleteBuffers(GLsizei(std::size(all)), all);
+  }
+  void bind() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementBinding, elements);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchBinding, patches);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchElementBinding, patchElements);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchStateBinding, patchStates);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, shooters);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSolverStateBinding, state);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, elementStates);
+  }
+};
+
+GLuint groups(size_t n, int size) { return GLuint((n + size_t(size) - 1) / size_t(size)); }
+
+}  // namespace
+
+Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& options, const GlProgressiveOptions& o,
+                            const ProgressCallback& progress, double& formFactorSeconds) {
+  if (o.samplesPerSide < 1 || o.samplesPerSide > 8) throw Error("hemicubes per shooter side must be in 1..8");
+  if (o.shootersPerPass < 1 || o.shootersPerPass > kMaxShootersPerPass)
+    throw Error(fmt::format("shooters per pass must be in 1..{}", kMaxShootersPerPass));
+  if (o.passesPerCheck < 1) throw Error("passes per check must be >= 1");
+  const SurfaceSet& set = sys.surfaces;
+  const size_t ne = sys.elementCount(), np = sys.patchCount();
+  const auto start = Clock::now();
+
+  // Inputs, once.
+  std::vector<GpuElement> elements(ne);
+  std::vector<GpuElementState> states(ne);
+  for (size_t e = 0; e < ne; ++e) {
+    const Element& el = set.elements[e];
+    GpuElement& g = elements[e];
+    for (int c = 0; c < 4; ++c) g.corners[c] = glm::vec4(el.polygon.v[size_t(c)], 0.0f);
+    g.corners[0].w = float(el.polygon.count);
+    g.normalArea = glm::vec4(el.normal, sys.area[e]);
+    g.reflectance = glm::vec4(sys.reflectance[e], 0.0f);
+    g.ids = glm::uvec4(ShooterHemicubes::itemOfFace(set, el.face), el.patch, el.face, 0u);
+    const Rgb b = sys.emission[e] + sys.reflectance[e] * sys.analytic[e];
+    states[e] = {glm::vec4(b, 0.0f), glm::vec4(b, 0.0f), glm::vec4(sys.analytic[e], 0.0f), glm::vec4(sys.analytic[e], 0.0f)};
+  }
+  const std::vector<Rgb> patchEmission = sys.patchMeans(sys.emission);
+  std::vector<GpuPatch> patches(np);
+  std::vector<uint32_t> patchElements;
+  for (size_t p = 0; p < np; ++p) {
+    const Patch& patch = set.patches[p];
+    GpuPatch& g = patches[p];
+    for (int c = 0; c < 4; ++c) g.corners[c] = glm::vec4(patch.polygon.v[size_t(c)], 0.0f);
+    g.corners[0].w = float(patch.polygon.count);
+    g.normalArea = glm::vec4(patch.normal, sys.patchArea[p]);
+    g.emission = glm::vec4(patchEmission[p], 0.0f);
+    g.ids = glm::uvec4(uint32_t(patchElements.size()), uint32_t(patch.elements.size()), patch.face, 0u);
+    patchElements.insert(patchElements.end(), patch.elements.begin(), patch.elements.end());
+  }
+
+  GLint vertexBlocks = 0;
+  glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexBlocks);
+  if (vertexBlocks < 1)
+    throw Error("OpenGL: this driver has no shader storage in vertex shaders (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS = 0), "
+                "which GPU shooting needs; use --backend cpu");
+
+  const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
+  const int samples = o.samplesPerSide * o.samplesPerSide;
+  const int batch = int(std::min<size_t>(size_t(o.shootersPerPass), std::max<size_t>(np, 1)));
+  ShooterHemicubes hemicubes(set, o.resolution, batch * samples, o.nearPlane * extent, 2.0f * extent);
+
+  Buffers buf;
+  buf.elements = storage(elements.data(), elements.size() * sizeof(GpuElement), 0);
+  buf.patches = storage(patches.data(), patches.size() * sizeof(GpuPatch), 0);
+  buf.patchElements = storage(patchElements.data(), patchElements.size() * sizeof(uint32_t), 0);
+  std::vector<GpuPatchState> patchStates(np, GpuPatchState{0.0f, 0u});
+  buf.patchStates = storage(patchStates.data(), patchStates.size() * sizeof(GpuPatchState), 0);
+  buf.shooters = storage(nullptr, size_t(batch * samples) * sizeof(GpuShooter), 0);
+  GpuSolverState initial{};
+  buf.state = storage(&initial, sizeof initial, 0);
+  buf.elementStates = storage(states.data(), states.size() * sizeof(GpuElementState), 0);
+
+  const std::string preamble = glslPreamble() + kHemicubeGlsl + kFormFactorGlsl + kBuffersGlsl;
+  ShaderProgram power("patch power", preamble + kPowerCompute);
+  ShaderProgram select("shooter selection", preamble + kSelectCompute);
+  ShaderProgram reconstruct("shot reconstruction", preamble + kReconstructCompute);
+  auto uniform = [](const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id(), name); };
+  power.use();
+  glUniform1ui(uniform(power, "patchCount"), GLuint(np));
+  select.use();
+  glUniform1ui(uniform(select, "patchCount"), GLuint(np));
+  glUniform1ui(uniform(select, "samplesPerSide"), GLuint(o.samplesPerSide));
+  glUniform1ui(uniform(select, "shotLimit"),
+               options.shotBudget ? GLuint(std::min<uint64_t>(options.shotBudget, 0xFFFFFFFFu)) : 0xFFFFFFFFu);
+  const double sourcePower = sys.sourcePower();
+  glUniform1f(uniform(select, "stopPower"), float(options.unshotThreshold * sourcePower));
+  glUniform1f(uniform(select, "offset"), o.offset * extent);
+  const GLint selectBatch = uniform(select, "batch");
+  reconstruct.use();
+  glUniform1ui(uniform(reconstruct, "elementCount"), GLuint(ne));
+  glUniform1ui(uniform(reconstruct, "samples"), GLuint(samples));
+  glUniform1i(uniform(reconstruct, "resolution"), o.resolution);
+  glUniform1i(uniform(reconstruct, "visibility"), o.visibility == SolveOptions::HemicubeVisibility::Item ? 0 : 1);
+  glUniform1f(uniform(reconstruct, "nearPlane"), hemicubes.nearPlane());
+  glUniform1f(uniform(reconstruct, "farPlane"), hemicubes.farPlane());
+  Context::check("setting up GPU progressive refinement");
+
+  // Power, then selection with `shooters` per pass (0: only the total, for the final state).
+  auto choose = [&](int shooters) {
+    buf.bind();
+    power.use();
+    glDispatchCompute(groups(np, kPowerGroup), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    select.use();
+    glUniform1ui(selectBatch, GLuint(shooters));
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  auto readState = [&] {
+    GpuSolverState s{};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(buf.state, 0, sizeof s, &s);
+    return s;
+  };
+
+  GpuSolverState s{};
+  double lastReported = -1.0;
+  while (true) {
+    for (int pass = 0; pass < o.passesPerCheck; ++pass) {
+      choose(batch);
+      hemicubes.render(buf.shooters, batch * samples);
+      buf.bind();
+      hemicubes.bindTextures();
+      reconstruct.use();
+      glDispatchCompute(groups(ne, kReconstructGroup), 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    s = readState();  // the only read-back while shooting: a few bytes every few passes
+    Context::check("GPU progressive refinement");
+    const double fraction = sourcePower > 0.0 ? s.unshotPower / sourcePower : 0.0;
+    if (s.chosen == 0) break;  // converged, or the shot budget is spent: the GPU stopped itself
+    if (options.timeBudget > 0.0 && secondsSince(start) >= options.timeBudget) break;
+    const double shown = std::clamp(std::log(std::max(fraction, 1e-30)) / std::log(options.unshotThreshold), 0.0, 1.0);
+    if (shown - lastReported >= 0.01) {
+      reportProgress(progress, "solve", shown, fmt::format("unshot {:.3f}%", 100.0 * fraction));
+      lastReported = shown;
+    }
+  }
+  choose(0);  // the unshot power left
+  s = readState();
+  glGetNamedBufferSubData(buf.elementStates, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
+  Context::check("reading back the GPU solution");
+  formFactorSeconds += secondsSince(start);
+
+  Solution sol;
+  sol.radiosity.resize(ne);
+  sol.irradiance.resize(ne);
+  sol.directIrradiance.resize(ne);
+  std::vector<Rgb> unshot(ne);
+  for (size_t e = 0; e < ne; ++e) {
+    sol.radiosity[e] = Rgb(states[e].radiosity);
+    sol.irradiance[e] = Rgb(states[e].irradiance);
+    sol.directIrradiance[e] = Rgb(states[e].direct);
+    unshot[e] = Rgb(states[e].unshot);
+  }
+  const double unshotFraction = sourcePower > 0.0 ? s.unshotPower / sourcePower : 0.0;
+  reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction));
+  if (options.ambient) addAmbientTerm(sys, unshot, sol.radiosity, sol.irradiance);
+  sol.stats.method = "progressive";
+  sol.stats.shots = s.shots;
+  sol.stats.hemicubes = uint64_t(s.shots) * uint64_t(samples);
+  sol.stats.unshotFraction = unshotFraction;
+  sol.stats.residual = unshotFraction;
+  return sol;
+}
+
+}  // namespace luxel::gl
