@@ -16,6 +16,9 @@ packages=(
 # Debian's nodejs and npm unless a Node.js with npm is there already (NodeSource's nodejs bundles
 # npm and conflicts with Debian's npm package).
 packages+=(libtinygltf-dev)
+# The three.js lightmap check (tools/three-check, CTest Web.ThreeLightmap) drives Debian's headless
+# Chromium (/usr/bin/chromium; WebGL through its bundled SwiftShader, no GPU) with playwright-core.
+packages+=(chromium)
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
   packages+=(nodejs npm)
 fi
@@ -44,4 +47,12 @@ validator="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/gltf-validator
 if [ ! -f "$validator/node_modules/gltf-validator/package.json" ]; then
   echo "install-deps: installing the glTF validator (npm ci in tools/gltf-validator)"
   npm ci --prefix "$validator" --no-audit --no-fund
+fi
+
+# three.js and playwright-core (the versions pinned by tools/three-check/package-lock.json) into
+# tools/three-check/node_modules, ignored by git; no browser is downloaded (the check uses Debian's).
+three_check="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/three-check"
+if [ ! -f "$three_check/node_modules/three/package.json" ] || [ ! -f "$three_check/node_modules/playwright-core/package.json" ]; then
+  echo "install-deps: installing three.js and playwright-core (npm ci in tools/three-check)"
+  PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --prefix "$three_check" --no-audit --no-fund
 fi
