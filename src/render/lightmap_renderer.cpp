@@ -34,14 +34,6 @@ Rgb samplePage(const std::vector<Rgb>& page, int size, Vec2 t) {
   return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x1, y0)) + ay * ((1 - ax) * at(x0, y1) + ax * at(x1, y1));
 }
 
-// Barycentric weights of p in triangle (a, b, c); all >= 0 (to rounding) when p lies inside.
-Vec3 barycentric(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
-  const Vec3 n = glm::cross(b - a, c - a);
-  const float inv = 1.0f / glm::dot(n, n);
-  const float wb = glm::dot(glm::cross(p - a, c - a), n) * inv, wc = glm::dot(glm::cross(b - a, p - a), n) * inv;
-  return Vec3(1.0f - wb - wc, wb, wc);
-}
-
 }  // namespace
 
 Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
@@ -99,14 +91,8 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
         const Polygon& poly = polygons[rh.hit.primID];
         const Material& mat = scene.materials[mesh.material];
         if (!mat.twoSided && glm::dot(poly.normal(), dir) >= 0.0f) continue;  // a one-sided back is black
-        // The bake rasterised quads as triangles (0,1,2) and (0,2,3); find the hit's triangle.
-        const Vec3 p = cam.eye + dir * rh.ray.tfar;
-        int i1 = 1, i2 = 2;
-        Vec3 w = barycentric(p, poly.v[0], poly.v[1], poly.v[2]);
-        if (poly.count == 4 && (w.y < 0.0f || w.z < 0.0f || w.x < 0.0f)) {
-          i1 = 2, i2 = 3;
-          w = barycentric(p, poly.v[0], poly.v[2], poly.v[3]);
-        }
+        // The bake rasterised quads as triangles (0,1,2) and (0,2,3), the ones the tracer hits.
+        const auto [i1, i2, w] = hitTriangle(poly.count, rh.hit.u, rh.hit.v);
         const LightmapAtlas::FaceUv& fuv = atlas.faces[ref.mesh][ref.face];
         const Vec2 texel = w.x * fuv.texel[0] + w.y * fuv.texel[size_t(i1)] + w.z * fuv.texel[size_t(i2)];
         const Rgb irradiance = samplePage(bake.pages[fuv.page], bake.pageSize, texel);

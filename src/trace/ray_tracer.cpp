@@ -1,5 +1,6 @@
 #include "trace/ray_tracer.h"
 
+#include <algorithm>
 #include <mutex>
 #include <string>
 
@@ -48,11 +49,16 @@ RayTracer::RayTracer(std::span<const Polygon> polygons) {
     throw Error(fmt::format("Embree could not allocate buffers for {} polygons: {}",
                             polygons.size(), lastEmbreeError()));
   }
+  quad_.resize(polygons.size());
   for (size_t i = 0; i < polygons.size(); ++i) {
     const Polygon& p = polygons[i];
+    quad_[i] = p.count == 4;
     for (int c = 0; c < 4; ++c) {
       // Triangles repeat their last corner, which Embree's quad geometry treats as a triangle.
-      const Vec3& v = p.v[size_t(c < p.count ? c : p.count - 1)];
+      // Embree cuts a quad along its 1-3 diagonal; everything else in luxel (elements, bake,
+      // glTF) cuts along 0-2, so quads go in rotated by one corner (remapped in intersect).
+      const int src = p.count == 4 ? (c + 1) % 4 : std::min(c, p.count - 1);
+      const Vec3& v = p.v[size_t(src)];
       vertices[12 * i + 3 * c + 0] = v.x;
       vertices[12 * i + 3 * c + 1] = v.y;
       vertices[12 * i + 3 * c + 2] = v.z;
@@ -118,6 +124,13 @@ void RayTracer::intersect(std::span<RTCRayHit> hits, bool coherent) const {
   context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   rtcIntersect1M(scene_, &context, hits.data(), unsigned(hits.size()), sizeof(RTCRayHit));
   rays_.fetch_add(hits.size(), std::memory_order_relaxed);
+  // Rotated quads: Embree's u runs 1->2 and v 1->0, i.e. (u, v) = (1 - v', u') in ours. Exact on
+  // both triangles, not only for parallelograms.
+  for (RTCRayHit& h : hits)
+    if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID && quad_[h.hit.primID]) {
+      const float u = 1.0f - h.hit.v, v = h.hit.u;
+      h.hit.u = u, h.hit.v = v;
+    }
 }
 
 }  // namespace luxel

@@ -27,8 +27,10 @@ class RayTracer {
   // Occlusion: on return, rays[i].tfar is -inf where something lies between tnear and tfar.
   void occluded(std::span<RTCRay> rays, bool coherent = false) const;
   // Closest hit: on return, hits[i].hit.geomID is RTC_INVALID_GEOMETRY_ID on a miss; otherwise
-  // hit.primID is the polygon and hit.u, hit.v its parameters (quads: bilinear from corner 0
-  // along 0->1 and 0->3; triangles: barycentric towards corners 1 and 2).
+  // hit.primID is the polygon and hit.u, hit.v its parameters. Triangles: barycentric towards
+  // corners 1 and 2. Quads are the triangles (0,1,2) and (0,2,3), as elements, bake and glTF cut
+  // them; u runs along 0->1 and v along 0->3, linear on each triangle (bilinear for
+  // parallelograms): u >= v is (0,1,2) with weights (1-u, u-v, v), else (0,2,3) with (1-v, u, v-u).
   void intersect(std::span<RTCRayHit> hits, bool coherent = true) const;
 
   // Calls visit(polygonIndex) for every polygon whose bounds come within `radius` of `p`, until
@@ -49,6 +51,7 @@ class RayTracer {
 
  private:
   RTCScene scene_ = nullptr;
+  std::vector<uint8_t> quad_;  // per polygon: 1 for quads, whose hit (u, v) intersect remaps
   mutable std::atomic<uint64_t> rays_{0};
   RayRecording* recorder_ = nullptr;
   mutable std::mutex recorderMutex_;
@@ -70,5 +73,17 @@ inline RTCRay makeRay(Vec3 org, Vec3 dir, float tnear, float tfar) {
 }
 
 inline bool isOccluded(const RTCRay& r) { return r.tfar < 0.0f; }
+
+// The triangle (0, i1, i2) of a polygon that a hit's (u, v) from RayTracer::intersect lies in, and
+// the hit's barycentric weights w for corners 0, i1, i2.
+struct HitTriangle {
+  int i1, i2;
+  Vec3 w;
+};
+inline HitTriangle hitTriangle(int count, float u, float v) {
+  if (count == 3) return {1, 2, Vec3(1.0f - u - v, u, v)};
+  if (u >= v) return {1, 2, Vec3(1.0f - u, u - v, v)};
+  return {2, 3, Vec3(1.0f - v, u, v - u)};
+}
 
 }  // namespace luxel
