@@ -9,8 +9,12 @@ namespace luxel::gl {
 inline constexpr const char* kHemicubeGlsl = R"(
 struct HemicubeFrame { vec3 n, t, b; };
 
-HemicubeFrame hemicubeFrame(vec3 n) {
+// Turned by `angle` about the normal: seed 001 turns gathering hemicubes at random so that the
+// pixel grid's aliasing of small bright sources becomes noise that the k x k hemicubes average.
+HemicubeFrame hemicubeFrame(vec3 n, float angle) {
   vec3 t = normalize(abs(n.x) > 0.9 ? cross(n, vec3(0.0, 1.0, 0.0)) : cross(n, vec3(1.0, 0.0, 0.0)));
+  vec3 b = cross(n, t);
+  t = cos(angle) * t + sin(angle) * b;
   return HemicubeFrame(n, t, cross(n, t));
 }
 

@@ -1,4 +1,4 @@
-#include "gl/shooter_hemicubes.h"
+#include "gl/layered_hemicubes.h"
 
 #include <epoxy/gl.h>
 
@@ -19,20 +19,20 @@ const char* kShooterVertex = R"(
 layout(location = POSITION_LOCATION) in vec3 position;
 layout(location = ITEM_LOCATION) in uint item;
 layout(std430, binding = SHOOTER_BINDING) readonly buffer Shooters { GpuShooter shooters[]; };
-uniform int layer;
+uniform int layer, first;
 uniform float nearPlane, farPlane;
 flat out uint vItem;
 out vec3 vFromEye;
 void main() {
-  GpuShooter s = shooters[layer / 5];
+  GpuShooter s = shooters[first + layer / 5];
   vItem = item;
   vFromEye = position - s.eye.xyz;
   gl_Position = s.ids.y == 0u ? vec4(2.0, 2.0, 2.0, 1.0)  // an empty slot: outside the clip volume
-                              : hemicubeClip(position, s.eye.xyz, hemicubeFrame(s.normal.xyz), layer % 5, nearPlane, farPlane);
+                              : hemicubeClip(position, s.eye.xyz, hemicubeFrame(s.normal.xyz, s.normal.w), layer % 5, nearPlane, farPlane);
 }
 )";
 
-const char* kShooterFragment = R"(
+const char* kItemDistanceFragment = R"(
 flat in uint vItem;
 in vec3 vFromEye;
 layout(location = 0) out uint outItem;
@@ -43,14 +43,28 @@ void main() {
 }
 )";
 
+// The hemicube's projection keeps the winding, so a polygon counter-clockwise from its front
+// is front facing here when seen from the side it radiates to.
+const char* kRadiosityFragment = R"(
+layout(std430, binding = PATCH_RADIOSITY_BINDING) readonly buffer Radiosity { vec4 radiosity[]; };
+flat in uint vItem;
+in vec3 vFromEye;
+layout(location = 0) out uint outItem;
+layout(location = 1) out vec4 outRadiosity;
+void main() {
+  outItem = vItem;
+  outRadiosity = gl_FrontFacing ? radiosity[vItem - 1u] : vec4(0.0);
+}
+)";
+
 }  // namespace
 
-struct ShooterHemicubes::Impl {
+struct LayeredHemicubes::Impl {
   GLuint vao = 0, positions = 0, items = 0, itemLayers = 0, distanceLayers = 0, depth = 0;
   std::vector<GLuint> framebuffers;  // one per layer (hemicube x face)
   GLsizei vertexCount = 0;
   std::unique_ptr<ShaderProgram> program;
-  GLint layer = -1;
+  GLint layer = -1, first = -1;
 
   ~Impl() {
     if (!framebuffers.empty()) glDeleteFramebuffers(GLsizei(framebuffers.size()), framebuffers.data());
@@ -63,34 +77,50 @@ struct ShooterHemicubes::Impl {
   }
 };
 
-uint32_t ShooterHemicubes::itemOfFace(const SurfaceSet& surfaces, uint32_t face) {
+uint32_t LayeredHemicubes::itemOfFace(const SurfaceSet& surfaces, uint32_t face) {
   const int32_t twin = surfaces.faces[face].twin;
   return (twin >= 0 && uint32_t(twin) < face ? uint32_t(twin) : face) + 1;
 }
 
-ShooterHemicubes::ShooterHemicubes(const SurfaceSet& surfaces, int resolution, int hemicubes, float nearPlane,
-                                   float farPlane)
-    : impl_(std::make_unique<Impl>()), resolution_(resolution), hemicubes_(hemicubes), near_(nearPlane), far_(farPlane) {
-  GLint maxLayers = 0;
+void LayeredHemicubes::faceItems(const SurfaceSet& surfaces, std::vector<Polygon>& polygons,
+                                 std::vector<uint32_t>& items) {
+  for (uint32_t f = 0; f < surfaces.faces.size(); ++f) {
+    const uint32_t item = itemOfFace(surfaces, f);
+    if (item != f + 1) continue;  // its twin stands for both
+    const SurfaceFace& face = surfaces.faces[f];
+    Polygon p;
+    p.count = face.triangle ? 3 : 4;
+    for (int c = 0; c < p.count; ++c) p.v[size_t(c)] = face.corners[size_t(c)];
+    polygons.push_back(p);
+    items.push_back(item);
+  }
+}
+
+LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<const uint32_t> polygonItems,
+                                   Content content, int resolution, int capacity, float nearPlane, float farPlane)
+    : impl_(std::make_unique<Impl>()), content_(content), resolution_(resolution), capacity_(capacity),
+      near_(nearPlane), far_(farPlane) {
+  GLint maxLayers = 0, vertexBlocks = 0;
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexBlocks);
+  if (vertexBlocks < 1)
+    throw Error("OpenGL: this driver has no shader storage in vertex shaders (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS = 0), "
+                "which GPU hemicubes need; use --backend cpu");
   if (resolution < 2 || resolution % 2 || resolution > 4096)
     throw Error(fmt::format("hemicube resolution {} must be even, from 2 to 4096", resolution));
-  if (hemicubes < 1 || 5 * hemicubes > maxLayers)
-    throw Error(fmt::format("{} hemicubes per pass need {} texture layers; this OpenGL has {}", hemicubes,
-                            5 * hemicubes, maxLayers));
+  if (capacity < 1 || 5 * capacity > maxLayers)
+    throw Error(fmt::format("{} hemicubes at once need {} texture layers; this OpenGL has {}", capacity,
+                            5 * capacity, maxLayers));
   if (!(nearPlane > 0.0f && farPlane > nearPlane)) throw Error("hemicube near and far planes must be 0 < near < far");
+  if (polygons.size() != polygonItems.size()) throw Error("hemicube polygons and items differ in number");
   Impl& m = *impl_;
 
-  // Each face once: its twin (the other side of a two-sided surface) lies in the same plane.
   std::vector<Vec3> positions;
   std::vector<uint32_t> items;
-  for (uint32_t f = 0; f < surfaces.faces.size(); ++f) {
-    const SurfaceFace& face = surfaces.faces[f];
-    const uint32_t item = itemOfFace(surfaces, f);
-    if (item != f + 1) continue;
-    const int corners = face.triangle ? 3 : 4;
-    for (int t = 0; t + 2 < corners; ++t)
-      for (int k : {0, t + 1, t + 2}) positions.push_back(face.corners[size_t(k)]), items.push_back(item);
+  for (size_t i = 0; i < polygons.size(); ++i) {
+    const Polygon& p = polygons[i];
+    for (int t = 0; t + 2 < p.count; ++t)
+      for (int k : {0, t + 1, t + 2}) positions.push_back(p.v[size_t(k)]), items.push_back(polygonItems[i]);
   }
   m.vertexCount = GLsizei(positions.size());
   glCreateVertexArrays(1, &m.vao);
@@ -107,11 +137,12 @@ ShooterHemicubes::ShooterHemicubes(const SurfaceSet& surfaces, int resolution, i
   glVertexArrayAttribBinding(m.vao, kPositionLocation, 0);
   glVertexArrayAttribBinding(m.vao, kItemLocation, 1);
 
-  const GLsizei layers = 5 * hemicubes;
+  const GLsizei layers = 5 * capacity;
+  const bool radiosity = content == Content::Radiosity;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &m.itemLayers);
   glTextureStorage3D(m.itemLayers, 1, GL_R32UI, resolution, resolution, layers);
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &m.distanceLayers);
-  glTextureStorage3D(m.distanceLayers, 1, GL_R32F, resolution, resolution, layers);
+  glTextureStorage3D(m.distanceLayers, 1, radiosity ? GL_RGBA32F : GL_R32F, resolution, resolution, layers);
   for (GLuint t : {m.itemLayers, m.distanceLayers}) {
     glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // texelFetch only; integer textures need it
     glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -128,30 +159,35 @@ ShooterHemicubes::ShooterHemicubes(const SurfaceSet& surfaces, int resolution, i
     glNamedFramebufferRenderbuffer(fb, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m.depth);
     glNamedFramebufferDrawBuffers(fb, 2, drawBuffers);
     if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error("OpenGL: the shooter hemicube framebuffer (R32UI + R32F + depth) is incomplete");
+      throw Error("OpenGL: the layered hemicube framebuffer (R32UI, R32F or RGBA32F, depth) is incomplete");
   }
   const std::string preamble = glslPreamble() + kHemicubeGlsl;
-  m.program = std::make_unique<ShaderProgram>("shooter hemicube", preamble + kShooterVertex, preamble + kShooterFragment);
+  m.program = std::make_unique<ShaderProgram>(radiosity ? "radiosity hemicube" : "item and distance hemicube",
+                                              preamble + kShooterVertex,
+                                              preamble + (radiosity ? kRadiosityFragment : kItemDistanceFragment));
   m.layer = glGetUniformLocation(m.program->id(), "layer");
+  m.first = glGetUniformLocation(m.program->id(), "first");
   m.program->use();
   glUniform1f(glGetUniformLocation(m.program->id(), "nearPlane"), near_);
   glUniform1f(glGetUniformLocation(m.program->id(), "farPlane"), far_);
-  Context::check("creating the shooter hemicubes");
+  Context::check("creating layered hemicubes");
 }
 
-ShooterHemicubes::~ShooterHemicubes() = default;
+LayeredHemicubes::~LayeredHemicubes() = default;
 
-void ShooterHemicubes::render(unsigned shooterBuffer, int count) {
-  if (count < 0 || count > hemicubes_) throw Error(fmt::format("{} shooter hemicubes asked of {}", count, hemicubes_));
+void LayeredHemicubes::render(int first, int count) {
+  if (first < 0 || count < 0 || count > capacity_)
+    throw Error(fmt::format("{} hemicubes asked of {}", count, capacity_));
   Impl& m = *impl_;
   glViewport(0, 0, resolution_, resolution_);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // a surface blocks light from both sides
   m.program->use();
   glBindVertexArray(m.vao);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, shooterBuffer);
+  glUniform1i(m.first, first);
   const GLuint noItem[4] = {0, 0, 0, 0};
-  const GLfloat nothing[4] = {std::numeric_limits<float>::max(), 0, 0, 0};  // no surface: infinitely far
+  // No surface: infinitely far, and no light.
+  const GLfloat nothing[4] = {content_ == Content::Radiosity ? 0.0f : std::numeric_limits<float>::max(), 0, 0, 0};
   for (int l = 0; l < 5 * count; ++l) {
     glBindFramebuffer(GL_FRAMEBUFFER, m.framebuffers[size_t(l)]);
     glUniform1i(m.layer, l);
@@ -163,7 +199,7 @@ void ShooterHemicubes::render(unsigned shooterBuffer, int count) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void ShooterHemicubes::bindTextures() const {
+void LayeredHemicubes::bindTextures() const {
   glBindTextureUnit(kItemTextureUnit, impl_->itemLayers);
   glBindTextureUnit(kDistanceTextureUnit, impl_->distanceLayers);
 }

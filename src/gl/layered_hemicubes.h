@@ -1,44 +1,56 @@
-// The hemicubes of a pass of GPU progressive refinement (seed 001 section 4.3; seed 003's texel
-// shooting): one per shooter sample, whose centre and normal the GPU itself wrote into the
-// shooter buffer (GpuShooter), so the CPU never reads back who shoots. Each hemicube renders its
-// five faces into two layered targets: the item id of the nearest face (001's ID hemicube) and
-// its distance from the centre (003's depth hemicube). The reconstruction pass looks into either.
+// Hemicubes rendered many at a time into layered targets, each centred where a buffer on the GPU
+// says (GpuShooter records: centre and normal), so the CPU never reads back who renders. Two
+// kinds of content:
+//  - ItemsAndDistances: per pixel, the item id of the nearest polygon (seed 001's ID hemicube)
+//    and its distance from the centre (seed 003's depth hemicube), for progressive shooting;
+//  - Radiosity: per pixel, the radiosity of the nearest polygon from a buffer indexed by item
+//    (black from behind: a one-sided surface radiates only in front), for gathering (seed 000
+//    and 001 section 4.2).
 #pragma once
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "luxel/surface.h"
 
 namespace luxel::gl {
 
-class ShooterHemicubes {
+class LayeredHemicubes {
  public:
-  // Items are the faces of `surfaces`, a two-sided face and its twin under one id (the smaller
-  // index + 1; see itemOfFace), so that the two coincident sides cannot z-fight. Needs a current
-  // OpenGL 4.5 context. `hemicubes` layers of five faces of `resolution` pixels a side.
-  ShooterHemicubes(const SurfaceSet& surfaces, int resolution, int hemicubes, float nearPlane, float farPlane);
-  ~ShooterHemicubes();
-  ShooterHemicubes(const ShooterHemicubes&) = delete;
-  ShooterHemicubes& operator=(const ShooterHemicubes&) = delete;
+  enum class Content { ItemsAndDistances, Radiosity };
 
-  // Renders hemicube h = 0..count-1 from GpuShooter h of `shooterBuffer` (inactive ones are
-  // drawn off screen: the CPU does not know how many are active).
-  void render(unsigned shooterBuffer, int count);
-  // Binds the item layers to ITEM_TEXTURE_UNIT and the distances to DISTANCE_TEXTURE_UNIT.
+  // `items[i]` (>= 1) is the id polygon i draws. Needs a current OpenGL 4.5 context. Room for
+  // `capacity` hemicubes of five faces, `resolution` pixels a side.
+  LayeredHemicubes(std::span<const Polygon> polygons, std::span<const uint32_t> items, Content content,
+                   int resolution, int capacity, float nearPlane, float farPlane);
+  ~LayeredHemicubes();
+  LayeredHemicubes(const LayeredHemicubes&) = delete;
+  LayeredHemicubes& operator=(const LayeredHemicubes&) = delete;
+
+  // Renders hemicubes 0..count-1 from GpuShooter records first..first+count-1 of the buffer bound
+  // at SHOOTER_BINDING (records marked inactive are drawn off screen). Radiosity reads the
+  // per-item colours (vec4, index item - 1) bound at PATCH_RADIOSITY_BINDING.
+  void render(int first, int count);
+  // Binds the item layers to ITEM_TEXTURE_UNIT and the distance or radiosity layers to
+  // DISTANCE_TEXTURE_UNIT.
   void bindTextures() const;
 
   int resolution() const { return resolution_; }
-  int capacity() const { return hemicubes_; }
+  int capacity() const { return capacity_; }
   float nearPlane() const { return near_; }
   float farPlane() const { return far_; }
 
+  // The faces of `surfaces` as items: a two-sided face and its twin drawn once, under one id
+  // (the smaller index + 1), so that the two coincident sides cannot z-fight.
   static uint32_t itemOfFace(const SurfaceSet& surfaces, uint32_t face);
+  static void faceItems(const SurfaceSet& surfaces, std::vector<Polygon>& polygons, std::vector<uint32_t>& items);
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  int resolution_ = 0, hemicubes_ = 0;
+  Content content_;
+  int resolution_ = 0, capacity_ = 0;
   float near_ = 0.0f, far_ = 0.0f;
 };
 

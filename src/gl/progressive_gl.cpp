@@ -13,7 +13,7 @@
 #include "gl/hemicube_glsl.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
-#include "gl/shooter_hemicubes.h"
+#include "gl/layered_hemicubes.h"
 #include "luxel/error.h"
 
 namespace luxel::gl {
@@ -164,7 +164,7 @@ uniform float nearPlane, farPlane;
 // nearest x's projection (001: fewer false negatives at low resolution), any one suffices.
 bool visible(uint h, vec3 x, vec3 n, uint item) {
   GpuShooter s = shooters[h];
-  HemicubeFrame f = hemicubeFrame(s.normal.xyz);
+  HemicubeFrame f = hemicubeFrame(s.normal.xyz, s.normal.w);
   vec3 r = x - s.eye.xyz;
   int face = hemicubeFace(r, f);
   vec4 c = hemicubeClip(x, s.eye.xyz, f, face, nearPlane, farPlane);
@@ -292,7 +292,7 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
     g.corners[0].w = float(el.polygon.count);
     g.normalArea = glm::vec4(el.normal, sys.area[e]);
     g.reflectance = glm::vec4(sys.reflectance[e], 0.0f);
-    g.ids = glm::uvec4(ShooterHemicubes::itemOfFace(set, el.face), el.patch, el.face, 0u);
+    g.ids = glm::uvec4(LayeredHemicubes::itemOfFace(set, el.face), el.patch, el.face, 0u);
     const Rgb b = sys.emission[e] + sys.reflectance[e] * sys.analytic[e];
     states[e] = {glm::vec4(b, 0.0f), glm::vec4(b, 0.0f), glm::vec4(sys.analytic[e], 0.0f), glm::vec4(sys.analytic[e], 0.0f)};
   }
@@ -310,16 +310,14 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
     patchElements.insert(patchElements.end(), patch.elements.begin(), patch.elements.end());
   }
 
-  GLint vertexBlocks = 0;
-  glGetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexBlocks);
-  if (vertexBlocks < 1)
-    throw Error("OpenGL: this driver has no shader storage in vertex shaders (GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS = 0), "
-                "which GPU shooting needs; use --backend cpu");
-
   const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
   const int samples = o.samplesPerSide * o.samplesPerSide;
   const int batch = int(std::min<size_t>(size_t(o.shootersPerPass), std::max<size_t>(np, 1)));
-  ShooterHemicubes hemicubes(set, o.resolution, batch * samples, o.nearPlane * extent, 2.0f * extent);
+  std::vector<Polygon> facePolygons;
+  std::vector<uint32_t> faceItems;
+  LayeredHemicubes::faceItems(set, facePolygons, faceItems);
+  LayeredHemicubes hemicubes(facePolygons, faceItems, LayeredHemicubes::Content::ItemsAndDistances, o.resolution,
+                             batch * samples, o.nearPlane * extent, 2.0f * extent);
 
   Buffers buf;
   buf.elements = storage(elements.data(), elements.size() * sizeof(GpuElement), 0);
@@ -380,7 +378,7 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
   while (true) {
     for (int pass = 0; pass < o.passesPerCheck; ++pass) {
       choose(batch);
-      hemicubes.render(buf.shooters, batch * samples);
+      hemicubes.render(0, batch * samples);  // centres from the shooter buffer choose() bound
       buf.bind();
       hemicubes.bindTextures();
       reconstruct.use();

@@ -34,7 +34,14 @@ constexpr int kPatchStateBinding = 3;      // GpuPatchState[]: unshot power this
 constexpr int kShooterBinding = 4;         // GpuShooter[]: one per hemicube of the pass
 constexpr int kSolverStateBinding = 5;     // GpuSolverState
 constexpr int kElementStateBinding = 6;    // GpuElementState[]: the solution
-constexpr int kDistanceTextureUnit = 1;    // R32F distances of the shooters' hemicubes
+constexpr int kPatchRadiosityBinding = 7;  // vec4[]: radiosity per patch, that gathering renders
+constexpr int kDistanceTextureUnit = 1;    // R32F distances (or RGBA32F radiosity) of layered hemicubes
+constexpr int kGatherGroup = 256;          // one work group integrates one element's hemicubes
+// GPU gathering (gather_gl.cpp) reuses the numbers its passes leave free: deltas, per-element
+// inputs, and the iteration's largest change.
+constexpr int kGatherDeltaBinding = 0;     // float[]: delta form factors, top then side table
+constexpr int kGatherElementBinding = 3;   // GpuGatherElement[]
+constexpr int kGatherResidualBinding = 5;  // uint[2]: float bits of the largest change and radiosity
 constexpr int kPowerGroup = 64;
 constexpr int kSelectGroup = 256;          // one work group chooses the shooters
 constexpr int kReconstructGroup = 64;
@@ -62,7 +69,7 @@ struct GpuPatchState {
 // One per hemicube of a pass (shooter slot x sample).
 struct GpuShooter {
   glm::vec4 eye;       // xyz hemicube centre (a point on the patch, lifted by the offset)
-  glm::vec4 normal;    // xyz the patch's normal
+  glm::vec4 normal;    // xyz the patch's normal, w the hemicube's turn about it (radians)
   glm::vec4 unshot;    // rgb the patch's mean unshot radiosity, shot this pass
   glm::vec4 emission;  // rgb the patch's emission when this is its first shot, else 0
   glm::uvec4 ids;      // x patch, y active (0: an empty slot, drawn off screen)
@@ -77,8 +84,14 @@ struct GpuSolverState {
 struct GpuElementState {
   glm::vec4 radiosity, unshot, irradiance, direct;
 };
+struct GpuGatherElement {
+  glm::vec4 emissionArea;  // rgb emitted exitance, w area
+  glm::vec4 reflectance;   // rgb
+  glm::vec4 analytic;      // rgb irradiance from analytic lights
+};
 static_assert(sizeof(GpuElement) == 112 && sizeof(GpuPatch) == 112 && sizeof(GpuShooter) == 80 && sizeof(GpuPatchState) == 8);
 static_assert(sizeof(GpuSolverState) == 16 + 4 * kMaxShootersPerPass && sizeof(GpuElementState) == 64);
+static_assert(sizeof(GpuGatherElement) == 48);
 
 inline std::string glslPreamble() {
   return fmt::format(
@@ -96,6 +109,11 @@ inline std::string glslPreamble() {
       "#define SHOOTER_BINDING {}\n"
       "#define SOLVER_STATE_BINDING {}\n"
       "#define ELEMENT_STATE_BINDING {}\n"
+      "#define PATCH_RADIOSITY_BINDING {}\n"
+      "#define GATHER_GROUP {}\n"
+      "#define GATHER_DELTA_BINDING {}\n"
+      "#define GATHER_ELEMENT_BINDING {}\n"
+      "#define GATHER_RESIDUAL_BINDING {}\n"
       "#define DISTANCE_TEXTURE_UNIT {}\n"
       "#define POWER_GROUP {}\n"
       "#define SELECT_GROUP {}\n"
@@ -105,10 +123,12 @@ inline std::string glslPreamble() {
       "struct GpuPatch {{ vec4 corners[4]; vec4 normalArea; vec4 emission; uvec4 ids; }};\n"
       "struct GpuPatchState {{ float power; uint shot; }};\n"
       "struct GpuShooter {{ vec4 eye; vec4 normal; vec4 unshot; vec4 emission; uvec4 ids; }};\n"
-      "struct GpuElementState {{ vec4 radiosity; vec4 unshot; vec4 irradiance; vec4 direct; }};\n",
+      "struct GpuElementState {{ vec4 radiosity; vec4 unshot; vec4 irradiance; vec4 direct; }};\n"
+      "struct GpuGatherElement {{ vec4 emissionArea; vec4 reflectance; vec4 analytic; }};\n",
       kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup,
       kElementBinding, kPatchBinding, kPatchElementBinding, kPatchStateBinding, kShooterBinding,
-      kSolverStateBinding, kElementStateBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
+      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kGatherGroup, kGatherDeltaBinding,
+      kGatherElementBinding, kGatherResidualBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
       kReconstructGroup, kMaxShootersPerPass);
 }
 

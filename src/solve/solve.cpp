@@ -12,7 +12,7 @@
 #include "luxel/solve.h"
 #include "mesh/corner_groups.h"
 #include "gl/gl_context.h"
-#include "gl/gl_transport.h"
+#include "gl/gather_gl.h"
 #include "gl/progressive_gl.h"
 #include "solve/radiosity_system.h"
 #include "solve/solve_with_transport.h"
@@ -104,12 +104,11 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
       warnings.push_back(fmt::format("{}; using the CPU backend", e.what()));
     }
   }
-  // Progressive refinement on GL runs wholly on the GPU (gl/progressive_gl.h), with the CPU
-  // transport for analytic lights only; gathering on GL reads hemicube rows into the CPU solver.
-  std::unique_ptr<Transport> transport;
+  // On GL, both solvers run resident on the GPU (gl/progressive_gl.h, gl/gather_gl.h), with the
+  // CPU transport for analytic lights only.
+  std::unique_ptr<Transport> transport = std::make_unique<CpuTransport>(scene, surfaces, options.formFactors);
   SystemSolver gpuSolver;
   if (context && options.method == SolveOptions::Method::Progressive) {
-    transport = std::make_unique<CpuTransport>(scene, surfaces, options.formFactors);
     gl::GlProgressiveOptions g;
     g.resolution = options.shootingHemicubes.resolution;
     g.samplesPerSide = options.shootingHemicubes.perSide;
@@ -118,17 +117,16 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
       return gl::solveProgressiveGl(system, options, g, progress, formFactorSeconds);
     };
   } else if (context) {
-    gl::HemicubeOptions h;
-    h.resolution = options.gatheringHemicubes.resolution;
-    transport = std::make_unique<gl::GlTransport>(scene, surfaces, options.formFactors, h, 1e-4f,
-                                                  options.gatheringHemicubes.perSide);
-  } else {
-    transport = std::make_unique<CpuTransport>(scene, surfaces, options.formFactors);
+    gl::GlGatherOptions g;
+    g.resolution = options.gatheringHemicubes.resolution;
+    g.samplesPerSide = options.gatheringHemicubes.perSide;
+    gpuSolver = [&options, &progress, g](const RadiositySystem& system, double& formFactorSeconds) {
+      return gl::solveGatherGl(system, options, g, progress, formFactorSeconds);
+    };
   }
   const double setup = secondsSince(start);
   Solution sol = solveWithTransport(scene, surfaces, *transport, options, progress, gpuSolver);
   sol.stats.secondsSetup += setup;
-  if (auto* rows = dynamic_cast<gl::GlTransport*>(transport.get())) sol.stats.hemicubes = rows->hemicubesRendered();
   sol.stats.secondsTotal = secondsSince(start);
   sol.stats.backend = context ? "gl" : "cpu";
   if (context) sol.stats.device = context->renderer();

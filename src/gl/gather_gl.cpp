@@ -1,0 +1,277 @@
+#include "gl/gather_gl.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "gl/gl_context.h"
+#include "gl/hemicube.h"
+#include "gl/layered_hemicubes.h"
+#include "gl/shader_program.h"
+#include "gl/shared_layout.h"
+#include "luxel/error.h"
+#include "transport/form_factor.h"
+
+namespace luxel::gl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// One work group per element of the batch: the sum over its k x k hemicubes' pixels of delta
+// form factor times radiosity, reduced in shared memory (floats in a fixed order: the same
+// answer every run), then the element's new radiosity B = E + rho (H0 + H).
+const char* kIntegrateCompute = R"(
+layout(local_size_x = GATHER_GROUP) in;
+layout(binding = DISTANCE_TEXTURE_UNIT) uniform sampler2DArray radiosityLayers;
+layout(std430, binding = GATHER_DELTA_BINDING) readonly buffer Deltas { float deltas[]; };
+layout(std430, binding = GATHER_ELEMENT_BINDING) readonly buffer GatherElements { GpuGatherElement gatherElements[]; };
+layout(std430, binding = GATHER_RESIDUAL_BINDING) buffer Residual { uint maxChange; uint maxRadiosity; };
+layout(std430, binding = ELEMENT_STATE_BINDING) buffer ElementStates { GpuElementState states[]; };
+uniform uint firstElement, samples;
+uniform int resolution;
+uniform bool firstIteration;
+shared vec3 partial[GATHER_GROUP];
+void main() {
+  const uint local = gl_WorkGroupID.x, e = firstElement + local, tid = gl_LocalInvocationIndex;
+  const int half_ = resolution / 2, top = resolution * resolution, side = resolution * half_;
+  const int perHemicube = top + 4 * side;
+  vec3 sum = vec3(0.0);
+  for (int i = int(tid); i < int(samples) * perHemicube; i += GATHER_GROUP) {
+    const int h = i / perHemicube, k = i % perHemicube;
+    int face, x, y, d;
+    if (k < top) {
+      face = 0; x = k % resolution; y = k / resolution; d = k;
+    } else {  // the upper half of a side face: rows half_ .. resolution-1
+      const int j = k - top, r = j % side;
+      face = 1 + j / side; x = r % resolution; y = half_ + r / resolution; d = top + r;
+    }
+    sum += deltas[d] * texelFetch(radiosityLayers, ivec3(x, y, (int(local * samples) + h) * 5 + face), 0).rgb;
+  }
+  partial[tid] = sum;
+  barrier();
+  for (uint w = GATHER_GROUP / 2; w > 0u; w >>= 1) {
+    if (tid < w) partial[tid] += partial[tid + w];
+    barrier();
+  }
+  if (tid != 0u) return;
+  GpuGatherElement g = gatherElements[e];
+  const vec3 h = g.analytic.rgb + partial[0] / float(samples);
+  const vec3 b = g.emissionArea.rgb + g.reflectance.rgb * h;
+  GpuElementState st = states[e];
+  const vec3 change = abs(b - st.radiosity.rgb);
+  // Non-negative floats order as their bits do.
+  atomicMax(maxChange, floatBitsToUint(change.r + change.g + change.b));
+  atomicMax(maxRadiosity, floatBitsToUint(b.r + b.g + b.b));
+  st.radiosity.rgb = b;
+  st.irradiance.rgb = h;
+  if (firstIteration) st.direct.rgb = h;  // B was E: what arrives is direct
+  states[e] = st;
+}
+)";
+
+// Each patch's area-weighted mean radiosity, which the next iteration renders.
+const char* kPatchMeanCompute = R"(
+layout(local_size_x = POWER_GROUP) in;
+layout(std430, binding = PATCH_BINDING) readonly buffer Patches { GpuPatch patches[]; };
+layout(std430, binding = PATCH_ELEMENT_BINDING) readonly buffer PatchElements { uint patchElements[]; };
+layout(std430, binding = GATHER_ELEMENT_BINDING) readonly buffer GatherElements { GpuGatherElement gatherElements[]; };
+layout(std430, binding = ELEMENT_STATE_BINDING) readonly buffer ElementStates { GpuElementState states[]; };
+layout(std430, binding = PATCH_RADIOSITY_BINDING) writeonly buffer PatchRadiosity { vec4 patchRadiosity[]; };
+uniform uint patchCount;
+void main() {
+  const uint p = gl_GlobalInvocationID.x;
+  if (p >= patchCount) return;
+  GpuPatch P = patches[p];
+  vec3 sum = vec3(0.0);
+  for (uint i = P.ids.x; i < P.ids.x + P.ids.y; ++i) {
+    const uint e = patchElements[i];
+    sum += gatherElements[e].emissionArea.w * states[e].radiosity.rgb;
+  }
+  patchRadiosity[p] = vec4(P.normalArea.w > 0.0 ? sum / P.normalArea.w : vec3(0.0), 0.0);
+}
+)";
+
+// A turn in [0, pi/2) from the element and sample index (a hash: the same every run).
+float turn(size_t e, int j) {
+  uint32_t h = uint32_t(e) * 0x9E3779B1u ^ uint32_t(j) * 0x85EBCA77u;
+  h ^= h >> 15, h *= 0x2C1B3C6Du, h ^= h >> 12;
+  return float(h >> 8) / float(1u << 24) * 1.5707963f;
+}
+
+GLuint storage(const void* data, size_t bytes) {
+  GLuint b = 0;
+  glCreateBuffers(1, &b);
+  glNamedBufferStorage(b, GLsizeiptr(std::max<size_t>(bytes, 16)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  if (data && bytes) glNamedBufferSubData(b, 0, GLsizeiptr(bytes), data);
+  return b;
+}
+
+struct Buffers {
+  GLuint deltas = 0, gatherElements = 0, residual = 0, states = 0, eyes = 0, patches = 0, patchElements = 0,
+         patchRadiosity = 0;
+  ~Buffers() {
+    const GLuint all[] = {deltas, gatherElements, residual, states, eyes, patches, patchElements, patchRadiosity};
+    glDeleteBuffers(GLsizei(std::size(all)), all);
+  }
+};
+
+}  // namespace
+
+Solution solveGatherGl(const RadiositySystem& sys, const SolveOptions& options, const GlGatherOptions& o,
+                       const ProgressCallback& progress, double& formFactorSeconds) {
+  if (o.samplesPerSide < 1 || o.samplesPerSide > 8) throw Error("hemicubes per element side must be in 1..8");
+  const SurfaceSet& set = sys.surfaces;
+  const size_t ne = sys.elementCount(), np = sys.patchCount();
+  const int samples = o.samplesPerSide * o.samplesPerSide;
+  const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
+  const auto start = Clock::now();
+
+  // Receivers: k x k hemicube centres per element (a midpoint rule), lifted off the surface.
+  std::vector<GpuShooter> eyes(ne * size_t(samples));
+  std::vector<GpuGatherElement> gatherElements(ne);
+  std::vector<GpuElementState> states(ne);
+  for (size_t e = 0; e < ne; ++e) {
+    const Element& el = set.elements[e];
+    for (int j = 0; j < samples; ++j) {
+      const float k = float(o.samplesPerSide);
+      const Vec3 x = polygonPoint(el.polygon, (float(j % o.samplesPerSide) + 0.5f) / k,
+                                  (float(j / o.samplesPerSide) + 0.5f) / k);
+      eyes[e * size_t(samples) + size_t(j)] = {glm::vec4(x + o.offset * extent * el.normal, 0.0f),
+                                               glm::vec4(el.normal, o.randomTurn ? turn(e, j) : 0.0f), glm::vec4(0.0f), glm::vec4(0.0f),
+                                               glm::uvec4(0u, 1u, 0u, 0u)};
+    }
+    gatherElements[e] = {glm::vec4(sys.emission[e], sys.area[e]), glm::vec4(sys.reflectance[e], 0.0f),
+                         glm::vec4(sys.analytic[e], 0.0f)};
+    // Jacobi from B = E, so that the first iteration gathers the direct light alone.
+    states[e] = {glm::vec4(sys.emission[e], 0.0f), glm::vec4(0.0f), glm::vec4(sys.analytic[e], 0.0f),
+                 glm::vec4(sys.analytic[e], 0.0f)};
+  }
+  std::vector<GpuPatch> patches(np);
+  std::vector<uint32_t> patchElements;
+  std::vector<Polygon> patchPolygons(np);
+  std::vector<uint32_t> patchItems(np);
+  const std::vector<Rgb> patchEmission = sys.patchMeans(sys.emission);
+  std::vector<glm::vec4> patchRadiosity(np);
+  for (size_t p = 0; p < np; ++p) {
+    const Patch& patch = set.patches[p];
+    patches[p].normalArea = glm::vec4(patch.normal, sys.patchArea[p]);
+    patches[p].ids = glm::uvec4(uint32_t(patchElements.size()), uint32_t(patch.elements.size()), patch.face, 0u);
+    patchElements.insert(patchElements.end(), patch.elements.begin(), patch.elements.end());
+    patchPolygons[p] = patch.polygon;
+    patchItems[p] = uint32_t(p + 1);
+    patchRadiosity[p] = glm::vec4(patchEmission[p], 0.0f);
+  }
+
+  // As many elements per batch as fit the layer memory: per pixel an item, an RGBA32F colour and
+  // a depth, for the five faces of each of the element's k x k hemicubes.
+  const size_t bytesPerElement = size_t(samples) * 5 * size_t(o.resolution) * size_t(o.resolution) * 24;
+  GLint maxLayers = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  const size_t batch = std::clamp<size_t>(o.layerBytes / bytesPerElement, 1,
+                                          std::min<size_t>(std::max<size_t>(ne, 1), size_t(maxLayers) / (5 * size_t(samples))));
+  if (batch < 1 || 5 * size_t(samples) > size_t(maxLayers))
+    throw Error(fmt::format("{} hemicubes per element need more texture layers than this OpenGL's {}", samples, maxLayers));
+  LayeredHemicubes hemicubes(patchPolygons, patchItems, LayeredHemicubes::Content::Radiosity, o.resolution,
+                             int(batch) * samples, o.nearPlane * extent, 2.0f * extent);
+
+  const DeltaFormFactors deltas(o.resolution);
+  std::vector<float> deltaTable(deltas.top);
+  deltaTable.insert(deltaTable.end(), deltas.side.begin(), deltas.side.end());
+  Buffers buf;
+  buf.deltas = storage(deltaTable.data(), deltaTable.size() * sizeof(float));
+  buf.gatherElements = storage(gatherElements.data(), gatherElements.size() * sizeof(GpuGatherElement));
+  buf.residual = storage(nullptr, 2 * sizeof(uint32_t));
+  buf.states = storage(states.data(), states.size() * sizeof(GpuElementState));
+  buf.eyes = storage(eyes.data(), eyes.size() * sizeof(GpuShooter));
+  buf.patches = storage(patches.data(), patches.size() * sizeof(GpuPatch));
+  buf.patchElements = storage(patchElements.data(), patchElements.size() * sizeof(uint32_t));
+  buf.patchRadiosity = storage(patchRadiosity.data(), patchRadiosity.size() * sizeof(glm::vec4));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherDeltaBinding, buf.deltas);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherElementBinding, buf.gatherElements);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherResidualBinding, buf.residual);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, buf.states);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, buf.eyes);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchBinding, buf.patches);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchElementBinding, buf.patchElements);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchRadiosityBinding, buf.patchRadiosity);
+
+  const std::string preamble = glslPreamble();
+  ShaderProgram integrate("radiosity hemicube integration", preamble + kIntegrateCompute);
+  ShaderProgram patchMean("patch mean radiosity", preamble + kPatchMeanCompute);
+  integrate.use();
+  glUniform1ui(glGetUniformLocation(integrate.id(), "samples"), GLuint(samples));
+  glUniform1i(glGetUniformLocation(integrate.id(), "resolution"), o.resolution);
+  const GLint firstElement = glGetUniformLocation(integrate.id(), "firstElement");
+  const GLint firstIteration = glGetUniformLocation(integrate.id(), "firstIteration");
+  patchMean.use();
+  glUniform1ui(glGetUniformLocation(patchMean.id(), "patchCount"), GLuint(np));
+  Context::check("setting up GPU gathering");
+
+  double residual = 1.0, best = std::numeric_limits<double>::max();
+  int iteration = 0, sinceBest = 0;
+  uint64_t rendered = 0;
+  while (iteration < options.maxIterations) {
+    ++iteration;
+    const uint32_t zero[2] = {0, 0};
+    glNamedBufferSubData(buf.residual, 0, sizeof zero, zero);
+    for (size_t first = 0; first < ne; first += batch) {
+      const size_t count = std::min(batch, ne - first);
+      hemicubes.render(int(first) * samples, int(count) * samples);
+      rendered += count * size_t(samples);
+      hemicubes.bindTextures();
+      integrate.use();
+      glUniform1ui(firstElement, GLuint(first));
+      glUniform1i(firstIteration, iteration == 1);
+      glDispatchCompute(GLuint(count), 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    patchMean.use();
+    glDispatchCompute(GLuint((np + kPowerGroup - 1) / kPowerGroup), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    uint32_t bits[2] = {0, 0};
+    glGetNamedBufferSubData(buf.residual, 0, sizeof bits, bits);
+    Context::check("GPU gathering");
+    float change = 0.0f, largest = 0.0f;
+    std::memcpy(&change, &bits[0], sizeof change);
+    std::memcpy(&largest, &bits[1], sizeof largest);
+    residual = largest > 0.0f ? double(change) / double(largest) : 0.0;
+    reportProgress(progress, "solve",
+                   std::clamp(std::log(std::max(residual, 1e-30)) / std::log(options.residualThreshold), 0.0, 1.0),
+                   fmt::format("residual {:.2e}", residual));
+    if (iteration > 1 && residual <= options.residualThreshold) break;  // the first only starts from E
+    // Float rounding bounds how small the residual can get; stop once it no longer falls.
+    if (residual < best * 0.99) {
+      best = residual;
+      sinceBest = 0;
+    } else if (++sinceBest >= 8) {
+      break;
+    }
+  }
+  glGetNamedBufferSubData(buf.states, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
+  Context::check("reading back the GPU solution");
+  formFactorSeconds += secondsSince(start);
+
+  Solution sol;
+  sol.radiosity.resize(ne);
+  sol.irradiance.resize(ne);
+  sol.directIrradiance.resize(ne);
+  for (size_t e = 0; e < ne; ++e) {
+    sol.radiosity[e] = Rgb(states[e].radiosity);
+    sol.irradiance[e] = Rgb(states[e].irradiance);
+    sol.directIrradiance[e] = Rgb(states[e].direct);
+  }
+  sol.stats.method = "gather";
+  sol.stats.iterations = uint64_t(iteration);
+  sol.stats.residual = residual;
+  sol.stats.hemicubes = rendered;
+  return sol;
+}
+
+}  // namespace luxel::gl
