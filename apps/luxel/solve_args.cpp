@@ -20,7 +20,7 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
                "GL: k x k hemicubes per shooting patch (default 3) or per gathering element (default 2)")
       ->check(CLI::Range(1, 8));
   c.add_option("--hemicube-visibility", a.hemicubeVisibility,
-               "GL progressive: distance (depth hemicubes, seed 003) or item (ID hemicubes, seed 001)")
+               "GL progressive: item (ID hemicubes, seed 001) or distance (depth hemicubes, seed 003)")
       ->capture_default_str();
 }
 

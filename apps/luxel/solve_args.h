@@ -22,7 +22,7 @@ struct SolveArgs {
   int raysPerPair = 0;
   int hemicubeResolution = 0;  // 0: the method's default
   int hemicubesPerSide = 0;
-  std::string hemicubeVisibility = "distance";
+  std::string hemicubeVisibility = "item";
 };
 
 // Adds --solver, --backend, --elements / --element-size, --unshot, --refine, --rays-per-pair, and
