@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fnmatch.h>
 #include <iostream>
 #include <memory>
 
@@ -22,6 +23,32 @@ namespace fs = std::filesystem;
 
 namespace luxel::cli {
 
+namespace {
+
+// Per mesh, 1 when its name matches one of the globs (fnmatch: *, ?, [...]). A pattern that
+// matches nothing is an error naming it and the meshes there are: a typo would otherwise bake
+// a lightmap where vertex colours were asked for, silently.
+std::vector<uint8_t> meshesMatching(const Scene& scene, const std::vector<std::string>& patterns) {
+  std::vector<uint8_t> flags(scene.meshes.size(), 0);
+  for (const std::string& pattern : patterns) {
+    if (pattern.empty()) throw Error("--vertex-colors-for: empty pattern");
+    bool any = false;
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+      if (fnmatch(pattern.c_str(), scene.meshes[m].name.c_str(), 0) == 0) flags[m] = 1, any = true;
+    if (!any) {
+      std::string names;
+      for (size_t m = 0; m < scene.meshes.size() && m < 20; ++m)
+        names += fmt::format("{}'{}'", m ? ", " : "", scene.meshes[m].name);
+      if (scene.meshes.size() > 20) names += fmt::format(", ... ({} meshes)", scene.meshes.size());
+      throw Error(fmt::format("--vertex-colors-for: pattern '{}' matches no mesh of scene '{}' (meshes: {})", pattern,
+                              scene.name, names));
+    }
+  }
+  return flags;
+}
+
+}  // namespace
+
 int runBake(const BakeArgs& a) {
   // Check the output before the (possibly long) solve.
   const fs::path out(a.output);
@@ -30,6 +57,12 @@ int runBake(const BakeArgs& a) {
   if (ext != ".glb") throw Error(fmt::format("{}: output must end in .glb", a.output));
   const fs::path dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
   if (!fs::is_directory(dir)) throw Error(fmt::format("{}: directory '{}' does not exist", a.output, dir.string()));
+  if (a.lightmaps && a.vertexColors)
+    throw Error("--lightmaps and --vertex-colors exclude each other (--vertex-colors-for PATTERN picks meshes for "
+                "vertex colours beside lightmaps)");
+  if (!a.vertexColorsFor.empty() && !a.lightmaps)
+    throw Error("--vertex-colors-for needs --lightmaps (the other meshes get lightmaps); --vertex-colors alone "
+                "colours every mesh");
 
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)
@@ -43,7 +76,7 @@ int runBake(const BakeArgs& a) {
 
   const SolveOptions so = solveOptions(a.solve);
   if (a.lightmaps) {
-    if (a.vertexColors) throw Error("--lightmaps and --vertex-colors exclude each other");
+    const std::vector<uint8_t> vertexColored = meshesMatching(scene, a.vertexColorsFor);  // before the solve
     AtlasOptions ao;
     ao.texelsPerMetre = a.texelsPerMetre;
     ao.pageSize = a.lightmapSize;
@@ -58,7 +91,7 @@ int runBake(const BakeArgs& a) {
     const LightmapBake bake = bakeLightmaps(scene, atlas, lo, bar.callback());
     GlbOptions go;
     go.flippedFaces = flippedFaceFlags(scene, bake.surfaces.surfaces);
-    addLightmaps(go, scene, atlas, bake);
+    addLightmaps(go, scene, atlas, bake, vertexColored);
     writeGlb(scene, out, go);
     for (int p = 0; p < int(bake.pages.size()); ++p) {
       fs::path exr = out;
@@ -69,10 +102,28 @@ int runBake(const BakeArgs& a) {
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!a.quiet) {
       std::cout << fmt::format("luxel: lightmaps — {} pages of {}², {:.1f} texels per metre, {} texels in {} patches, "
-                               "{} invalid, {} dilated, seams {:.3g} -> {:.3g}; total {:.3f} s\n",
+                               "{} invalid, {} dilated, seams {:.3g} -> {:.3g} ({} edges, {:.3f} s); total {:.3f} s\n",
                                bake.pages.size(), atlas.pageSize, atlas.texelsPerMetre, bake.texels,
                                bake.surfaces.surfaces.patches.size(), bake.invalidTexels, bake.dilatedTexels,
-                               bake.seamMaxBefore, bake.seamMaxAfter, total);
+                               bake.seamMaxBefore, bake.seamMaxAfter, bake.seamEdges, bake.secondsSeams, total);
+      if (!a.vertexColorsFor.empty()) {  // the names once each, with how many meshes carry them
+        std::vector<std::pair<std::string, size_t>> names;
+        size_t count = 0;
+        for (size_t m = 0; m < scene.meshes.size(); ++m) {
+          if (!vertexColored[m]) continue;
+          ++count;
+          auto it = std::find_if(names.begin(), names.end(), [&](auto& n) { return n.first == scene.meshes[m].name; });
+          if (it == names.end()) names.emplace_back(scene.meshes[m].name, 1);
+          else ++it->second;
+        }
+        std::string list;
+        for (size_t i = 0; i < names.size() && i < 20; ++i)
+          list += fmt::format("{}{}{}", i ? ", " : "", names[i].first,
+                              names[i].second > 1 ? fmt::format(" ({})", names[i].second) : std::string());
+        if (names.size() > 20) list += ", ...";
+        std::cout << fmt::format("luxel: vertex colours (irradiance) instead of lightmaps on {} mesh{}: {}\n", count,
+                                 count == 1 ? "" : "es", list);
+      }
       std::cout << "luxel: wrote " << a.output << "\n";
     }
     return 0;
@@ -113,6 +164,10 @@ void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
       ->check(CLI::NonNegativeNumber);
   bake.add_option("--lightmap-size", a.lightmapSize, "Lightmap page size in texels (default 1024)")
       ->check(CLI::Range(16, 16384));
+  bake.add_option("--vertex-colors-for", a.vertexColorsFor,
+                  "With --lightmaps: meshes whose names match these globs (comma-separated) get vertex colours "
+                  "(COLOR_0, irradiance) instead of a lightmap")
+      ->delimiter(',');
 }
 
 }  // namespace luxel::cli

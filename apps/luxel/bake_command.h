@@ -1,9 +1,11 @@
-// `luxel bake SCENE -o OUT.glb [--vertex-colors]`: solves a scene as `luxel render` does and
-// writes its meshes and materials as glTF 2.0 binary, with the solution baked in (docs/baking.md).
+// `luxel bake SCENE -o OUT.glb [--vertex-colors | --lightmaps [--vertex-colors-for PATTERNS]]`:
+// solves a scene as `luxel render` does and writes its meshes and materials as glTF 2.0 binary,
+// with the solution baked in (docs/baking.md).
 #pragma once
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -20,13 +22,17 @@ struct BakeArgs {
   bool lightmaps = false;
   float texelsPerMetre = 0.0f;  // 0: about as many texels as the element budget
   int lightmapSize = 1024;
+  // --vertex-colors-for PATTERN[,PATTERN...] (with --lightmaps): meshes whose names match a glob
+  // get COLOR_0 (irradiance from their texels) instead of a lightmap. Each must match a mesh.
+  std::vector<std::string> vertexColorsFor;
   SolveArgs solve;
   int threads = 0;
   bool quiet = false;
 };
 
 int runBake(const BakeArgs& args);
-// Registers --lightmaps, --texels-per-metre and --lightmap-size on the bake subcommand (main.cpp).
+// Registers --lightmaps, --texels-per-metre, --lightmap-size and --vertex-colors-for on the bake
+// subcommand (main.cpp).
 void addLightmapOptions(CLI::App& bake, BakeArgs& args);
 
 }  // namespace luxel::cli

@@ -42,10 +42,11 @@ struct GlbImage {
 };
 
 struct GlbOptions {
-  // COLOR_0, float VEC3, linear, per vertex: empty for none, else FaceCornerValues layout,
-  // finite and >= 0. glTF wants colours in [0,1]: they are written divided by S, the smallest
-  // power of two at or above the largest component (1 when that is <= 1), and S is recorded in
-  // the scene's extras as {"luxel": {"vertexColors": vertexColorQuantity, "vertexColorScale": S}}.
+  // COLOR_0, float VEC3, linear, per vertex: empty for none, else FaceCornerValues layout, where
+  // a mesh's own list may be empty (no COLOR_0 on that mesh); finite and >= 0. glTF wants colours
+  // in [0,1]: they are written divided by S, the smallest power of two at or above the largest
+  // component (1 when that is <= 1), and S is recorded in the scene's extras as
+  // {"luxel": {"vertexColors": vertexColorQuantity, "vertexColorScale": S}}.
   FaceCornerValues vertexColors;
   std::string vertexColorQuantity = "radiance";
   // Vertex colours on the element tessellation, for meshes too coarse to carry the lighting at
@@ -56,14 +57,16 @@ struct GlbOptions {
   const SurfaceSet* elements = nullptr;
   std::vector<Rgb> elementColors;
   // TEXCOORD_1 (the lightmap UV set): empty for none, else per mesh, per face corner
-  // ([mesh][face * 4 + corner]), v up as in Mesh::uvs (written flipped, as glTF wants).
+  // ([mesh][face * 4 + corner]; empty for a mesh without), v up as in Mesh::uvs (written
+  // flipped, as glTF wants).
   std::vector<std::vector<Vec2>> secondUvs;
   // Extra images, embedded with a texture each (after the material textures), in this order.
   std::vector<GlbImage> images;
   // Lightmaps: per mesh, per face, the index into `images` of its lightmap page (-1 for none), or
-  // empty. Faces are grouped into one primitive per page, with a copy of their material per page
-  // whose extras say {"luxel": {"lightMap": TEXTURE, "lightMapTexCoord": 1, "lightMapEncoding":
-  // "RGBM", "rgbmRange": R, "lightMapQuantity": "irradiance"}} (docs/baking.md). Needs secondUvs.
+  // empty (for all meshes, or for one mesh: no lightmap on it). Faces are grouped into one
+  // primitive per page, with a copy of their material per page whose extras say {"luxel":
+  // {"lightMap": TEXTURE, "lightMapTexCoord": 1, "lightMapEncoding": "RGBM", "rgbmRange": R,
+  // "lightMapQuantity": "irradiance"}} (docs/baking.md). Needs the mesh's secondUvs.
   std::vector<std::vector<int32_t>> faceLightmap;
   // Faces that discretisation turned round (SurfaceFace::flipped) are written turned round too,
   // so that viewers culling back faces show the side the solver lit: one flag per mesh face,
@@ -75,9 +78,21 @@ struct GlbOptions {
 // The flipped-face flags of `surfaces` in GlbOptions::flippedFaces layout.
 std::vector<std::vector<uint8_t>> flippedFaceFlags(const Scene& scene, const SurfaceSet& surfaces);
 
-// Adds a lightmap bake to `o`: TEXCOORD_1 from the atlas (texel / page size), every page as an
-// RGBM PNG image (appended to o.images) and the faces' pages (o.faceLightmap).
-void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake);
+// The irradiance H of a lightmap bake at every face corner of the meshes flagged in `meshes`
+// ([mesh], 1 = wanted; others get an empty list): the baked texel (filled, stitched) of the face's
+// own chart nearest the corner, averaged over the corners of the mesh at the same position whose
+// faces' normals differ by less than 45 degrees (one smooth surface: one colour per vertex).
+// Corners of faces the bake skipped (no area) take that average too, or 0 without one.
+FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
+                                          const std::vector<uint8_t>& meshes);
+
+// Adds a lightmap bake to `o`: TEXCOORD_1 from the atlas (texel / page size), the pages the
+// lightmapped faces use as RGBM PNG images (appended to o.images, named lightmapN after the page)
+// and the faces' images (o.faceLightmap). Meshes flagged in `vertexColorMeshes` ([mesh], 1 =
+// flagged; empty for none) get no TEXCOORD_1 and no lightmap but COLOR_0 =
+// lightmapCornerIrradiance, with vertexColorQuantity "irradiance" (docs/baking.md).
+void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
+                  const std::vector<uint8_t>& vertexColorMeshes = {});
 
 // Writes `scene` as a glTF 2.0 binary: one glTF mesh and node per luxel mesh (triangles, quads
 // split along their 0-2 diagonal, flat normals, TEXCOORD_0 when the mesh has uvs), one

@@ -109,6 +109,7 @@ struct LightmapBake {
   float seamMaxBefore = 0.0f;  // largest relative difference (|a-b| summed over channels / mean) across seams
   float seamMaxAfter = 0.0f;
   double secondsSurfaces = 0, secondsValidity = 0, secondsSolve = 0, secondsPost = 0;
+  double secondsSeams = 0;     // the part of secondsPost spent finding and stitching seams
 };
 
 LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options = {},

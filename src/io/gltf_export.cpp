@@ -131,21 +131,24 @@ struct VertexKeyHash {
 };
 
 void checkOptions(const Scene& scene, const GlbOptions& o) {
-  auto check = [&](size_t outer, auto inner, const char* what, size_t perFace) {
+  // `perMesh`: a mesh's own list may be empty (the attribute is left off that mesh).
+  auto check = [&](size_t outer, auto inner, const char* what, size_t perFace, bool perMesh) {
     if (outer == 0) return;
     if (outer != scene.meshes.size())
       throw Error(fmt::format("glb: {} for {} meshes, the scene has {}", what, outer, scene.meshes.size()));
     for (size_t m = 0; m < scene.meshes.size(); ++m)
-      if (inner(m) != scene.meshes[m].faces.size() * perFace)
+      if (inner(m) != scene.meshes[m].faces.size() * perFace && !(perMesh && inner(m) == 0))
         throw Error(fmt::format("glb: mesh '{}': {} has {} entries, expected {}", scene.meshes[m].name, what,
                                 inner(m), scene.meshes[m].faces.size() * perFace));
   };
-  check(o.vertexColors.size(), [&](size_t m) { return o.vertexColors[m].size(); }, "vertex colours", 4);
-  check(o.secondUvs.size(), [&](size_t m) { return o.secondUvs[m].size(); }, "second uvs", 4);
-  check(o.flippedFaces.size(), [&](size_t m) { return o.flippedFaces[m].size(); }, "flipped-face flags", 1);
-  check(o.faceLightmap.size(), [&](size_t m) { return o.faceLightmap[m].size(); }, "face lightmaps", 1);
+  check(o.vertexColors.size(), [&](size_t m) { return o.vertexColors[m].size(); }, "vertex colours", 4, true);
+  check(o.secondUvs.size(), [&](size_t m) { return o.secondUvs[m].size(); }, "second uvs", 4, true);
+  check(o.flippedFaces.size(), [&](size_t m) { return o.flippedFaces[m].size(); }, "flipped-face flags", 1, false);
+  check(o.faceLightmap.size(), [&](size_t m) { return o.faceLightmap[m].size(); }, "face lightmaps", 1, true);
   if (!o.faceLightmap.empty()) {
-    if (o.secondUvs.empty()) throw Error("glb: lightmaps need second uvs (TEXCOORD_1)");
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+      if (!o.faceLightmap[m].empty() && (o.secondUvs.empty() || o.secondUvs[m].empty()))
+        throw Error(fmt::format("glb: mesh '{}': lightmaps need second uvs (TEXCOORD_1)", scene.meshes[m].name));
     for (const auto& mesh : o.faceLightmap)
       for (int32_t i : mesh)
         if (i < -1 || i >= int32_t(o.images.size())) throw Error(fmt::format("glb: lightmap image {} does not exist", i));
@@ -311,8 +314,8 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
   const Mesh& mesh = scene.meshes[mi];
   MeshBuilder b;
   b.hasUv = !mesh.uvs.empty();
-  b.hasUv1 = !o.secondUvs.empty();
-  b.hasColor = !o.vertexColors.empty() || o.elements;
+  b.hasUv1 = !o.secondUvs.empty() && !o.secondUvs[mi].empty();
+  b.hasColor = (!o.vertexColors.empty() && !o.vertexColors[mi].empty()) || o.elements;
   tinygltf::Mesh gm;
   gm.name = mesh.name;
 
@@ -329,14 +332,14 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
         b.polygon(corner, el.polygon.count, false);
       }
     }
-  } else if (!o.faceLightmap.empty()) {
+  } else if (!o.faceLightmap.empty() && !o.faceLightmap[mi].empty()) {
     // One primitive per lightmap page, each with its material's copy for that page.
     std::vector<int32_t> pages(o.faceLightmap[mi].begin(), o.faceLightmap[mi].end());
     std::sort(pages.begin(), pages.end());
     pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
     for (int32_t page : pages) {
       MeshBuilder pb;
-      pb.hasUv = b.hasUv, pb.hasUv1 = true, pb.hasColor = b.hasColor;
+      pb.hasUv = b.hasUv, pb.hasUv1 = b.hasUv1, pb.hasColor = b.hasColor;
       addFaces(mesh, mi, o, colorScale, pb, [&](size_t fi) { return o.faceLightmap[mi][fi] == page; });
       if (pb.indices.empty()) continue;
       gm.primitives.push_back(
@@ -374,7 +377,7 @@ void addFaces(const Mesh& mesh, size_t mi, const GlbOptions& o, float colorScale
         const size_t fc = fi * 4 + size_t(k);
         corner[k] = b.vertex(poly.v[size_t(k)], normal, b.hasUv ? mesh.uvs[face.v[size_t(k)]] : Vec2(0.0f),
                              b.hasUv1 ? o.secondUvs[mi][fc] : Vec2(0.0f),
-                             o.vertexColors.empty() ? Rgb(0.0f) : o.vertexColors[mi][fc] / colorScale);
+                             b.hasColor ? o.vertexColors[mi][fc] / colorScale : Rgb(0.0f));
       }
       b.polygon(corner, n, flipped);
     }
@@ -431,9 +434,11 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
   const float colorScale = vertexColorScale(options);
   const ElementIndex index = options.elements ? indexElements(scene, *options.elements) : ElementIndex{};
   for (size_t m = 0; m < scene.meshes.size(); ++m) addMesh(scene, m, options, colorScale, index, lightmaps, model);
-  if (!options.vertexColors.empty() || options.elements) {
-    // What COLOR_0 holds and the factor that turns it back into radiance (docs/baking.md); three.js
-    // puts scene extras in gltf.scene.userData.
+  const bool anyColors = std::any_of(options.vertexColors.begin(), options.vertexColors.end(),
+                                     [](const std::vector<Rgb>& mesh) { return !mesh.empty(); });
+  if (anyColors || options.elements) {
+    // What COLOR_0 holds and the factor that turns it back into that quantity (docs/baking.md);
+    // three.js puts scene extras in gltf.scene.userData.
     tinygltf::Value::Object info;
     info["vertexColors"] = tinygltf::Value(options.vertexColorQuantity);
     info["vertexColorScale"] = tinygltf::Value(double(colorScale));

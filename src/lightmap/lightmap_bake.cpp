@@ -11,6 +11,7 @@
 #include <stb_image_write.h>
 #include <tbb/parallel_for.h>
 
+#include "lightmap/seam_edges.h"
 #include "lightmap/texel_geometry.h"
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
@@ -157,17 +158,14 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
 
   // Seams: edges shared in 3D by faces of different charts on one smooth surface.
   if (options.stitchSeams) {
+    const auto seamStart = Clock::now();
     const auto& faces = set.faces;
     std::vector<lightmap::FaceMap> maps;
     maps.reserve(faces.size());
     for (size_t f = 0; f < faces.size(); ++f) maps.emplace_back(faces[f], bake.surfaces.faceTexels[f]);
     const float cosLimit = std::cos(options.seamAngle * std::numbers::pi_v<float> / 180.0f);
     const float eps = 1e-5f * set.sceneExtent;
-    struct Edge {
-      uint32_t face;
-      Vec3 a, b;
-    };
-    std::vector<Edge> edges;
+    std::vector<lightmap::SeamEdge> edges;
     for (uint32_t f = 0; f < faces.size(); ++f) {
       const int c = faces[f].triangle ? 3 : 4;
       for (int k = 0; k < c; ++k) edges.push_back({f, faces[f].corners[size_t(k)], faces[f].corners[size_t((k + 1) % c)]});
@@ -196,33 +194,25 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
       return true;
     };
     std::vector<std::pair<size_t, size_t>> pairs;  // (page * n + index) on both sides
-    if (edges.size() <= 20000) {  // all pairs: fine for thousands of faces, skipped beyond {
-      for (size_t i = 0; i < edges.size(); ++i)
-        for (size_t j = i + 1; j < edges.size(); ++j) {
-          const Edge &e0 = edges[i], &e1 = edges[j];
-          if (e0.face == e1.face) continue;
-          if (bake.surfaces.faceChart[e0.face] == bake.surfaces.faceChart[e1.face]) continue;
-          if (glm::dot(faces[e0.face].normal, faces[e1.face].normal) < cosLimit) continue;
-          const Vec3 d = e0.b - e0.a;
-          const float len = glm::length(d);
-          if (len <= eps) continue;
-          const Vec3 u = d / len;
-          // Collinear: both ends of e1 on e0's line.
-          auto off = [&](Vec3 p) { return glm::length(glm::cross(p - e0.a, u)); };
-          if (off(e1.a) > eps || off(e1.b) > eps) continue;
-          const float s0 = std::max(0.0f, std::min(glm::dot(e1.a - e0.a, u), glm::dot(e1.b - e0.a, u)));
-          const float s1 = std::min(len, std::max(glm::dot(e1.a - e0.a, u), glm::dot(e1.b - e0.a, u)));
-          if (s1 - s0 <= eps) continue;
-          ++bake.seamEdges;
-          const float density = float(std::sqrt(maps[e0.face].texelArea /
-                                                std::max(1e-30, double(Polygon{faces[e0.face].corners, maps[e0.face].n}.area()))));
-          const int samples = std::max(2, int(std::ceil((s1 - s0) * density * 2.0f)));
-          for (int k = 0; k < samples; ++k) {
-            const Vec3 p = e0.a + u * (s0 + (s1 - s0) * (float(k) + 0.5f) / float(samples));
-            size_t a, b;
-            if (texelFor(e0.face, p, &a) && texelFor(e1.face, p, &b) && a != b) pairs.emplace_back(a, b);
-          }
-        }
+    // Overlapping edges from a spatial hash (seam_edges.h): the same pairs, in the same order, as
+    // comparing all pairs, which is quadratic and was skipped beyond 20,000 edges.
+    const auto overlaps = lightmap::overlappingEdges(edges, eps);
+    for (const lightmap::EdgeOverlap& o : overlaps) {
+      const lightmap::SeamEdge &e0 = edges[o.first], &e1 = edges[o.second];
+      if (bake.surfaces.faceChart[e0.face] == bake.surfaces.faceChart[e1.face]) continue;
+      if (glm::dot(faces[e0.face].normal, faces[e1.face].normal) < cosLimit) continue;
+      ++bake.seamEdges;
+      const Vec3 d = e0.b - e0.a;
+      const Vec3 u = d / glm::length(d);  // as edgesOverlap computes it
+      const float s0 = o.s0, s1 = o.s1;
+      const float density = float(std::sqrt(maps[e0.face].texelArea /
+                                            std::max(1e-30, double(Polygon{faces[e0.face].corners, maps[e0.face].n}.area()))));
+      const int samples = std::max(2, int(std::ceil((s1 - s0) * density * 2.0f)));
+      for (int k = 0; k < samples; ++k) {
+        const Vec3 p = e0.a + u * (s0 + (s1 - s0) * (float(k) + 0.5f) / float(samples));
+        size_t a, b;
+        if (texelFor(e0.face, p, &a) && texelFor(e1.face, p, &b) && a != b) pairs.emplace_back(a, b);
+      }
     }
     bake.seamSamples = pairs.size();
     auto value = [&](size_t k) -> Rgb& { return bake.pages[k / n][k % n]; };
@@ -235,24 +225,35 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
       return w;
     };
     bake.seamMaxBefore = worst();
-    // A texel may sit on several pairs: average repeatedly, Jacobi style, until they agree.
+    // A texel may sit on several pairs: average repeatedly, Jacobi style, until they agree. Each
+    // pass sets a texel to the mean of its pairs' means; the texels and their pair counts are
+    // found once, not sorted again every pass.
+    std::vector<size_t> seamTexels;
+    seamTexels.reserve(2 * pairs.size());
+    for (auto [a, b] : pairs) seamTexels.push_back(a), seamTexels.push_back(b);
+    std::sort(seamTexels.begin(), seamTexels.end());
+    seamTexels.erase(std::unique(seamTexels.begin(), seamTexels.end()), seamTexels.end());
+    auto slotOf = [&](size_t k) {
+      return size_t(std::lower_bound(seamTexels.begin(), seamTexels.end(), k) - seamTexels.begin());
+    };
+    std::vector<std::pair<size_t, size_t>> slots(pairs.size());
+    std::vector<float> pairCount(seamTexels.size(), 0.0f);
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      slots[i] = {slotOf(pairs[i].first), slotOf(pairs[i].second)};
+      pairCount[slots[i].first] += 1.0f, pairCount[slots[i].second] += 1.0f;
+    }
+    std::vector<Rgb> sum(seamTexels.size());
     for (int pass = 0; pass < 64 && !pairs.empty(); ++pass) {
-      std::vector<std::pair<size_t, Rgb>> updates;
-      for (auto [a, b] : pairs) {
-        const Rgb m = 0.5f * (value(a) + value(b));
-        updates.emplace_back(a, m), updates.emplace_back(b, m);
+      std::fill(sum.begin(), sum.end(), Rgb(0.0f));
+      for (size_t i = 0; i < pairs.size(); ++i) {
+        const Rgb m = 0.5f * (value(pairs[i].first) + value(pairs[i].second));
+        sum[slots[i].first] += m, sum[slots[i].second] += m;
       }
-      std::sort(updates.begin(), updates.end(), [](auto& x, auto& y) { return x.first < y.first; });
-      for (size_t i = 0; i < updates.size();) {
-        size_t j = i;
-        Rgb sum(0.0f);
-        while (j < updates.size() && updates[j].first == updates[i].first) sum += updates[j].second, ++j;
-        value(updates[i].first) = sum / float(j - i);
-        i = j;
-      }
+      for (size_t k = 0; k < seamTexels.size(); ++k) value(seamTexels[k]) = sum[k] / pairCount[k];
       if (worst() < 1e-5f) break;
     }
     bake.seamMaxAfter = worst();
+    bake.secondsSeams = since(seamStart);
   }
 
   // Dilation into the empty texels round the charts.
@@ -329,27 +330,137 @@ std::vector<uint8_t> encodeRgbmPng(const Image& image, float range) {
 
 namespace luxel {
 
-void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake) {
-  const float s = float(atlas.pageSize);
-  o.secondUvs.assign(scene.meshes.size(), {});
-  o.faceLightmap.assign(scene.meshes.size(), {});
-  const int32_t first = int32_t(o.images.size());
+FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
+                                          const std::vector<uint8_t>& meshes) {
+  if (meshes.size() != scene.meshes.size() || atlas.faces.size() != scene.meshes.size())
+    throw Error(fmt::format("lightmap vertex colours: {} mesh flags and an atlas of {} meshes for {} meshes",
+                            meshes.size(), atlas.faces.size(), scene.meshes.size()));
+  const auto& set = bake.surfaces.surfaces;
+  const int size = bake.pageSize;
+  const size_t n = size_t(size) * size_t(size);
+  // Which chart owns each covered texel, on the pages the flagged meshes use.
+  std::vector<std::vector<int32_t>> chartOf(bake.pages.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    if (meshes[m])
+      for (const auto& uv : atlas.faces[m])
+        if (uv.page < chartOf.size() && chartOf[uv.page].empty()) chartOf[uv.page].assign(n, -1);
+  for (size_t e = 0; e < set.elements.size(); ++e) {
+    const auto& t = bake.surfaces.texels[e];
+    if (!chartOf[t.page].empty())
+      chartOf[t.page][size_t(t.y) * size_t(size) + t.x] = int32_t(bake.surfaces.faceChart[set.elements[e].face]);
+  }
+  // The lit side's normal of every mesh face the bake kept (split quads: their first half).
+  std::vector<std::vector<Vec3>> litNormal(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    if (meshes[m]) litNormal[m].assign(scene.meshes[m].faces.size(), Vec3(0.0f));
+  for (const SurfaceFace& f : set.faces)
+    if (meshes[f.mesh] && litNormal[f.mesh][f.meshFace] == Vec3(0.0f)) litNormal[f.mesh][f.meshFace] = f.normal;
+
+  FaceCornerValues out(scene.meshes.size());
+  const float cosSmooth = std::cos(45.0f * std::numbers::pi_v<float> / 180.0f);
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    o.secondUvs[m].assign(scene.meshes[m].faces.size() * 4, Vec2(0.0f));
-    o.faceLightmap[m].assign(scene.meshes[m].faces.size(), -1);
-    for (size_t f = 0; f < scene.meshes[m].faces.size(); ++f) {
+    if (!meshes[m]) continue;
+    const Mesh& mesh = scene.meshes[m];
+    struct Corner {
+      Vec3 p, normal;
+      Rgb value{0.0f};
+      bool found = false;
+    };
+    std::vector<Corner> corners(mesh.faces.size() * 4);
+    std::vector<uint32_t> used;
+    for (size_t f = 0; f < mesh.faces.size(); ++f) {
       const auto& uv = atlas.faces[m][f];
-      for (int k = 0; k < 4; ++k) o.secondUvs[m][f * 4 + size_t(k)] = uv.texel[size_t(k)] / s;
-      o.faceLightmap[m][f] = first + int32_t(uv.page);
+      const int count = mesh.faces[f].vertexCount();
+      glm::dvec2 mid(0.0);
+      for (int k = 0; k < count; ++k) mid += glm::dvec2(uv.texel[size_t(k)]);
+      mid /= double(count);
+      for (int k = 0; k < count; ++k) {
+        Corner& c = corners[f * 4 + size_t(k)];
+        c.p = mesh.positions[mesh.faces[f].v[size_t(k)]];
+        c.normal = litNormal[m][f];
+        used.push_back(uint32_t(f * 4 + size_t(k)));
+        if (c.normal == Vec3(0.0f) || uv.page >= chartOf.size()) continue;  // skipped by the bake: no texels
+        // The texel of the face's chart nearest the corner, nudged inside as the seams do.
+        const glm::dvec2 q = glm::dvec2(uv.texel[size_t(k)]) + 1e-3 * (mid - glm::dvec2(uv.texel[size_t(k)]));
+        double best = 1e300;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = int(std::floor(q.x)) + dx, y = int(std::floor(q.y)) + dy;
+            if (x < 0 || y < 0 || x >= size || y >= size) continue;
+            const size_t i = size_t(y) * size_t(size) + size_t(x);
+            if (chartOf[uv.page][i] != int32_t(uv.chart)) continue;
+            const double d = (x + 0.5 - q.x) * (x + 0.5 - q.x) + (y + 0.5 - q.y) * (y + 0.5 - q.y);
+            if (d < best) best = d, c.value = bake.pages[uv.page][i], c.found = true;
+          }
+      }
+    }
+    // One value per vertex of a smooth surface: the mean over the corners at the same position
+    // whose faces turn by less than 45 degrees (all of them for a corner without a normal).
+    std::sort(used.begin(), used.end(), [&](uint32_t x, uint32_t y) {
+      const Vec3 &a = corners[x].p, &b = corners[y].p;
+      return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+    });
+    out[m].assign(corners.size(), Rgb(0.0f));
+    for (size_t g0 = 0; g0 < used.size();) {
+      size_t g1 = g0;
+      while (g1 < used.size() && corners[used[g1]].p == corners[used[g0]].p) ++g1;
+      for (size_t i = g0; i < g1; ++i) {
+        const Corner& c = corners[used[i]];
+        Rgb sum(0.0f);
+        int count = 0;
+        for (size_t j = g0; j < g1; ++j) {
+          const Corner& o = corners[used[j]];
+          if (!o.found) continue;
+          if (c.normal != Vec3(0.0f) && glm::dot(c.normal, o.normal) < cosSmooth) continue;
+          sum += o.value, ++count;
+        }
+        out[m][used[i]] = count > 0 ? sum / float(count) : Rgb(0.0f);
+      }
+      g0 = g1;
     }
   }
+  return out;
+}
+
+void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
+                  const std::vector<uint8_t>& vertexColorMeshes) {
+  if (!vertexColorMeshes.empty() && vertexColorMeshes.size() != scene.meshes.size())
+    throw Error(fmt::format("lightmaps: {} vertex-colour flags for {} meshes", vertexColorMeshes.size(),
+                            scene.meshes.size()));
+  auto lightmapped = [&](size_t m) { return vertexColorMeshes.empty() || !vertexColorMeshes[m]; };
+  const float s = float(atlas.pageSize);
+  // Only the pages that lightmapped faces use go into the file (a page of vertex-coloured
+  // meshes alone would be an unused image).
+  std::vector<int32_t> imageOf(bake.pages.size(), -1);
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    if (lightmapped(m))
+      for (const auto& uv : atlas.faces[m])
+        if (uv.page < imageOf.size()) imageOf[uv.page] = 0;
   for (int p = 0; p < int(bake.pages.size()); ++p) {
+    if (imageOf[size_t(p)] < 0) continue;
+    imageOf[size_t(p)] = int32_t(o.images.size());
     const Image image = lightmapPageImage(bake, p);
     GlbImage g;
     g.name = fmt::format("lightmap{}", p);
     g.rgbmRange = rgbmRange(image);
     g.png = encodeRgbmPng(image, g.rgbmRange);
     o.images.push_back(std::move(g));
+  }
+  o.secondUvs.assign(scene.meshes.size(), {});
+  o.faceLightmap.assign(scene.meshes.size(), {});
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (!lightmapped(m)) continue;
+    o.secondUvs[m].assign(scene.meshes[m].faces.size() * 4, Vec2(0.0f));
+    o.faceLightmap[m].assign(scene.meshes[m].faces.size(), -1);
+    for (size_t f = 0; f < scene.meshes[m].faces.size(); ++f) {
+      const auto& uv = atlas.faces[m][f];
+      for (int k = 0; k < 4; ++k) o.secondUvs[m][f * 4 + size_t(k)] = uv.texel[size_t(k)] / s;
+      if (uv.page < imageOf.size()) o.faceLightmap[m][f] = imageOf[uv.page];
+    }
+  }
+  if (std::any_of(vertexColorMeshes.begin(), vertexColorMeshes.end(), [](uint8_t v) { return v != 0; })) {
+    o.vertexColors = lightmapCornerIrradiance(scene, atlas, bake, vertexColorMeshes);
+    o.vertexColorQuantity = "irradiance";  // as the lightmaps: the material's colour and texture still apply
   }
 }
 

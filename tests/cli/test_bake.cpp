@@ -2,6 +2,7 @@
 // with tinygltf (counts, COLOR_0 values where the answer is known: the light's own radiance, a
 // floor lit from above against a corner in shadow), checked by the Khronos glTF validator, and bad
 // input failing cleanly. The face-corner mapping and the TEXCOORD_1 path are checked in process.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -155,6 +156,84 @@ TEST(BakeCli, GlbPassesTheKhronosValidator) {
   }
 }
 
+// --lightmaps with --vertex-colors-for: the short block (matched by a glob) gets COLOR_0 and no
+// TEXCOORD_1, on its own material; every other mesh TEXCOORD_1 and a lightmap material. COLOR_0
+// holds irradiance, as the lightmaps do (the scene's extras say so, with the scale).
+TEST(BakeCli, LightmapsWithVertexColoursForSomeMeshes) {
+  const luxel::Scene scene = luxel::loadScene("cornell");
+  std::vector<std::string> names;
+  for (const auto& mesh : scene.meshes) names.push_back(mesh.name);
+  ASSERT_NE(std::find(names.begin(), names.end(), "short block"), names.end());
+  ASSERT_EQ(std::count_if(names.begin(), names.end(), [](const std::string& n) { return n.rfind("short", 0) == 0; }),
+            1);
+
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, {"bake", "cornell", "-o", "mixed.glb", "--lightmaps", "--texels-per-metre", "29",
+                         "--lightmap-size", "256", "--vertex-colors-for", "short*", "--threads", "2"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("instead of lightmaps on 1 mesh: short block\n"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "mixed.lightmap0.exr"));
+  const tinygltf::Model m = loadGlb(dir / "mixed.glb");
+  ASSERT_EQ(m.meshes.size(), scene.meshes.size());
+  const auto& info = m.scenes.at(0).extras.Get("luxel");
+  ASSERT_TRUE(info.IsObject());
+  EXPECT_EQ(info.Get("vertexColors").Get<std::string>(), "irradiance");
+  const auto scale = float(info.Get("vertexColorScale").GetNumberAsDouble());
+  EXPECT_EQ(scale, std::exp2(std::round(std::log2(scale))));  // a power of two
+  for (const auto& mesh : m.meshes)
+    for (const auto& prim : mesh.primitives) {
+      const auto& extras = m.materials.at(size_t(prim.material)).extras.Get("luxel");
+      if (mesh.name == "short block") {
+        EXPECT_TRUE(prim.attributes.count("COLOR_0"));
+        EXPECT_FALSE(prim.attributes.count("TEXCOORD_1"));
+        EXPECT_LT(size_t(prim.material), scene.materials.size());  // its own material, no lightmap copy
+        EXPECT_FALSE(extras.IsObject());
+      } else {
+        EXPECT_FALSE(prim.attributes.count("COLOR_0")) << mesh.name;
+        EXPECT_TRUE(prim.attributes.count("TEXCOORD_1")) << mesh.name;
+        ASSERT_TRUE(extras.IsObject()) << mesh.name;
+        const int tex = extras.Get("lightMap").GetNumberAsInt();
+        ASSERT_GE(tex, 0);
+        ASSERT_LT(size_t(tex), m.textures.size());
+        EXPECT_EQ(m.images.at(size_t(m.textures[size_t(tex)].source)).name, "lightmap0");
+      }
+    }
+  // The block's top faces the light from 0.38 m: about 17 x 0.0137 m^2 / 0.38^2 = 1.6 W m^-2 of red
+  // directly (luminance ~1.2, less off-axis, plus interreflection); its sides get far less.
+  const auto& prim = primitiveOf(m, "short block");
+  const auto normals = vec3s(m, prim.attributes.at("NORMAL")), colours = vec3s(m, prim.attributes.at("COLOR_0"));
+  double top = 0, side = 0;
+  int tops = 0, sides = 0;
+  for (size_t i = 0; i < colours.size(); ++i) {
+    const float h = luminance(scale * colours[i]);
+    if (normals[i].y > 0.99f) top += h, ++tops;
+    else if (std::abs(normals[i].y) < 0.01f) side += h, ++sides;
+  }
+  ASSERT_EQ(tops, 4);
+  ASSERT_GT(sides, 0);
+  top /= tops, side /= sides;
+  std::printf("short block irradiance (luminance): top %.3f, sides %.3f W/m^2\n", top, side);
+  EXPECT_GT(top, 0.7);
+  EXPECT_LT(top, 2.0);
+  EXPECT_GT(top, 2.0 * side);
+}
+
+// A pattern that matches no mesh is an error naming it (and the meshes there are), before the solve
+// and without output; so is --vertex-colors-for without --lightmaps.
+TEST(BakeCli, VertexColourPatternsMustMatch) {
+  const fs::path dir = scratchDir();
+  CliRun none =
+      luxel(dir, {"bake", "cornell", "-o", "c.glb", "--lightmaps", "--vertex-colors-for", "short*,lamp?", "-q"});
+  EXPECT_EQ(none.code, 1);
+  EXPECT_NE(none.err.find("'lamp?'"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("'short block'"), std::string::npos) << none.err;  // the names there are
+  EXPECT_EQ(none.err.find("solve"), std::string::npos) << none.err;            // no solve ran
+  CliRun alone = luxel(dir, {"bake", "cornell", "-o", "c.glb", "--vertex-colors-for", "short*", "-q"});
+  EXPECT_EQ(alone.code, 1);
+  EXPECT_NE(alone.err.find("--lightmaps"), std::string::npos) << alone.err;
+  EXPECT_TRUE(fs::is_empty(dir)) << "a failed bake left files behind";
+}
+
 TEST(BakeCli, BadOutputsFailWithoutWritingAnything) {
   const fs::path dir = scratchDir();
   CliRun ext = luxel(dir, {"bake", "cornell", "-o", "c.gltf", "-q"});
@@ -169,6 +248,22 @@ TEST(BakeCli, BadOutputsFailWithoutWritingAnything) {
   CliRun usage = luxel(dir, {"bake", "cornell"});
   EXPECT_EQ(usage.code, 2);
   EXPECT_TRUE(fs::is_empty(dir)) << "a failed bake left files behind";
+}
+
+// The mixed output (lightmaps, and vertex colours on the blocks) is valid glTF too.
+TEST(BakeCli, MixedGlbPassesTheKhronosValidator) {
+  if (std::system("node --version >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "node is not installed (scripts/install-deps.sh installs it)";
+  if (!fs::exists(fs::path(LUXEL_GLTF_VALIDATOR) / "node_modules" / "gltf-validator"))
+    GTEST_SKIP() << "the npm package gltf-validator is not installed: run npm ci --prefix tools/gltf-validator";
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, {"bake", "cornell", "-o", "m.glb", "--lightmaps", "--texels-per-metre", "16",
+                         "--lightmap-size", "128", "--vertex-colors-for", "*block", "-q"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json report = validate(dir / "m.glb");
+  ASSERT_TRUE(report.is_object()) << "the validator printed no JSON";
+  EXPECT_EQ(report["issues"]["numErrors"], 0) << report["issues"].dump(2);
+  EXPECT_EQ(report["issues"]["numWarnings"], 0) << report["issues"].dump(2);
 }
 
 // Geometric normal of triangle t of a primitive, from its winding.

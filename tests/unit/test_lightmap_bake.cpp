@@ -1,13 +1,18 @@
 // Texels as elements (lightmap.h, bakeLightmaps): the Cornell box baked to a lightmap agrees with
-// the element solution at matched resolution; invalid texels, seams and gutters.
+// the element solution at matched resolution; invalid texels, seams and gutters; seam edges found
+// by the spatial hash exactly as by comparing all pairs, and stitched on meshes of any size.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <random>
 #include <string>
 
+#include "lightmap/seam_edges.h"
+#include "luxel/bake.h"
+#include "luxel/error.h"
 #include "luxel/import.h"
 #include "luxel/lightmap.h"
 #include "luxel/solve.h"
@@ -160,6 +165,154 @@ TEST(LightmapBake, CornellAgreesWithTheElementSolution) {
   }
   std::printf("largest per-surface difference %.2f%% (%zu texels, %zu elements)\n", 100.0 * worst, k.texels,
               ref.elements.size());
+}
+
+// The hash finds exactly the pairs the all-pairs loop finds, with the same overlaps, on edges
+// built to be awkward: shared edges with vertices jittered by less than eps (near-equal, so they
+// straddle any rounding grid), T-junctions (one long edge against three short ones), reversed
+// edges, degenerate ones, edges of one face (never paired), long diagonals, random clutter.
+TEST(SeamEdges, HashFindsExactlyWhatAllPairsFind) {
+  using luxel::Vec3;
+  using luxel::lightmap::SeamEdge;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float eps = 1e-4f;
+  auto jitter = [&](Vec3 p) { return p + 0.2f * eps * Vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f); };
+  std::vector<SeamEdge> edges;
+  uint32_t face = 0;
+  for (int i = 0; i < 600; ++i) {
+    const Vec3 a(unit(rng) * 10.0f, unit(rng) * 10.0f, unit(rng) * 10.0f);
+    const Vec3 b = a + Vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f) * (i % 10 == 0 ? 8.0f : 0.5f);
+    edges.push_back({face++, jitter(a), jitter(b)});  // shared, reversed
+    edges.push_back({face++, jitter(b), jitter(a)});
+    if (i % 3 == 0) {  // a T-junction: three pieces along the same line
+      for (int k = 0; k < 3; ++k)
+        edges.push_back({face++, a + (b - a) * (float(k) / 3.0f), a + (b - a) * (float(k + 1) / 3.0f)});
+    }
+    if (i % 7 == 0) edges.push_back({face - 1, a, b});                               // same face as the last: skipped
+    if (i % 11 == 0) edges.push_back({face++, a, a + Vec3(0.5f * eps, 0.0f, 0.0f)}); // shorter than eps
+    if (i % 5 == 0) edges.push_back({face++, a + (b - a) * 0.999f, b + (b - a) * 2.0f});  // overlaps by 0.1%
+    const Vec3 p(unit(rng), unit(rng), unit(rng)), q(unit(rng), unit(rng), unit(rng));
+    edges.push_back({face++, p * 10.0f, q * 10.0f});
+  }
+  const auto hashed = luxel::lightmap::overlappingEdges(edges, eps);
+  std::vector<luxel::lightmap::EdgeOverlap> all;
+  for (uint32_t i = 0; i < edges.size(); ++i)
+    for (uint32_t j = i + 1; j < edges.size(); ++j) {
+      if (edges[i].face == edges[j].face) continue;
+      luxel::lightmap::EdgeOverlap o{i, j, 0.0f, 0.0f};
+      if (luxel::lightmap::edgesOverlap(edges[i], edges[j], eps, &o.s0, &o.s1)) all.push_back(o);
+    }
+  std::printf("%zu edges: %zu overlapping pairs\n", edges.size(), all.size());
+  EXPECT_GT(all.size(), 1200u);  // 600 shared pairs, 200 T-junctions of 3 and more
+  ASSERT_EQ(hashed.size(), all.size());
+  for (size_t k = 0; k < all.size(); ++k) {
+    ASSERT_EQ(hashed[k].first, all[k].first) << k;
+    ASSERT_EQ(hashed[k].second, all[k].second) << k;
+    EXPECT_EQ(hashed[k].s0, all[k].s0);
+    EXPECT_EQ(hashed[k].s1, all[k].s1);
+  }
+  EXPECT_TRUE(luxel::lightmap::overlappingEdges({}, eps).empty());
+}
+
+// A corrugated sheet: 60 strips sloping +-15 degrees in turn, each 100 quads long, lit by a sun from
+// one side (45 degrees up, across the strips), so the strips get 100 cos 60 = 50 and 100 cos 30 =
+// 86.6 W m^-2 in turn. With a 10 degree chart angle every strip is a chart, and its long edges are
+// seams (30 degrees < the 45 degree seam angle). 6,000 quads are 24,000 edges: beyond the all-pairs
+// loop's old limit of 20,000, which skipped stitching and reported 0 -> 0.
+constexpr int kStrips = 60, kRows = 100;
+constexpr float kStrip = 0.1f;  // width (across, in x) and length (in z) of each quad
+
+struct Corrugated {
+  luxel::Scene scene;
+  luxel::LightmapAtlas atlas;
+  luxel::LightmapBake bake;
+  double seconds = 0.0;
+};
+
+const Corrugated& corrugated() {
+  static const Corrugated c = [] {
+    using luxel::Vec3;
+    Corrugated c;
+    const float rise = kStrip * std::tan(15.0f * 3.14159265f / 180.0f);
+    c.scene.name = "corrugated";
+    c.scene.materials = {luxel::Material{.name = "sheet", .reflectance = luxel::Rgb(0.5f)}};
+    luxel::Mesh sheet{.name = "sheet", .material = 0};
+    for (int j = 0; j <= kRows; ++j)
+      for (int i = 0; i <= kStrips; ++i)
+        sheet.positions.push_back(Vec3(float(i) * kStrip, float(i % 2) * rise, float(j) * kStrip));
+    auto at = [](int i, int j) { return uint32_t(j * (kStrips + 1) + i); };
+    for (int j = 0; j < kRows; ++j)
+      for (int i = 0; i < kStrips; ++i)
+        sheet.faces.push_back(luxel::Face{{at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)}});
+    c.scene.meshes = {sheet};
+    c.scene.lights = {luxel::Light{.type = luxel::Light::Type::Directional, .name = "sun", .intensity = 100.0f,
+                                   .direction = glm::normalize(Vec3(-1.0f, -1.0f, 0.0f))}};
+    luxel::AtlasOptions ao;
+    ao.texelsPerMetre = 20.0f;  // 2 x 2 texels per quad
+    ao.pageSize = 512;
+    ao.chartAngle = 10.0f;
+    c.atlas = luxel::buildLightmapAtlas(c.scene, ao);
+    luxel::LightmapBakeOptions lo;
+    lo.solve.shotBudget = 1;   // the seams' disagreement is the sun's, direct: no need to converge
+    lo.solve.ambient = false;  // (nor for an ambient estimate, which would hide part of it)
+    const auto t0 = std::chrono::steady_clock::now();
+    c.bake = luxel::bakeLightmaps(c.scene, c.atlas, lo);
+    c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return c;
+  }();
+  return c;
+}
+
+TEST(LightmapBake, SeamsAreStitchedOnLargeMeshes) {
+  const Corrugated& c = corrugated();
+  const luxel::LightmapBake& k = c.bake;
+  std::printf("corrugated: %zu texels, %zu seam edges, %zu samples, seams %.3f -> %.2g, stitching %.3f s of %.2f s "
+              "(solve %.2f s)\n",
+              k.texels, k.seamEdges, k.seamSamples, k.seamMaxBefore, k.seamMaxAfter, k.secondsSeams, c.seconds,
+              k.secondsSolve);
+  EXPECT_EQ(c.atlas.chartCount, size_t(kStrips));
+  ASSERT_EQ(k.surfaces.surfaces.faces.size(), size_t(kStrips * kRows));  // 4 edges each: 24,000
+  EXPECT_EQ(k.seamEdges, size_t((kStrips - 1) * kRows));  // every fold edge, once
+  EXPECT_GE(k.seamSamples, k.seamEdges * 2);              // at least 2 samples per seam edge
+  EXPECT_GT(k.seamMaxBefore, 0.3f);                       // |86.6 - 50| / 68.3 = 0.54
+  EXPECT_LT(k.seamMaxAfter, 0.01f);
+  EXPECT_LT(k.secondsSeams, 5.0);
+}
+
+// Vertex colours from the bake (lightmapCornerIrradiance): the folds turn by 30 degrees, so every
+// vertex is on one smooth surface and all its corners agree; on a fold it holds the stitched seam,
+// between the two strips' values; on the sheet's two long borders, its own strip's.
+TEST(LightmapBake, CornerIrradianceFollowsTheTexels) {
+  const Corrugated& c = corrugated();
+  const luxel::FaceCornerValues v = luxel::lightmapCornerIrradiance(c.scene, c.atlas, c.bake, {1});
+  ASSERT_EQ(v.size(), 1u);
+  ASSERT_EQ(v[0].size(), size_t(kStrips * kRows * 4));
+  const luxel::Mesh& sheet = c.scene.meshes[0];
+  std::vector<std::vector<luxel::Rgb>> atVertex(sheet.positions.size());
+  for (size_t f = 0; f < sheet.faces.size(); ++f)
+    for (int k = 0; k < 4; ++k) atVertex[sheet.faces[f].v[size_t(k)]].push_back(v[0][f * 4 + size_t(k)]);
+  auto vertex = [](int i, int j) { return size_t(j * (kStrips + 1) + i); };
+  double fold = 0.0, low = 0.0, high = 0.0;
+  int folds = 0, borders = 0;
+  for (int j = 0; j <= kRows; ++j)
+    for (int i = 0; i <= kStrips; ++i) {
+      const auto& values = atVertex[vertex(i, j)];
+      ASSERT_FALSE(values.empty());
+      for (const luxel::Rgb& x : values) ASSERT_LT(std::abs(x.r - values[0].r), 1e-4f * values[0].r) << i << " " << j;
+      if (i == 0) low += values[0].r, ++borders;
+      else if (i == kStrips) high += values[0].r;
+      else fold += values[0].r, ++folds;
+    }
+  fold /= folds, low /= borders, high /= borders;
+  std::printf("corner irradiance: %.2f on the border of a 50 strip, %.2f on the border of an 86.6 strip, %.2f on the "
+              "folds\n", low, high, fold);
+  // Measured 50.00, 86.60 and 68.30: the sun's direct light (the strips, 15 degrees off level, see
+  // almost nothing of each other), and the seams' average on the folds.
+  EXPECT_NEAR(low, 50.0, 1.0);
+  EXPECT_NEAR(high, 86.6, 1.0);
+  EXPECT_NEAR(fold, 0.5 * (low + high), 1.0);
+  EXPECT_THROW(luxel::lightmapCornerIrradiance(c.scene, c.atlas, c.bake, {}), luxel::Error);  // one flag per mesh
 }
 
 TEST(LightmapBake, RgbmRoundTrips) {
