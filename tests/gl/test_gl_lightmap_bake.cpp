@@ -58,7 +58,7 @@ TEST_P(GlTexelShooting, CornellBakeAgreesWithTheCpuBake) {
   EXPECT_GT(rms, 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Visibility, GlTexelShooting,
+INSTANTIATE_TEST_SUITE_P(GlVisibility, GlTexelShooting,
                          ::testing::Values(SolveOptions::HemicubeVisibility::Item,
                                            SolveOptions::HemicubeVisibility::Distance),
                          [](const auto& info) {

@@ -87,7 +87,7 @@ TEST_P(GlProgressive, CornellBoxAgreesWithTheCpuBackend) {
   EXPECT_LE(gpu.stats.unshotFraction, 1e-4);
 }
 
-INSTANTIATE_TEST_SUITE_P(Visibility, GlProgressive,
+INSTANTIATE_TEST_SUITE_P(GlVisibility, GlProgressive,
                          ::testing::Values(SolveOptions::HemicubeVisibility::Item,
                                            SolveOptions::HemicubeVisibility::Distance),
                          [](const auto& info) {
