@@ -17,7 +17,7 @@ TEST(GlBackendCli, RendersOnTheGpuAndSaysSo) {
   if (!haveGl(why)) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
   const fs::path dir = scratchDir();
   CliRun r = luxel(dir, {"render", "furnace", "-o", "f.exr", "--size", "8x8", "--elements", "200", "--backend", "gl",
-                         "--solver", "gather", "--stats", "s.json"});
+                         "--solver", "gather", "--hemicube-resolution", "32", "--stats", "s.json"});
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(readFile(dir / "s.json"));
   EXPECT_EQ(j["backend"], "gl");
