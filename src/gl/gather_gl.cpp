@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "gl/gl_context.h"
+#include "gl/gpu_system.h"
 #include "gl/hemicube.h"
 #include "gl/layered_hemicubes.h"
 #include "gl/shader_program.h"
@@ -105,14 +106,6 @@ float turn(size_t e, int j) {
   return float(h >> 8) / float(1u << 24) * 1.5707963f;
 }
 
-GLuint storage(const void* data, size_t bytes) {
-  GLuint b = 0;
-  glCreateBuffers(1, &b);
-  glNamedBufferStorage(b, GLsizeiptr(std::max<size_t>(bytes, 16)), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  if (data && bytes) glNamedBufferSubData(b, 0, GLsizeiptr(bytes), data);
-  return b;
-}
-
 struct Buffers {
   GLuint deltas = 0, gatherElements = 0, residual = 0, states = 0, eyes = 0, patches = 0, patchElements = 0,
          patchRadiosity = 0;
@@ -153,20 +146,14 @@ Solution solveGatherGl(const RadiositySystem& sys, const SolveOptions& options, 
     states[e] = {glm::vec4(sys.emission[e], 0.0f), glm::vec4(0.0f), glm::vec4(sys.analytic[e], 0.0f),
                  glm::vec4(sys.analytic[e], 0.0f)};
   }
-  std::vector<GpuPatch> patches(np);
-  std::vector<uint32_t> patchElements;
+  const GpuPatches patches = gpuPatches(sys);
   std::vector<Polygon> patchPolygons(np);
   std::vector<uint32_t> patchItems(np);
-  const std::vector<Rgb> patchEmission = sys.patchMeans(sys.emission);
-  std::vector<glm::vec4> patchRadiosity(np);
+  std::vector<glm::vec4> patchRadiosity(np);  // B = E to start with
   for (size_t p = 0; p < np; ++p) {
-    const Patch& patch = set.patches[p];
-    patches[p].normalArea = glm::vec4(patch.normal, sys.patchArea[p]);
-    patches[p].ids = glm::uvec4(uint32_t(patchElements.size()), uint32_t(patch.elements.size()), patch.face, 0u);
-    patchElements.insert(patchElements.end(), patch.elements.begin(), patch.elements.end());
-    patchPolygons[p] = patch.polygon;
+    patchPolygons[p] = set.patches[p].polygon;
     patchItems[p] = uint32_t(p + 1);
-    patchRadiosity[p] = glm::vec4(patchEmission[p], 0.0f);
+    patchRadiosity[p] = patches.patches[p].emission;
   }
 
   // As many elements per batch as fit the layer memory: per pixel an item, an RGBA32F colour and
@@ -185,14 +172,14 @@ Solution solveGatherGl(const RadiositySystem& sys, const SolveOptions& options, 
   std::vector<float> deltaTable(deltas.top);
   deltaTable.insert(deltaTable.end(), deltas.side.begin(), deltas.side.end());
   Buffers buf;
-  buf.deltas = storage(deltaTable.data(), deltaTable.size() * sizeof(float));
-  buf.gatherElements = storage(gatherElements.data(), gatherElements.size() * sizeof(GpuGatherElement));
-  buf.residual = storage(nullptr, 2 * sizeof(uint32_t));
-  buf.states = storage(states.data(), states.size() * sizeof(GpuElementState));
-  buf.eyes = storage(eyes.data(), eyes.size() * sizeof(GpuShooter));
-  buf.patches = storage(patches.data(), patches.size() * sizeof(GpuPatch));
-  buf.patchElements = storage(patchElements.data(), patchElements.size() * sizeof(uint32_t));
-  buf.patchRadiosity = storage(patchRadiosity.data(), patchRadiosity.size() * sizeof(glm::vec4));
+  buf.deltas = storageBuffer(deltaTable.data(), deltaTable.size() * sizeof(float));
+  buf.gatherElements = storageBuffer(gatherElements.data(), gatherElements.size() * sizeof(GpuGatherElement));
+  buf.residual = storageBuffer(nullptr, 2 * sizeof(uint32_t));
+  buf.states = storageBuffer(states.data(), states.size() * sizeof(GpuElementState));
+  buf.eyes = storageBuffer(eyes.data(), eyes.size() * sizeof(GpuShooter));
+  buf.patches = storageBuffer(patches.patches.data(), patches.patches.size() * sizeof(GpuPatch));
+  buf.patchElements = storageBuffer(patches.elements.data(), patches.elements.size() * sizeof(uint32_t));
+  buf.patchRadiosity = storageBuffer(patchRadiosity.data(), patchRadiosity.size() * sizeof(glm::vec4));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherDeltaBinding, buf.deltas);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherElementBinding, buf.gatherElements);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherResidualBinding, buf.residual);
@@ -258,15 +245,7 @@ Solution solveGatherGl(const RadiositySystem& sys, const SolveOptions& options, 
   Context::check("reading back the GPU solution");
   formFactorSeconds += secondsSince(start);
 
-  Solution sol;
-  sol.radiosity.resize(ne);
-  sol.irradiance.resize(ne);
-  sol.directIrradiance.resize(ne);
-  for (size_t e = 0; e < ne; ++e) {
-    sol.radiosity[e] = Rgb(states[e].radiosity);
-    sol.irradiance[e] = Rgb(states[e].irradiance);
-    sol.directIrradiance[e] = Rgb(states[e].direct);
-  }
+  Solution sol = solutionFromStates(states);
   sol.stats.method = "gather";
   sol.stats.iterations = uint64_t(iteration);
   sol.stats.residual = residual;

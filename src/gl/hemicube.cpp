@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/gl_context.h"
+#include "gl/item_mesh.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
 #include "luxel/error.h"
@@ -98,10 +99,10 @@ DeltaFormFactors::DeltaFormFactors(int res) : resolution(res) {
 }
 
 struct ItemHemicube::Impl {
-  GLuint vao = 0, positions = 0, items = 0, color = 0, depth = 0;
+  std::unique_ptr<ItemMesh> mesh;
+  GLuint color = 0, depth = 0;
   GLuint framebuffers[5] = {};  // one per face, each on its layer of `color`
   GLuint deltaBuffer = 0, sumBuffer = 0;
-  GLsizei vertexCount = 0;
   std::unique_ptr<ShaderProgram> program, integrate;
   GLint viewProjection = -1, integrateResolution = -1;
   float nearPlane = 0, farPlane = 0;
@@ -113,9 +114,6 @@ struct ItemHemicube::Impl {
     glDeleteBuffers(1, &sumBuffer);
     glDeleteTextures(1, &color);
     glDeleteRenderbuffers(1, &depth);
-    glDeleteBuffers(1, &positions);
-    glDeleteBuffers(1, &items);
-    glDeleteVertexArrays(1, &vao);
   }
 };
 
@@ -128,30 +126,9 @@ ItemHemicube::ItemHemicube(std::span<const Polygon> polygons, float sceneExtent,
   m.nearPlane = options.nearPlane * extent;
   m.farPlane = 2.0f * extent;
 
-  // Triangles with a flat item id per vertex (quads split along 0-2, as the ray tracer's quads).
-  std::vector<Vec3> positions;
-  std::vector<uint32_t> items;
-  for (size_t i = 0; i < polygons.size(); ++i) {
-    const Polygon& p = polygons[i];
-    const uint32_t id = uint32_t(i + 1);
-    for (int t = 0; t + 2 < p.count; ++t) {
-      for (int k : {0, t + 1, t + 2}) positions.push_back(p.v[size_t(k)]), items.push_back(id);
-    }
-  }
-  m.vertexCount = GLsizei(positions.size());
-  glCreateVertexArrays(1, &m.vao);
-  glCreateBuffers(1, &m.positions);
-  glCreateBuffers(1, &m.items);
-  glNamedBufferStorage(m.positions, GLsizeiptr(positions.size() * sizeof(Vec3)), positions.data(), 0);
-  glNamedBufferStorage(m.items, GLsizeiptr(items.size() * sizeof(uint32_t)), items.data(), 0);
-  glVertexArrayVertexBuffer(m.vao, 0, m.positions, 0, sizeof(Vec3));
-  glVertexArrayVertexBuffer(m.vao, 1, m.items, 0, sizeof(uint32_t));
-  glEnableVertexArrayAttrib(m.vao, kPositionLocation);
-  glEnableVertexArrayAttrib(m.vao, kItemLocation);
-  glVertexArrayAttribFormat(m.vao, kPositionLocation, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribIFormat(m.vao, kItemLocation, 1, GL_UNSIGNED_INT, 0);
-  glVertexArrayAttribBinding(m.vao, kPositionLocation, 0);
-  glVertexArrayAttribBinding(m.vao, kItemLocation, 1);
+  std::vector<uint32_t> ids(polygons.size());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = uint32_t(i + 1);
+  m.mesh = std::make_unique<ItemMesh>(polygons, ids);
 
   const int res = options.resolution;
   // The five faces are the layers of one R32UI array texture, so that one compute dispatch
@@ -222,7 +199,6 @@ void ItemHemicube::render(Vec3 p, Vec3 n, std::span<float> result) {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // a surface blocks light from both sides
   m.program->use();
-  glBindVertexArray(m.vao);
   const GLuint clearItem[4] = {0, 0, 0, 0};
   const Vec3 directions[5] = {n, t, -t, b, -b};
   for (int face = 0; face < 5; ++face) {
@@ -235,7 +211,7 @@ void ItemHemicube::render(Vec3 p, Vec3 n, std::span<float> result) {
     glUniformMatrix4fv(m.viewProjection, 1, GL_FALSE, glm::value_ptr(viewProjection));
     glClearBufferuiv(GL_COLOR, 0, clearItem);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    glDrawArrays(GL_TRIANGLES, 0, m.vertexCount);
+    m.mesh->draw();
     if (compute) continue;
     glReadPixels(0, 0, res, res, GL_RED_INTEGER, GL_UNSIGNED_INT, m.pixels.data());
     if (face == 0) {

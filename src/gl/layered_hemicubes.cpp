@@ -8,6 +8,7 @@
 
 #include "gl/gl_context.h"
 #include "gl/hemicube_glsl.h"
+#include "gl/item_mesh.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
 #include "luxel/error.h"
@@ -60,9 +61,9 @@ void main() {
 }  // namespace
 
 struct LayeredHemicubes::Impl {
-  GLuint vao = 0, positions = 0, items = 0, itemLayers = 0, distanceLayers = 0, depth = 0;
+  std::unique_ptr<ItemMesh> mesh;
+  GLuint itemLayers = 0, distanceLayers = 0, depth = 0;
   std::vector<GLuint> framebuffers;  // one per layer (hemicube x face)
-  GLsizei vertexCount = 0;
   std::unique_ptr<ShaderProgram> program;
   GLint layer = -1, first = -1;
 
@@ -71,9 +72,6 @@ struct LayeredHemicubes::Impl {
     glDeleteTextures(1, &itemLayers);
     glDeleteTextures(1, &distanceLayers);
     glDeleteRenderbuffers(1, &depth);
-    glDeleteBuffers(1, &positions);
-    glDeleteBuffers(1, &items);
-    glDeleteVertexArrays(1, &vao);
   }
 };
 
@@ -112,30 +110,9 @@ LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<
     throw Error(fmt::format("{} hemicubes at once need {} texture layers; this OpenGL has {}", capacity,
                             5 * capacity, maxLayers));
   if (!(nearPlane > 0.0f && farPlane > nearPlane)) throw Error("hemicube near and far planes must be 0 < near < far");
-  if (polygons.size() != polygonItems.size()) throw Error("hemicube polygons and items differ in number");
   Impl& m = *impl_;
 
-  std::vector<Vec3> positions;
-  std::vector<uint32_t> items;
-  for (size_t i = 0; i < polygons.size(); ++i) {
-    const Polygon& p = polygons[i];
-    for (int t = 0; t + 2 < p.count; ++t)
-      for (int k : {0, t + 1, t + 2}) positions.push_back(p.v[size_t(k)]), items.push_back(polygonItems[i]);
-  }
-  m.vertexCount = GLsizei(positions.size());
-  glCreateVertexArrays(1, &m.vao);
-  glCreateBuffers(1, &m.positions);
-  glCreateBuffers(1, &m.items);
-  glNamedBufferStorage(m.positions, GLsizeiptr(std::max<size_t>(positions.size(), 1) * sizeof(Vec3)), positions.data(), 0);
-  glNamedBufferStorage(m.items, GLsizeiptr(std::max<size_t>(items.size(), 1) * sizeof(uint32_t)), items.data(), 0);
-  glVertexArrayVertexBuffer(m.vao, 0, m.positions, 0, sizeof(Vec3));
-  glVertexArrayVertexBuffer(m.vao, 1, m.items, 0, sizeof(uint32_t));
-  glEnableVertexArrayAttrib(m.vao, kPositionLocation);
-  glEnableVertexArrayAttrib(m.vao, kItemLocation);
-  glVertexArrayAttribFormat(m.vao, kPositionLocation, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribIFormat(m.vao, kItemLocation, 1, GL_UNSIGNED_INT, 0);
-  glVertexArrayAttribBinding(m.vao, kPositionLocation, 0);
-  glVertexArrayAttribBinding(m.vao, kItemLocation, 1);
+  m.mesh = std::make_unique<ItemMesh>(polygons, polygonItems);
 
   const GLsizei layers = 5 * capacity;
   const bool radiosity = content == Content::Radiosity;
@@ -183,7 +160,6 @@ void LayeredHemicubes::render(int first, int count) {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // a surface blocks light from both sides
   m.program->use();
-  glBindVertexArray(m.vao);
   glUniform1i(m.first, first);
   const GLuint noItem[4] = {0, 0, 0, 0};
   // No surface: infinitely far, and no light.
@@ -194,7 +170,7 @@ void LayeredHemicubes::render(int first, int count) {
     glClearBufferuiv(GL_COLOR, 0, noItem);
     glClearBufferfv(GL_COLOR, 1, nothing);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    glDrawArrays(GL_TRIANGLES, 0, m.vertexCount);
+    m.mesh->draw();
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "gl/gl_context.h"
+#include "gl/gpu_system.h"
 #include "gl/hemicube_glsl.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
@@ -243,14 +244,6 @@ void main() {
 }
 )";
 
-GLuint storage(const void* data, size_t bytes, GLbitfield flags) {
-  GLuint b = 0;
-  glCreateBuffers(1, &b);
-  glNamedBufferStorage(b, GLsizeiptr(std::max<size_t>(bytes, 16)), nullptr, flags | GL_DYNAMIC_STORAGE_BIT);
-  if (data && bytes) glNamedBufferSubData(b, 0, GLsizeiptr(bytes), data);
-  return b;
-}
-
 // The GL objects of one solve, released on every path out (exceptions included).
 struct Buffers {
   GLuint elements = 0, patches = 0, patchElements = 0, patchStates = 0, shooters = 0, state = 0, elementStates = 0;
@@ -297,19 +290,7 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
     const Rgb b = sys.emission[e] + sys.reflectance[e] * sys.analytic[e];
     states[e] = {glm::vec4(b, 0.0f), glm::vec4(b, 0.0f), glm::vec4(sys.analytic[e], 0.0f), glm::vec4(sys.analytic[e], 0.0f)};
   }
-  const std::vector<Rgb> patchEmission = sys.patchMeans(sys.emission);
-  std::vector<GpuPatch> patches(np);
-  std::vector<uint32_t> patchElements;
-  for (size_t p = 0; p < np; ++p) {
-    const Patch& patch = set.patches[p];
-    GpuPatch& g = patches[p];
-    for (int c = 0; c < 4; ++c) g.corners[c] = glm::vec4(patch.polygon.v[size_t(c)], 0.0f);
-    g.corners[0].w = float(patch.polygon.count);
-    g.normalArea = glm::vec4(patch.normal, sys.patchArea[p]);
-    g.emission = glm::vec4(patchEmission[p], 0.0f);
-    g.ids = glm::uvec4(uint32_t(patchElements.size()), uint32_t(patch.elements.size()), patch.face, 0u);
-    patchElements.insert(patchElements.end(), patch.elements.begin(), patch.elements.end());
-  }
+  const GpuPatches patches = gpuPatches(sys);
 
   const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
   const int samples = o.samplesPerSide * o.samplesPerSide;
@@ -321,15 +302,15 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
                              batch * samples, o.nearPlane * extent, 2.0f * extent);
 
   Buffers buf;
-  buf.elements = storage(elements.data(), elements.size() * sizeof(GpuElement), 0);
-  buf.patches = storage(patches.data(), patches.size() * sizeof(GpuPatch), 0);
-  buf.patchElements = storage(patchElements.data(), patchElements.size() * sizeof(uint32_t), 0);
+  buf.elements = storageBuffer(elements.data(), elements.size() * sizeof(GpuElement));
+  buf.patches = storageBuffer(patches.patches.data(), patches.patches.size() * sizeof(GpuPatch));
+  buf.patchElements = storageBuffer(patches.elements.data(), patches.elements.size() * sizeof(uint32_t));
   std::vector<GpuPatchState> patchStates(np, GpuPatchState{0.0f, 0u});
-  buf.patchStates = storage(patchStates.data(), patchStates.size() * sizeof(GpuPatchState), 0);
-  buf.shooters = storage(nullptr, size_t(batch * samples) * sizeof(GpuShooter), 0);
+  buf.patchStates = storageBuffer(patchStates.data(), patchStates.size() * sizeof(GpuPatchState));
+  buf.shooters = storageBuffer(nullptr, size_t(batch * samples) * sizeof(GpuShooter));
   GpuSolverState initial{};
-  buf.state = storage(&initial, sizeof initial, 0);
-  buf.elementStates = storage(states.data(), states.size() * sizeof(GpuElementState), 0);
+  buf.state = storageBuffer(&initial, sizeof initial);
+  buf.elementStates = storageBuffer(states.data(), states.size() * sizeof(GpuElementState));
 
   const std::string preamble = glslPreamble() + kHemicubeGlsl + kFormFactorGlsl + kBuffersGlsl;
   ShaderProgram power("patch power", preamble + kPowerCompute);
@@ -403,17 +384,9 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
   Context::check("reading back the GPU solution");
   formFactorSeconds += secondsSince(start);
 
-  Solution sol;
-  sol.radiosity.resize(ne);
-  sol.irradiance.resize(ne);
-  sol.directIrradiance.resize(ne);
+  Solution sol = solutionFromStates(states);
   std::vector<Rgb> unshot(ne);
-  for (size_t e = 0; e < ne; ++e) {
-    sol.radiosity[e] = Rgb(states[e].radiosity);
-    sol.irradiance[e] = Rgb(states[e].irradiance);
-    sol.directIrradiance[e] = Rgb(states[e].direct);
-    unshot[e] = Rgb(states[e].unshot);
-  }
+  for (size_t e = 0; e < ne; ++e) unshot[e] = Rgb(states[e].unshot);
   const double unshotFraction = sourcePower > 0.0 ? s.unshotPower / sourcePower : 0.0;
   reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction));
   if (options.ambient) addAmbientTerm(sys, unshot, sol.radiosity, sol.irradiance);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gl/gl_parity.h"
 #include "gl/gl_test_context.h"
 #include "luxel/import.h"
 #include "luxel/lightmap.h"
@@ -61,9 +62,6 @@ TEST_P(GlTexelShooting, CornellBakeAgreesWithTheCpuBake) {
 INSTANTIATE_TEST_SUITE_P(GlVisibility, GlTexelShooting,
                          ::testing::Values(SolveOptions::HemicubeVisibility::Item,
                                            SolveOptions::HemicubeVisibility::Distance),
-                         [](const auto& info) {
-                           return info.param == SolveOptions::HemicubeVisibility::Item ? std::string("Item")
-                                                                                       : std::string("Distance");
-                         });
+                         [](const auto& info) { return luxel::test::visibilityName(info.param); });
 
 }  // namespace

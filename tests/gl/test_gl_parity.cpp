@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "gl/gl_parity.h"
 #include "gl/gl_test_context.h"
 #include "luxel/bench.h"
 #include "luxel/solve.h"
@@ -52,13 +53,7 @@ TEST(GlParity, CornellBoxAgreesWithTheCpuBackend) {
   d.elementBudget = 300;
   luxel::SurfaceSet surfaces = luxel::discretise(scene, d);
   luxel::SurfaceSet cpuSurfaces = surfaces;
-  SolveOptions c;
-  c.method = SolveOptions::Method::Gather;
-  c.residualThreshold = 1e-6;
-  c.formFactors.raysPerPair = 64;
-  c.formFactors.nearRaysPerPair = 64;
-  c.formFactors.emitterRaysPerPair = 256;
-  const luxel::Solution cpu = luxel::solve(scene, cpuSurfaces, c);
+  const luxel::Solution cpu = luxel::solve(scene, cpuSurfaces, luxel::test::convergedCpuGather());
   SolveOptions g = glGather(64, 2);
   g.residualThreshold = 1e-6;
   const luxel::Solution gpu = luxel::solve(scene, surfaces, g);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "gl/gl_parity.h"
 #include "gl/gl_test_context.h"
 #include "luxel/bench.h"
 #include "luxel/solve.h"
@@ -22,17 +23,6 @@ SolveOptions glProgressive(SolveOptions::HemicubeVisibility visibility) {
   o.hemicubeVisibility = visibility;
   o.unshotThreshold = 1e-4;
   return o;
-}
-
-// A converged CPU solution of the same elements: exact factors, 64 visibility rays per pair.
-luxel::Solution cpuReference(const luxel::Scene& scene, luxel::SurfaceSet surfaces) {
-  SolveOptions o;
-  o.method = SolveOptions::Method::Gather;
-  o.residualThreshold = 1e-6;
-  o.formFactors.raysPerPair = 64;
-  o.formFactors.nearRaysPerPair = 64;
-  o.formFactors.emitterRaysPerPair = 256;
-  return luxel::solve(scene, surfaces, o);
 }
 
 class GlProgressive : public ::testing::TestWithParam<SolveOptions::HemicubeVisibility> {};
@@ -69,7 +59,8 @@ TEST_P(GlProgressive, CornellBoxAgreesWithTheCpuBackend) {
   luxel::DiscretiseOptions d;
   d.elementBudget = 1500;
   luxel::SurfaceSet surfaces = luxel::discretise(scene, d);
-  const luxel::Solution cpu = cpuReference(scene, surfaces);
+  luxel::SurfaceSet cpuSurfaces = surfaces;
+  const luxel::Solution cpu = luxel::solve(scene, cpuSurfaces, luxel::test::convergedCpuGather());
   const auto t0 = std::chrono::steady_clock::now();
   luxel::Solution gpu = luxel::solve(scene, surfaces, glProgressive(GetParam()));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -90,9 +81,6 @@ TEST_P(GlProgressive, CornellBoxAgreesWithTheCpuBackend) {
 INSTANTIATE_TEST_SUITE_P(GlVisibility, GlProgressive,
                          ::testing::Values(SolveOptions::HemicubeVisibility::Item,
                                            SolveOptions::HemicubeVisibility::Distance),
-                         [](const auto& info) {
-                           return info.param == SolveOptions::HemicubeVisibility::Item ? std::string("Item")
-                                                                                       : std::string("Distance");
-                         });
+                         [](const auto& info) { return luxel::test::visibilityName(info.param); });
 
 }  // namespace
