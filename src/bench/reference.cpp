@@ -32,7 +32,7 @@ struct Hasher {
 // emission), the analytic lights and the solver settings.
 uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const SolveOptions& o) {
   Hasher h;
-  h.bytes("luxel-reference-3", 17);  // bump when the transport's numbers change (quadrature, sampling)
+  h.bytes("luxel-reference-4", 17);  // bump when the transport's numbers change (quadrature, sampling, visibility weighting)
   for (const Element& e : surfaces.elements) {
     h.value(e.polygon.count);
     h.bytes(e.polygon.v.data(), sizeof(Vec3) * 4);

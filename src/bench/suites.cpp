@@ -112,9 +112,9 @@ std::vector<Suite> makeSuites() {
   quick.cases.back().discretise.elementBudget = 1000;
 
   // The GL backend on scenes small enough for Mesa's llvmpipe, with the same CPU references as
-  // the CPU cases: gathering with item hemicubes (256 pixels, 2 x 2 per element) and progressive
-  // refinement resident on the GPU (64 pixels, 3 x 3 per shooting patch), with depth hemicubes
-  // (seed 003, the default) and ID hemicubes (seed 001).
+  // the CPU cases: gathering with radiosity hemicubes (256 pixels, 2 x 2 per element) and
+  // progressive refinement resident on the GPU (64 pixels, 3 x 3 per shooting patch), with ID
+  // hemicubes (seed 001, the default) and depth hemicubes (seed 003).
   Suite gl{"gl", "the OpenGL backend on cornell-low, cornell-large, indirect-light and the Cornell box at 1,000 elements", {}};
   {
     auto onGl = [](Case c, const std::string& name) {
@@ -133,11 +133,11 @@ std::vector<Suite> makeSuites() {
       Case shoot = onGl(progressive(r.scene, r.unshot(), {t51, r.progressiveMs, r.progressiveError}),
                         fmt::format("{}/gl-progressive", r.scene));
       gl.cases.push_back(shoot);
-      Case id = shoot;
-      id.name += "-id";
-      id.setting += ", ID hemicubes";
-      id.solve.hemicubeVisibility = SolveOptions::HemicubeVisibility::Item;
-      gl.cases.push_back(id);
+      Case depth = shoot;
+      depth.name += "-depth";
+      depth.setting += ", depth hemicubes";
+      depth.solve.hemicubeVisibility = SolveOptions::HemicubeVisibility::Distance;
+      gl.cases.push_back(depth);
     }
   }
   return {seeds, shader, scenes, core, quick, gl};

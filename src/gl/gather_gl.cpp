@@ -99,9 +99,9 @@ void main() {
 }
 )";
 
-// A turn in [0, pi/2) from the element and sample index (a hash: the same every run).
-float turn(size_t e, int j) {
-  uint32_t h = uint32_t(e) * 0x9E3779B1u ^ uint32_t(j) * 0x85EBCA77u;
+// A turn in [0, pi/2) from the element and sample index: hemicubeTurn of hemicube_glsl.h, in C++.
+float hemicubeTurn(uint32_t a, uint32_t b, uint32_t c) {
+  uint32_t h = (a * 0x9E3779B1u) ^ (b * 0x85EBCA77u) ^ (c * 0xC2B2AE3Du);
   h ^= h >> 15, h *= 0x2C1B3C6Du, h ^= h >> 12;
   return float(h >> 8) / float(1u << 24) * 1.5707963f;
 }
@@ -137,7 +137,7 @@ Solution solveGatherGl(const RadiositySystem& sys, const SolveOptions& options, 
       const Vec3 x = polygonPoint(el.polygon, (float(j % o.samplesPerSide) + 0.5f) / k,
                                   (float(j / o.samplesPerSide) + 0.5f) / k);
       eyes[e * size_t(samples) + size_t(j)] = {glm::vec4(x + o.offset * extent * el.normal, 0.0f),
-                                               glm::vec4(el.normal, o.randomTurn ? turn(e, j) : 0.0f), glm::vec4(0.0f), glm::vec4(0.0f),
+                                               glm::vec4(el.normal, o.randomTurn ? hemicubeTurn(uint32_t(e), uint32_t(j), 0u) : 0.0f), glm::vec4(0.0f), glm::vec4(0.0f),
                                                glm::uvec4(0u, 1u, 0u, 0u)};
     }
     gatherElements[e] = {glm::vec4(sys.emission[e], sys.area[e]), glm::vec4(sys.reflectance[e], 0.0f),

@@ -18,6 +18,14 @@ HemicubeFrame hemicubeFrame(vec3 n, float angle) {
   return HemicubeFrame(n, t, cross(n, t));
 }
 
+// An angle in [0, pi/2) hashed from three integers (a patch or element, a hemicube of it, a pass):
+// the same every run. gather_gl.cpp's hemicubeTurn computes the same hash in C++.
+float hemicubeTurn(uint a, uint b, uint c) {
+  uint h = (a * 0x9E3779B1u) ^ (b * 0x85EBCA77u) ^ (c * 0xC2B2AE3Du);
+  h ^= h >> 15; h *= 0x2C1B3C6Du; h ^= h >> 12;
+  return float(h >> 8) / 16777216.0 * 1.5707963;
+}
+
 // The face (0 the top, 1..4 the sides t, -t, b, -b) that direction r from the centre falls on.
 int hemicubeFace(vec3 r, HemicubeFrame f) {
   float z = dot(r, f.n), x = dot(r, f.t), y = dot(r, f.b);

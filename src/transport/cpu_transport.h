@@ -1,7 +1,8 @@
 // The CPU backend: exact unoccluded form factors times a visibility fraction from stratified,
 // jittered Embree rays, in the manner of Wallace, Elmquist and Haines, "A Ray Tracing Algorithm
 // for Progressive Radiosity" (SIGGRAPH 1989), with the analytic point-to-polygon factor of
-// Baum et al. 1989 in place of the disc approximation.
+// Baum et al. 1989 in place of the disc approximation, and each ray's verdict weighted by its
+// point-to-point kernel (a ratio estimator of the visible share, unbiased as rays increase).
 #pragma once
 
 #include <atomic>
