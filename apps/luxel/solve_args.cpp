@@ -13,6 +13,9 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
       ->capture_default_str();
   c.add_option("--refine", a.refine, "Adaptive refinement: extra elements allowed (0: off)");
   c.add_option("--rays-per-pair", a.raysPerPair, "Visibility rays per element-patch pair")->check(CLI::Range(1, 256));
+  c.add_option("--shooters-per-pass", a.shootersPerPass,
+               "progressive: patches shot together in one pass (default 8; 1 on a software rasteriser)")
+      ->check(CLI::Range(1, kMaxShootersPerPass));
   c.add_option("--hemicube-resolution", a.hemicubeResolution,
                "GL: hemicube top-face pixels a side (default 64 shooting, 256 gathering)")
       ->check(CLI::Range(8, 4096));
@@ -37,6 +40,7 @@ SolveOptions solveOptions(const SolveArgs& a) {
   o.backend = parseSolveBackend(a.backend);
   o.unshotThreshold = a.unshot;
   o.refineBudget = a.refine;
+  if (a.shootersPerPass > 0) o.shootersPerPass = a.shootersPerPass;
   if (a.raysPerPair > 0) o.formFactors.raysPerPair = a.raysPerPair;
   o.hemicubeVisibility = parseHemicubeVisibility(a.hemicubeVisibility);
   for (SolveOptions::HemicubeSampling* h : {&o.shootingHemicubes, &o.gatheringHemicubes}) {

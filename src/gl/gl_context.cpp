@@ -113,6 +113,13 @@ Context::~Context() {
 }
 
 std::string Context::renderer() const { return reinterpret_cast<const char*>(glGetString(GL_RENDERER)); }
+
+bool Context::softwareRasteriser() const {
+  const std::string r = renderer();
+  for (const char* name : {"llvmpipe", "softpipe", "SwiftShader"})
+    if (r.find(name) != std::string::npos) return true;
+  return false;
+}
 std::string Context::version() const { return reinterpret_cast<const char*>(glGetString(GL_VERSION)); }
 
 void Context::check(const char* what) {

@@ -22,6 +22,8 @@ class Context {
   Context& operator=(const Context&) = delete;
 
   std::string renderer() const;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  // Whether the renderer rasterises on the CPU (Mesa's llvmpipe or softpipe, SwiftShader).
+  bool softwareRasteriser() const;
   std::string version() const;   // e.g. "4.5 (Core Profile) Mesa 22.3.6"
   std::string platform() const { return platform_; }  // "device" or "surfaceless"
 

@@ -16,8 +16,6 @@
 namespace luxel {
 namespace {
 
-// Patches shot together in one pass over the receivers.
-constexpr size_t kShootersPerPass = 8;
 // Form-factor columns are kept while they fit in this much memory.
 constexpr size_t kColumnCacheBytes = size_t(2) << 30;
 
@@ -49,7 +47,8 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
   const double sourcePower = sys.sourcePower();
   std::vector<std::vector<float>> cache(np);
   size_t cachedBytes = 0;
-  std::vector<std::vector<float>> scratch(kShootersPerPass);
+  const size_t shootersPerPass = size_t(options.shootersPerPass > 0 ? options.shootersPerPass : kDefaultShootersPerPass);
+  std::vector<std::vector<float>> scratch(shootersPerPass);
   // The column of patch p, from the cache or computed (into scratch slot `slot` when the cache
   // is full).
   auto column = [&](uint32_t p, int slot) -> const std::vector<float>& {
@@ -90,13 +89,13 @@ Solution solveProgressive(const RadiositySystem& sys, Transport& transport, cons
 
     // The patches with the most unshot power shoot together, in one pass over the receivers:
     // the pass costs memory traffic over every element, which one shooter alone does not repay.
-    size_t batch = std::min<size_t>(kShootersPerPass, np);
+    size_t batch = std::min<size_t>(shootersPerPass, np);
     if (options.shotBudget) batch = std::min<size_t>(batch, options.shotBudget - shots);
     std::partial_sort(ranked.begin(), ranked.begin() + long(batch), ranked.end(), std::greater<>());
     while (batch > 0 && ranked[batch - 1].first <= 0.0) --batch;
     if (batch == 0) break;
-    const float* columns[kShootersPerPass];
-    Rgb shot[kShootersPerPass];
+    const float* columns[kMaxShootersPerPass];
+    Rgb shot[kMaxShootersPerPass];
     for (size_t k = 0; k < batch; ++k) {
       const uint32_t shooter = ranked[k].second;
       columns[k] = column(shooter, int(k)).data();

@@ -30,6 +30,8 @@ void validate(const SolveOptions& o) {
   if (!(o.residualThreshold > 0.0 && o.residualThreshold < 1.0)) fail(fmt::format("residual threshold {} must be in (0,1)", o.residualThreshold));
   if (!(o.timeBudget >= 0.0)) fail(fmt::format("time budget {} must be >= 0", o.timeBudget));
   if (o.maxIterations < 1) fail("max iterations must be >= 1");
+  if (o.shootersPerPass < 0 || o.shootersPerPass > kMaxShootersPerPass)
+    fail(fmt::format("shooters per pass {} must be in 1..{} (or 0, automatic)", o.shootersPerPass, kMaxShootersPerPass));
   const FormFactorOptions& f = o.formFactors;
   for (int n : {f.raysPerPair, f.nearRaysPerPair, f.emitterRaysPerPair, f.lightSamples})
     if (n < 1 || n > 256) fail(fmt::format("ray and sample counts must be in 1..256 (got {})", n));
@@ -113,6 +115,9 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
     g.resolution = options.shootingHemicubes.resolution;
     g.samplesPerSide = options.shootingHemicubes.perSide;
     g.visibility = options.hemicubeVisibility;
+    g.shootersPerPass = options.shootersPerPass > 0 ? options.shootersPerPass
+                        : context->softwareRasteriser() ? 1
+                                                        : kDefaultShootersPerPass;
     gpuSolver = [&options, &progress, g](const RadiositySystem& system, double& formFactorSeconds) {
       return gl::solveProgressiveGl(system, options, g, progress, formFactorSeconds);
     };

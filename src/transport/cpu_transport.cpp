@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -68,8 +69,7 @@ void shuffledStrata(Rng& rng, int m, int* out) {
 }  // namespace
 
 struct CpuTransport::Workspace {
-  std::vector<RTCRay> rays;
-  std::vector<float> kernels;  // per ray, the point-to-point kernel cos cos / r^2 of its two ends
+  std::vector<RTCRay> rays;  // each ray's id holds the bits of its point-to-point kernel (a float)
   // The pairs that cast rays: their rays are rays[first, first + count); *out becomes
   // `analytic` times the kernel-weighted share of them that arrive.
   struct Traced {
@@ -235,7 +235,6 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
   }
   Workspace& ws = workspace();
   ws.rays.clear();
-  ws.kernels.clear();
   ws.traced.clear();
 
   // A, the unoccluded factor averaged over the receiver by a midpoint rule, for the whole batch
@@ -297,8 +296,8 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
       const float r2 = glm::dot(d, d);
       Vec3 xo = x + e.normal * rayOffset_;
       Vec3 yo = y + p.normal * rayOffset_;
-      ws.rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
-      ws.kernels.push_back(cosE * cosP / (r2 * r2));
+      RTCRay& ray = ws.rays.emplace_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
+      ray.id = std::bit_cast<uint32_t>(cosE * cosP / (r2 * r2));  // Embree leaves id to its caller
     }
     const size_t valid = ws.rays.size() - first;
     if (valid == 0) {
@@ -310,12 +309,13 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
 
   tracer_.occluded(ws.rays);
   for (const Workspace::Traced& t : ws.traced) {
-    double all = 0.0, arrived = 0.0;
+    float all = 0.0f, arrived = 0.0f;
     for (uint32_t i = t.first; i < t.first + t.count; ++i) {
-      all += ws.kernels[i];
-      if (!isOccluded(ws.rays[i])) arrived += ws.kernels[i];
+      const float g = std::bit_cast<float>(ws.rays[i].id);
+      all += g;
+      arrived += isOccluded(ws.rays[i]) ? 0.0f : g;
     }
-    *t.out = all > 0.0 ? float(double(t.analytic) * (arrived / all)) : t.analytic;
+    *t.out = all > 0.0f ? t.analytic * (arrived / all) : t.analytic;
   }
 }
 

@@ -153,6 +153,28 @@ TEST(Solve, RejectsAbsurdOptions) {
   o = SolveOptions{};
   o.formFactors.raysPerPair = 100000;
   EXPECT_THROW(solve(scene, surfaces, o), Error);
+  o = SolveOptions{};
+  o.shootersPerPass = kMaxShootersPerPass + 1;
+  EXPECT_THROW(solve(scene, surfaces, o), Error);
+}
+
+// One shooter per pass or many: the same converged answer, and the staler choices of larger
+// batches cost a few more shots.
+TEST(Progressive, ShootersPerPassChangeTheOrderNotTheAnswer) {
+  Scene scene = builtin::cornellBox();
+  DiscretiseOptions d;
+  d.elementBudget = 400;
+  SurfaceSet surfaces = discretise(scene, d);
+  SolveOptions o;
+  o.unshotThreshold = 1e-6;
+  o.ambient = false;
+  o.shootersPerPass = 1;
+  const Solution one = solve(scene, surfaces, o);
+  o.shootersPerPass = kMaxShootersPerPass;
+  const Solution many = solve(scene, surfaces, o);
+  EXPECT_LT(one.stats.shots, many.stats.shots);
+  for (size_t e = 0; e < surfaces.elements.size(); ++e)
+    ASSERT_NEAR(one.radiosity[e].g, many.radiosity[e].g, 1e-3f * (1.0f + many.radiosity[e].g)) << "element " << e;
 }
 
 }  // namespace
