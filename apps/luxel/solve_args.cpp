@@ -22,6 +22,9 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
   c.add_option("--hemicubes-per-side", a.hemicubesPerSide,
                "GL: k x k hemicubes per shooting patch (default 3) or per gathering element (default 2)")
       ->check(CLI::Range(1, 8));
+  c.add_option("--emitter-hemicubes-per-side", a.emitterHemicubesPerSide,
+               "GL progressive: k x k hemicubes for an emitting patch's first shot (default 6; 0: as other shooters)")
+      ->check(CLI::Range(0, 8));
   c.add_option("--hemicube-visibility", a.hemicubeVisibility,
                "GL progressive: item (ID hemicubes, seed 001) or distance (depth hemicubes, seed 003)")
       ->capture_default_str();
@@ -43,6 +46,7 @@ SolveOptions solveOptions(const SolveArgs& a) {
   if (a.shootersPerPass > 0) o.shootersPerPass = a.shootersPerPass;
   if (a.raysPerPair > 0) o.formFactors.raysPerPair = a.raysPerPair;
   o.hemicubeVisibility = parseHemicubeVisibility(a.hemicubeVisibility);
+  if (a.emitterHemicubesPerSide >= 0) o.emitterHemicubesPerSide = a.emitterHemicubesPerSide;
   for (SolveOptions::HemicubeSampling* h : {&o.shootingHemicubes, &o.gatheringHemicubes}) {
     if (a.hemicubeResolution > 0) h->resolution = a.hemicubeResolution;
     if (a.hemicubesPerSide > 0) h->perSide = a.hemicubesPerSide;

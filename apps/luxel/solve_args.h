@@ -22,6 +22,7 @@ struct SolveArgs {
   int raysPerPair = 0;
   int hemicubeResolution = 0;  // 0: the method's default
   int hemicubesPerSide = 0;
+  int emitterHemicubesPerSide = -1;  // -1: the solver's default
   int shootersPerPass = 0;  // 0: the solver's choice
   std::string hemicubeVisibility = "item";
 };

@@ -60,6 +60,10 @@ struct SolveOptions {
   };
   HemicubeSampling shootingHemicubes{64, 3};
   HemicubeSampling gatheringHemicubes{256, 2};
+  // GL progressive: an emitting patch's first shot, the direct light with its penumbrae, spreads
+  // K x K hemicubes over the patch instead of shootingHemicubes.perSide (seed 001's dynamic
+  // shooter subdivision: more, smaller shooters where much radiosity is shot). 0: the same.
+  int emitterHemicubesPerSide = 6;
   // GL progressive shooting: how a shooter's hemicube tells whether it sees a point: by the id of
   // the nearest face (seed 001's ID hemicube; the default) or by the distance to it (seed 003's
   // depth hemicube, with the face id as a fallback for surfaces seen edge-on). Measured against

@@ -61,7 +61,7 @@ void main() {
 }  // namespace
 
 struct LayeredHemicubes::Impl {
-  std::unique_ptr<ItemMesh> mesh;
+  std::shared_ptr<const ItemMesh> mesh;
   GLuint itemLayers = 0, distanceLayers = 0, depth = 0;
   std::vector<GLuint> framebuffers;  // one per layer (hemicube x face)
   std::unique_ptr<ShaderProgram> program;
@@ -96,6 +96,11 @@ void LayeredHemicubes::faceItems(const SurfaceSet& surfaces, std::vector<Polygon
 
 LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<const uint32_t> polygonItems,
                                    Content content, int resolution, int capacity, float nearPlane, float farPlane)
+    : LayeredHemicubes(std::make_shared<const ItemMesh>(polygons, polygonItems), content, resolution, capacity,
+                       nearPlane, farPlane) {}
+
+LayeredHemicubes::LayeredHemicubes(std::shared_ptr<const ItemMesh> mesh, Content content, int resolution,
+                                   int capacity, float nearPlane, float farPlane)
     : impl_(std::make_unique<Impl>()), content_(content), resolution_(resolution), capacity_(capacity),
       near_(nearPlane), far_(farPlane) {
   GLint maxLayers = 0, vertexBlocks = 0;
@@ -112,7 +117,7 @@ LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<
   if (!(nearPlane > 0.0f && farPlane > nearPlane)) throw Error("hemicube near and far planes must be 0 < near < far");
   Impl& m = *impl_;
 
-  m.mesh = std::make_unique<ItemMesh>(polygons, polygonItems);
+  m.mesh = std::move(mesh);
 
   const GLsizei layers = 5 * capacity;
   const bool radiosity = content == Content::Radiosity;
@@ -151,6 +156,8 @@ LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<
 }
 
 LayeredHemicubes::~LayeredHemicubes() = default;
+
+const std::shared_ptr<const ItemMesh>& LayeredHemicubes::mesh() const { return impl_->mesh; }
 
 void LayeredHemicubes::render(int first, int count) {
   if (first < 0 || count < 0 || count > capacity_)

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -56,10 +57,16 @@ void main() {
 
 // 2. The shooters of this pass, chosen by one work group: the total unshot power (the stopping
 // test), then `batch` rounds of arg-max over the patches not yet chosen (ties to the lower index,
-// so the choice is deterministic), then one GpuShooter per hemicube.
+// so the choice is deterministic), then one GpuShooter per hemicube. With `emittersOnly`, only
+// emitting patches that have not shot yet are candidates.
 const char* kSelectCompute = R"(
 layout(local_size_x = SELECT_GROUP) in;
 uniform uint patchCount, batch, shotLimit, samplesPerSide;
+uniform bool emittersOnly;
+float candidatePower(uint p) {
+  if (emittersOnly && (patchStates[p].shot != 0u || dot(patches[p].emission.rgb, vec3(1.0)) <= 0.0)) return 0.0;
+  return patchStates[p].power;
+}
 uniform float stopPower, offset;
 shared float sValue[SELECT_GROUP];
 shared uint sIndex[SELECT_GROUP];
@@ -84,7 +91,7 @@ void main() {
     float best = 0.0;
     uint bestIndex = 0xFFFFFFFFu;
     for (uint p = tid; p < patchCount; p += SELECT_GROUP) {
-      float v = patchStates[p].power;
+      float v = candidatePower(p);
       if (v <= best) continue;
       bool taken = false;
       for (uint j = 0u; j < k; ++j) taken = taken || sChosen[j] == p;
@@ -255,8 +262,9 @@ void main() {
 // The GL objects of one solve, released on every path out (exceptions included).
 struct Buffers {
   GLuint elements = 0, patches = 0, patchElements = 0, patchStates = 0, shooters = 0, state = 0, elementStates = 0;
+  GLuint emitterShooters = 0;  // the emitters' passes' records, bound in place of `shooters`
   ~Buffers() {
-    const GLuint all[] = {elements, patches, patchElements, patchStates, shooters, state, elementStates};
+    const GLuint all[] = {elements, patches, patchElements, patchStates, shooters, state, elementStates, emitterShooters};
     glDeleteBuffers(GLsizei(std::size(all)), all);
   }
   void bind() const {
@@ -277,6 +285,8 @@ GLuint groups(size_t n, int size) { return GLuint((n + size_t(size) - 1) / size_
 Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& options, const GlProgressiveOptions& o,
                             const ProgressCallback& progress, double& formFactorSeconds) {
   if (o.samplesPerSide < 1 || o.samplesPerSide > 8) throw Error("hemicubes per shooter side must be in 1..8");
+  if (o.emitterSamplesPerSide < 0 || o.emitterSamplesPerSide > 8)
+    throw Error("hemicubes per emitter side must be in 1..8 (or 0: as other shooters)");
   if (o.shootersPerPass < 1 || o.shootersPerPass > kMaxShootersPerPass)
     throw Error(fmt::format("shooters per pass must be in 1..{}", kMaxShootersPerPass));
   if (o.passesPerCheck < 1) throw Error("passes per check must be >= 1");
@@ -303,11 +313,26 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
   const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
   const int samples = o.samplesPerSide * o.samplesPerSide;
   const int batch = int(std::min<size_t>(size_t(o.shootersPerPass), std::max<size_t>(np, 1)));
+  // Emitters first, each with its own k_e x k_e hemicubes, as many per pass as fit the layers of
+  // a regular pass (at least one).
+  const int emitterSide = o.emitterSamplesPerSide > 0 ? o.emitterSamplesPerSide : o.samplesPerSide;
+  const int emitterSamples = emitterSide * emitterSide;
+  const int emitterBatch = std::clamp(batch * samples / emitterSamples, 1, batch);
+  size_t emitters = 0;
+  for (const GpuPatch& p : patches.patches) emitters += p.emission.r + p.emission.g + p.emission.b > 0.0f ? 1 : 0;
+  const bool emittersApart = emitterSide != o.samplesPerSide && emitters > 0;
   std::vector<Polygon> facePolygons;
   std::vector<uint32_t> faceItems;
   LayeredHemicubes::faceItems(set, facePolygons, faceItems);
   LayeredHemicubes hemicubes(facePolygons, faceItems, LayeredHemicubes::Content::ItemsAndDistances, o.resolution,
                              batch * samples, o.nearPlane * extent, 2.0f * extent);
+  // The emitters' passes get layers (and shooter records) of their own, released once they have
+  // shot, so that the regular passes keep layers sized for them.
+  std::unique_ptr<LayeredHemicubes> emitterHemicubes;
+  if (emittersApart)
+    emitterHemicubes = std::make_unique<LayeredHemicubes>(hemicubes.mesh(), LayeredHemicubes::Content::ItemsAndDistances,
+                                                          o.resolution, emitterBatch * emitterSamples,
+                                                          hemicubes.nearPlane(), hemicubes.farPlane());
 
   Buffers buf;
   buf.elements = storageBuffer(elements.data(), elements.size() * sizeof(GpuElement));
@@ -316,6 +341,7 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
   std::vector<GpuPatchState> patchStates(np, GpuPatchState{0.0f, 0u});
   buf.patchStates = storageBuffer(patchStates.data(), patchStates.size() * sizeof(GpuPatchState));
   buf.shooters = storageBuffer(nullptr, size_t(batch * samples) * sizeof(GpuShooter));
+  if (emittersApart) buf.emitterShooters = storageBuffer(nullptr, size_t(emitterBatch * emitterSamples) * sizeof(GpuShooter));
   GpuSolverState initial{};
   buf.state = storageBuffer(&initial, sizeof initial);
   buf.elementStates = storageBuffer(states.data(), states.size() * sizeof(GpuElementState));
@@ -329,31 +355,44 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
   glUniform1ui(uniform(power, "patchCount"), GLuint(np));
   select.use();
   glUniform1ui(uniform(select, "patchCount"), GLuint(np));
-  glUniform1ui(uniform(select, "samplesPerSide"), GLuint(o.samplesPerSide));
   glUniform1ui(uniform(select, "shotLimit"),
                options.shotBudget ? GLuint(std::min<uint64_t>(options.shotBudget, 0xFFFFFFFFu)) : 0xFFFFFFFFu);
   const double sourcePower = sys.sourcePower();
   glUniform1f(uniform(select, "stopPower"), float(options.unshotThreshold * sourcePower));
   glUniform1f(uniform(select, "offset"), o.offset * extent);
-  const GLint selectBatch = uniform(select, "batch");
+  const GLint selectBatch = uniform(select, "batch"), selectSide = uniform(select, "samplesPerSide"),
+              selectEmitters = uniform(select, "emittersOnly");
   reconstruct.use();
   glUniform1ui(uniform(reconstruct, "elementCount"), GLuint(ne));
-  glUniform1ui(uniform(reconstruct, "samples"), GLuint(samples));
   glUniform1i(uniform(reconstruct, "resolution"), o.resolution);
   glUniform1i(uniform(reconstruct, "visibility"), o.visibility == SolveOptions::HemicubeVisibility::Item ? 0 : 1);
   glUniform1f(uniform(reconstruct, "nearPlane"), hemicubes.nearPlane());
   glUniform1f(uniform(reconstruct, "farPlane"), hemicubes.farPlane());
+  const GLint reconstructSamples = uniform(reconstruct, "samples");
   Context::check("setting up GPU progressive refinement");
 
-  // Power, then selection with `shooters` per pass (0: only the total, for the final state).
-  auto choose = [&](int shooters) {
+  // Power, then selection of `shooters` patches with k x k hemicubes each (0 shooters: only the
+  // total, for the final state).
+  auto choose = [&](int shooters, int side, bool emittersOnly) {
     buf.bind();
+    if (emittersOnly) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, buf.emitterShooters);
     power.use();
     glDispatchCompute(groups(np, kPowerGroup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     select.use();
     glUniform1ui(selectBatch, GLuint(shooters));
+    glUniform1ui(selectSide, GLuint(side));
+    glUniform1i(selectEmitters, emittersOnly);
     glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  auto shoot = [&](LayeredHemicubes& layers, int shooters, int side, bool emittersOnly) {
+    choose(shooters, side, emittersOnly);  // leaves the pass's shooter records bound
+    layers.render(0, shooters * side * side);
+    layers.bindTextures();
+    reconstruct.use();
+    glUniform1ui(reconstructSamples, GLuint(side * side));
+    glDispatchCompute(groups(ne, kReconstructGroup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   };
   auto readState = [&] {
@@ -364,17 +403,16 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
   };
 
   GpuSolverState s{};
+  uint32_t emitterShots = 0;
+  if (emittersApart) {
+    for (size_t shot = 0; shot < emitters; shot += size_t(emitterBatch))
+      shoot(*emitterHemicubes, emitterBatch, emitterSide, true);
+    emitterShots = readState().shots;
+    emitterHemicubes.reset();
+  }
   double lastReported = -1.0;
   while (true) {
-    for (int pass = 0; pass < o.passesPerCheck; ++pass) {
-      choose(batch);
-      hemicubes.render(0, batch * samples);  // centres from the shooter buffer choose() bound
-      buf.bind();
-      hemicubes.bindTextures();
-      reconstruct.use();
-      glDispatchCompute(groups(ne, kReconstructGroup), 1, 1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
+    for (int pass = 0; pass < o.passesPerCheck; ++pass) shoot(hemicubes, batch, o.samplesPerSide, false);
     s = readState();  // the only read-back while shooting: a few bytes every few passes
     Context::check("GPU progressive refinement");
     const double fraction = sourcePower > 0.0 ? s.unshotPower / sourcePower : 0.0;
@@ -386,7 +424,7 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
       lastReported = shown;
     }
   }
-  choose(0);  // the unshot power left
+  choose(0, o.samplesPerSide, false);  // the unshot power left
   s = readState();
   glGetNamedBufferSubData(buf.elementStates, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
   Context::check("reading back the GPU solution");
@@ -400,7 +438,7 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
   if (options.ambient) addAmbientTerm(sys, unshot, sol.radiosity, sol.irradiance);
   sol.stats.method = "progressive";
   sol.stats.shots = s.shots;
-  sol.stats.hemicubes = uint64_t(s.shots) * uint64_t(samples);
+  sol.stats.hemicubes = uint64_t(emitterShots) * uint64_t(emitterSamples) + uint64_t(s.shots - emitterShots) * uint64_t(samples);
   sol.stats.unshotFraction = unshotFraction;
   sol.stats.residual = unshotFraction;
   return sol;

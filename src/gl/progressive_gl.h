@@ -24,6 +24,10 @@ struct GlProgressiveOptions {
   SolveOptions::HemicubeVisibility visibility = SolveOptions::HemicubeVisibility::Item;
   int resolution = 64;          // hemicube top face, pixels a side
   int samplesPerSide = 2;       // k: k x k hemicubes per shooting patch
+  // An emitting patch's first shot, which carries the direct light and its penumbrae, uses
+  // k_e x k_e hemicubes (001's "dynamic shooter subdivision": more, smaller shooters where much
+  // radiosity is shot). 0: k.
+  int emitterSamplesPerSide = 0;
   int shootersPerPass = 8;      // patches shot together (at most kMaxShootersPerPass)
   int passesPerCheck = 4;       // passes between read-backs of the convergence state
   float nearPlane = 1e-4f;      // relative to the scene extent

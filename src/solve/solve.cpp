@@ -41,6 +41,8 @@ void validate(const SolveOptions& o) {
       fail(fmt::format("hemicube resolution {} must be even, from 8 to 4096", h.resolution));
     if (h.perSide < 1 || h.perSide > 8) fail(fmt::format("hemicubes per side {} must be in 1..8", h.perSide));
   }
+  if (o.emitterHemicubesPerSide < 0 || o.emitterHemicubesPerSide > 8)
+    fail(fmt::format("hemicubes per emitter side {} must be in 1..8 (or 0: as other shooters)", o.emitterHemicubesPerSide));
   if (!(o.refineThreshold > 0.0f)) fail("refine threshold must be > 0");
 }
 
@@ -114,6 +116,7 @@ Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& opt
     gl::GlProgressiveOptions g;
     g.resolution = options.shootingHemicubes.resolution;
     g.samplesPerSide = options.shootingHemicubes.perSide;
+    g.emitterSamplesPerSide = options.emitterHemicubesPerSide;
     g.visibility = options.hemicubeVisibility;
     g.shootersPerPass = options.shootersPerPass > 0 ? options.shootersPerPass
                         : context->softwareRasteriser() ? 1
