@@ -79,9 +79,9 @@ struct SolveOptions {
   double timeBudget = 0.0;
   uint64_t shotBudget = 0;
   // progressive: patches shot together, the most unshot power first, in one pass over the
-  // receivers (1..32; 0: 8 on the CPU and on a GPU, 1 on a software rasteriser, where one
-  // pass's hemicubes then stay in cache: cornell-large 9.0 s against 11.4 s at 8 on llvmpipe).
-  // More per pass shoot staler choices (docs/performance.md measures 1 to 32).
+  // receivers (1..32; 0: 8 on the CPU and on a GPU, 1 on a software rasteriser, where a pass
+  // has no fixed cost worth sharing and larger batches only shoot staler choices: cornell-low
+  // 382 shots in 1.25 s at 1, 418 in 1.53 s at 8 on llvmpipe; docs/performance.md).
   int shootersPerPass = 0;
   // Add Cohen et al.'s ambient term to the returned radiosity (display estimate of what is unshot).
   bool ambient = true;

@@ -47,4 +47,9 @@ void ItemMesh::draw() const {
   glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
 }
 
+void ItemMesh::drawInstanced(int instances) const {
+  glBindVertexArray(vao_);
+  glDrawArraysInstanced(GL_TRIANGLES, 0, vertexCount_, instances);
+}
+
 }  // namespace luxel::gl

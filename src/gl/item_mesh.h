@@ -19,6 +19,7 @@ class ItemMesh {
   ItemMesh& operator=(const ItemMesh&) = delete;
 
   void draw() const;  // binds its vertex array and draws every triangle
+  void drawInstanced(int instances) const;  // the same, `instances` times (gl_InstanceID)
 
  private:
   unsigned vao_ = 0, positions_ = 0, items_ = 0;

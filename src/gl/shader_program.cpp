@@ -2,7 +2,8 @@
 
 #include <epoxy/gl.h>
 
-#include <initializer_list>
+#include <span>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -23,12 +24,16 @@ GLuint compile(const std::string& name, GLenum stage, const std::string& source)
     glGetShaderInfoLog(shader, sizeof log, nullptr, log);
     glDeleteShader(shader);
     throw Error(fmt::format("OpenGL: {} {} shader does not compile: {}", name,
-                            stage == GL_VERTEX_SHADER ? "vertex" : stage == GL_FRAGMENT_SHADER ? "fragment" : "compute", log));
+                            stage == GL_VERTEX_SHADER     ? "vertex"
+                            : stage == GL_GEOMETRY_SHADER ? "geometry"
+                            : stage == GL_FRAGMENT_SHADER ? "fragment"
+                                                          : "compute",
+                            log));
   }
   return shader;
 }
 
-GLuint link(const std::string& name, std::initializer_list<GLuint> shaders) {
+GLuint link(const std::string& name, std::span<const GLuint> shaders) {
   GLuint program = glCreateProgram();
   for (GLuint s : shaders) glAttachShader(program, s);
   glLinkProgram(program);
@@ -47,19 +52,25 @@ GLuint link(const std::string& name, std::initializer_list<GLuint> shaders) {
 }  // namespace
 
 ShaderProgram::ShaderProgram(const std::string& name, const std::string& compute) {
-  program_ = link(name, {compile(name, GL_COMPUTE_SHADER, compute)});
+  const GLuint shader = compile(name, GL_COMPUTE_SHADER, compute);
+  program_ = link(name, {&shader, 1});
 }
 
-ShaderProgram::ShaderProgram(const std::string& name, const std::string& vertex, const std::string& fragment) {
-  GLuint vs = compile(name, GL_VERTEX_SHADER, vertex);
-  GLuint fs = 0;
+ShaderProgram::ShaderProgram(const std::string& name, const std::string& vertex, const std::string& fragment)
+    : ShaderProgram(name, vertex, std::string(), fragment) {}
+
+ShaderProgram::ShaderProgram(const std::string& name, const std::string& vertex, const std::string& geometry,
+                             const std::string& fragment) {
+  std::vector<GLuint> shaders;
   try {
-    fs = compile(name, GL_FRAGMENT_SHADER, fragment);
+    shaders.push_back(compile(name, GL_VERTEX_SHADER, vertex));
+    if (!geometry.empty()) shaders.push_back(compile(name, GL_GEOMETRY_SHADER, geometry));
+    shaders.push_back(compile(name, GL_FRAGMENT_SHADER, fragment));
   } catch (...) {
-    glDeleteShader(vs);
+    for (GLuint s : shaders) glDeleteShader(s);
     throw;
   }
-  program_ = link(name, {vs, fs});
+  program_ = link(name, shaders);
 }
 
 ShaderProgram::~ShaderProgram() {
