@@ -2,7 +2,10 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -125,6 +128,39 @@ void LayeredHemicubes::faceItems(const SurfaceSet& surfaces, std::vector<Polygon
     polygons.push_back(p);
     items.push_back(item);
   }
+}
+
+std::vector<uint32_t> LayeredHemicubes::neighbourItems(const SurfaceSet& surfaces) {
+  // Corners meet where their positions agree to a millionth of the scene (a hash of the rounded
+  // position); faces meeting at a corner are neighbours.
+  const float cell = 1e-6f * std::max(surfaces.sceneExtent, 1e-6f);
+  auto key = [cell](Vec3 p) {
+    const auto q = [cell](float v) { return uint64_t(int64_t(std::llround(double(v) / double(cell)))); };
+    return (q(p.x) * 0x9E3779B97F4A7C15ull) ^ (q(p.y) * 0xC2B2AE3D27D4EB4Full) ^ (q(p.z) * 0x165667B19E3779F9ull);
+  };
+  const size_t nf = surfaces.faces.size();
+  std::unordered_map<uint64_t, std::vector<uint32_t>> facesAt;
+  for (uint32_t f = 0; f < nf; ++f) {
+    const SurfaceFace& face = surfaces.faces[f];
+    for (int c = 0; c < (face.triangle ? 3 : 4); ++c) facesAt[key(face.corners[size_t(c)])].push_back(f);
+  }
+  std::vector<std::vector<uint32_t>> lists(nf);
+  for (uint32_t f = 0; f < nf; ++f) {
+    const SurfaceFace& face = surfaces.faces[f];
+    std::vector<uint32_t>& list = lists[f];
+    for (int c = 0; c < (face.triangle ? 3 : 4); ++c)
+      for (uint32_t g : facesAt[key(face.corners[size_t(c)])]) {
+        const uint32_t item = itemOfFace(surfaces, g);
+        if (g != f && item != itemOfFace(surfaces, f) && list.size() < kMaxNeighbours &&
+            std::find(list.begin(), list.end(), item) == list.end())
+          list.push_back(item);
+      }
+  }
+  std::vector<uint32_t> table(nf + 1);
+  for (uint32_t f = 0; f < nf; ++f) table[f + 1] = table[f] + uint32_t(lists[f].size());
+  for (uint32_t& t : table) t += uint32_t(nf + 1);
+  for (const auto& list : lists) table.insert(table.end(), list.begin(), list.end());
+  return table;
 }
 
 LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<const uint32_t> polygonItems,

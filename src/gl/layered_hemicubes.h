@@ -51,6 +51,12 @@ class LayeredHemicubes {
   // (the smaller index + 1), so that the two coincident sides cannot z-fight.
   static uint32_t itemOfFace(const SurfaceSet& surfaces, uint32_t face);
   static void faceItems(const SurfaceSet& surfaces, std::vector<Polygon>& polygons, std::vector<uint32_t>& items);
+  // For each face, the ids of the faces that share a corner position with it (its twin's
+  // neighbours included; at most kMaxNeighbours each), as a flat table: entries [t[f], t[f + 1])
+  // of t are face f's. A point beside a convex edge is seen in a hemicube's pixel as the face
+  // round the edge, one of these; a face beyond a thin wall is not.
+  static std::vector<uint32_t> neighbourItems(const SurfaceSet& surfaces);
+  static constexpr size_t kMaxNeighbours = 16;
 
  private:
   struct Impl;

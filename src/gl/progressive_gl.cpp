@@ -167,12 +167,19 @@ const char* kReconstructCompute = R"(
 layout(local_size_x = RECONSTRUCT_GROUP) in;
 layout(binding = ITEM_TEXTURE_UNIT) uniform usampler2DArray items;
 layout(binding = DISTANCE_TEXTURE_UNIT) uniform sampler2DArray distances;
+layout(std430, binding = FACE_NEIGHBOUR_BINDING) readonly buffer FaceNeighbours { uint faceNeighbours[]; };
 uniform uint elementCount, samples;
 uniform int resolution, visibility;  // visibility 0: item ids, 1: distances
 uniform float nearPlane, farPlane;
 
-// How much hemicube h sees point x (on the face with item id `item`, normal n): 1 or 0.
-float seenBy(uint h, vec3 x, vec3 n, uint item) {
+bool isNeighbour(uint face, uint item) {
+  for (uint i = faceNeighbours[face]; i < faceNeighbours[face + 1u]; ++i)
+    if (faceNeighbours[i] == item) return true;
+  return false;
+}
+
+// How much hemicube h sees point x (on face `ownFace`, drawn as id `item`; normal n): 1 or 0.
+float seenBy(uint h, vec3 x, vec3 n, uint item, uint ownFace) {
   GpuShooter s = shooters[h];
   HemicubeFrame f = hemicubeFrame(s.normal.xyz, s.normal.w);
   vec3 r = x - s.eye.xyz;
@@ -195,15 +202,19 @@ float seenBy(uint h, vec3 x, vec3 n, uint item) {
     float slope = sqrt(max(1.0 - cosine * cosine, 0.0)) / cosine;
     if (seenAt >= d * (1.0 - 3.0 * min(slope, 1.5) / float(resolution) - 1e-4)) return 1.0;
   }
-  if (texelFetch(items, q, 0).r == item) return 1.0;
-  // Otherwise nothing may stand in front of the point by more than a pixel's angle times its
-  // distance: that is how a face smaller than a pixel, which the rasteriser may drop, is seen at
-  // all (a 1 cm receiver under a 64-pixel hemicube came out black by its id alone), and how a
-  // point next to a convex edge, whose pixel shows the face round the edge, is seen (the Cornell
-  // box's block faces edge-on to the light were half as bright as the CPU's: NRMSE 0.022 against
-  // 0.013 with it). Walls thinner than that (4.7 cm at 3 m and 64 pixels) let light through; twice
-  // the allowance already brightened the indirect-light room by 2-3%.
-  return seenAt >= d * (1.0 - 1.0 / float(resolution)) ? 1.0 : 0.0;
+  const uint seen = texelFetch(items, q, 0).r;
+  if (seen == item) return 1.0;
+  // The pixel's centre ray passes the point and meets something beyond it: nothing stands in
+  // front. This is how a face smaller than a pixel, which the rasteriser may drop, is seen at all
+  // (a 1 cm receiver under a 64-pixel hemicube came out black by its id alone).
+  if (seenAt > d * (1.0 + 1e-3)) return 1.0;
+  // A face that meets the point's own at a corner, no nearer than a pixel's angle times the
+  // distance: the point lies beside a convex edge and its pixel shows the face round it (the
+  // Cornell box's block faces edge-on to the light were half as bright as the CPU's without
+  // this: NRMSE 0.022 against 0.013). Any face at all within that allowance would let light
+  // through walls thinner than it (4.7 cm at 3 m and 64 pixels); a wall's far side is not a
+  // neighbour of its near side.
+  return seenAt >= d * (1.0 - 1.0 / float(resolution)) && isNeighbour(ownFace, seen) ? 1.0 : 0.0;
 }
 
 void main() {
@@ -240,7 +251,7 @@ void main() {
         const float r2 = dot(d, d), g = max(dot(n, d), 0.0) * max(-dot(P.normalArea.xyz, d), 0.0) / (r2 * r2);
         if (!(g > 0.0)) continue;
         all += g;
-        seen += g * seenBy(h, x[q], n, el.ids.x);
+        seen += g * seenBy(h, x[q], n, el.ids.x, el.ids.z);
       }
       F += all > 0.0 ? f * seen / all : 0.0;
     }
@@ -263,8 +274,10 @@ void main() {
 struct Buffers {
   GLuint elements = 0, patches = 0, patchElements = 0, patchStates = 0, shooters = 0, state = 0, elementStates = 0;
   GLuint emitterShooters = 0;  // the emitters' passes' records, bound in place of `shooters`
+  GLuint faceNeighbours = 0;
   ~Buffers() {
-    const GLuint all[] = {elements, patches, patchElements, patchStates, shooters, state, elementStates, emitterShooters};
+    const GLuint all[] = {elements,      patches,          patchElements, patchStates, shooters, state,
+                          elementStates, emitterShooters, faceNeighbours};
     glDeleteBuffers(GLsizei(std::size(all)), all);
   }
   void bind() const {
@@ -274,6 +287,7 @@ struct Buffers {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchStateBinding, patchStates);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, shooters);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSolverStateBinding, state);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFaceNeighbourBinding, faceNeighbours);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, elementStates);
   }
 };
@@ -345,6 +359,8 @@ Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& opti
   GpuSolverState initial{};
   buf.state = storageBuffer(&initial, sizeof initial);
   buf.elementStates = storageBuffer(states.data(), states.size() * sizeof(GpuElementState));
+  const std::vector<uint32_t> neighbours = LayeredHemicubes::neighbourItems(set);
+  buf.faceNeighbours = storageBuffer(neighbours.data(), neighbours.size() * sizeof(uint32_t));
 
   const std::string preamble = glslPreamble() + kHemicubeGlsl + kFormFactorGlsl + kBuffersGlsl;
   ShaderProgram power("patch power", preamble + kPowerCompute);

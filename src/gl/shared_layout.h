@@ -37,6 +37,9 @@ constexpr int kShooterBinding = 4;         // GpuShooter[]: one per hemicube of 
 constexpr int kSolverStateBinding = 5;     // GpuSolverState
 constexpr int kElementStateBinding = 6;    // GpuElementState[]: the solution
 constexpr int kPatchRadiosityBinding = 7;  // vec4[]: radiosity per patch, that gathering renders
+// uint[]: per face f, [items[f], items[f + 1]) index the ids of the faces that share a corner
+// with it (LayeredHemicubes::neighbourItems)
+constexpr int kFaceNeighbourBinding = 8;
 constexpr int kDistanceTextureUnit = 1;    // R32F distances (or RGBA32F radiosity) of layered hemicubes
 constexpr int kGatherGroup = 256;          // one work group integrates one element's hemicubes
 // GPU gathering (gather_gl.cpp) reuses the numbers its passes leave free: deltas, per-element
@@ -112,6 +115,7 @@ inline std::string glslPreamble() {
       "#define SOLVER_STATE_BINDING {}\n"
       "#define ELEMENT_STATE_BINDING {}\n"
       "#define PATCH_RADIOSITY_BINDING {}\n"
+      "#define FACE_NEIGHBOUR_BINDING {}\n"
       "#define GATHER_GROUP {}\n"
       "#define GATHER_DELTA_BINDING {}\n"
       "#define GATHER_ELEMENT_BINDING {}\n"
@@ -129,7 +133,7 @@ inline std::string glslPreamble() {
       "struct GpuGatherElement {{ vec4 emissionArea; vec4 reflectance; vec4 analytic; }};\n",
       kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup,
       kElementBinding, kPatchBinding, kPatchElementBinding, kPatchStateBinding, kShooterBinding,
-      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kGatherGroup, kGatherDeltaBinding,
+      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kGatherGroup, kGatherDeltaBinding,
       kGatherElementBinding, kGatherResidualBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
       kReconstructGroup, kMaxShootersPerPass);
 }
