@@ -1,10 +1,13 @@
-// What the GL parity tests share: the converged CPU solve they compare against, and names for
-// the two hemicube visibility tests in parameterised test names.
+// What the GL parity tests share: the converged CPU solve they compare against (of the built-in
+// Cornell box, computed once per element budget and test process), and names for the two
+// hemicube visibility tests in parameterised test names.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include "luxel/solve.h"
+#include "scene/builtin/builtin_scenes.h"
 
 namespace luxel::test {
 
@@ -17,6 +20,26 @@ inline SolveOptions convergedCpuGather() {
   o.formFactors.nearRaysPerPair = 64;
   o.formFactors.emitterRaysPerPair = 256;
   return o;
+}
+
+// The built-in Cornell box cut for `elementBudget`, and its converged CPU solution.
+struct CornellReference {
+  Scene scene;
+  SurfaceSet surfaces;
+  Solution cpu;
+};
+
+inline const CornellReference& cornellReference(size_t elementBudget) {
+  static std::map<size_t, CornellReference> solved;
+  auto it = solved.find(elementBudget);
+  if (it != solved.end()) return it->second;
+  CornellReference r{builtin::cornellBox(), {}, {}};
+  DiscretiseOptions d;
+  d.elementBudget = elementBudget;
+  r.surfaces = discretise(r.scene, d);
+  SurfaceSet copy = r.surfaces;
+  r.cpu = solve(r.scene, copy, convergedCpuGather());
+  return solved.emplace(elementBudget, std::move(r)).first->second;
 }
 
 inline std::string visibilityName(SolveOptions::HemicubeVisibility v) {

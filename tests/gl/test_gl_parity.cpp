@@ -48,15 +48,12 @@ TEST(GlParity, FurnaceReachesTheClosedForm) {
 TEST(GlParity, CornellBoxAgreesWithTheCpuBackend) {
   std::string why;
   if (!haveGl(why)) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
-  luxel::Scene scene = luxel::builtin::cornellBox();
-  luxel::DiscretiseOptions d;
-  d.elementBudget = 300;
-  luxel::SurfaceSet surfaces = luxel::discretise(scene, d);
-  luxel::SurfaceSet cpuSurfaces = surfaces;
-  const luxel::Solution cpu = luxel::solve(scene, cpuSurfaces, luxel::test::convergedCpuGather());
+  const luxel::test::CornellReference& ref = luxel::test::cornellReference(300);
+  const luxel::Solution& cpu = ref.cpu;
+  luxel::SurfaceSet surfaces = ref.surfaces;
   SolveOptions g = glGather(64, 2);
   g.residualThreshold = 1e-6;
-  const luxel::Solution gpu = luxel::solve(scene, surfaces, g);
+  const luxel::Solution gpu = luxel::solve(ref.scene, surfaces, g);
   const double rms = luxel::bench::normalisedRmsError(surfaces, gpu.radiosity, cpu.radiosity);
   const double directRms = luxel::bench::normalisedRmsError(surfaces, gpu.directIrradiance, cpu.directIrradiance);
   RecordProperty("nrmse", std::to_string(rms));

@@ -57,16 +57,13 @@ TEST_P(GlProgressive, CornellBoxAgreesWithTheCpuBackend) {
   auto context = luxel::test::glContextOr(why);
   if (!context) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
   context.reset();
-  luxel::Scene scene = luxel::builtin::cornellBox();
-  luxel::DiscretiseOptions d;
-  d.elementBudget = 1500;
-  luxel::SurfaceSet surfaces = luxel::discretise(scene, d);
-  luxel::SurfaceSet cpuSurfaces = surfaces;
-  const luxel::Solution cpu = luxel::solve(scene, cpuSurfaces, luxel::test::convergedCpuGather());
+  const luxel::test::CornellReference& ref = luxel::test::cornellReference(1500);
+  const luxel::Solution& cpu = ref.cpu;
+  luxel::SurfaceSet surfaces = ref.surfaces;
   const auto t0 = std::chrono::steady_clock::now();
   SolveOptions o = glProgressive(GetParam());
   o.ambient = false;  // so that where no light arrives the answer is exactly dark
-  luxel::Solution gpu = luxel::solve(scene, surfaces, o);
+  luxel::Solution gpu = luxel::solve(ref.scene, surfaces, o);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double rms = luxel::bench::normalisedRmsError(surfaces, gpu.radiosity, cpu.radiosity);
   const double directRms = luxel::bench::normalisedRmsError(surfaces, gpu.directIrradiance, cpu.directIrradiance);
@@ -106,12 +103,10 @@ TEST(GlEmitterSubdivision, SharpensTheDirectLight) {
   auto context = luxel::test::glContextOr(why);
   if (!context) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
   context.reset();
-  luxel::Scene scene = luxel::builtin::cornellBox();
-  luxel::DiscretiseOptions d;
-  d.elementBudget = 1500;
-  luxel::SurfaceSet surfaces = luxel::discretise(scene, d);
-  luxel::SurfaceSet cpuSurfaces = surfaces;
-  const luxel::Solution cpu = luxel::solve(scene, cpuSurfaces, luxel::test::convergedCpuGather());
+  const luxel::test::CornellReference& ref = luxel::test::cornellReference(1500);
+  const luxel::Solution& cpu = ref.cpu;
+  luxel::SurfaceSet surfaces = ref.surfaces;
+  const luxel::Scene& scene = ref.scene;
   SolveOptions o = glProgressive(SolveOptions::HemicubeVisibility::Item);
   o.emitterHemicubesPerSide = 0;
   luxel::SurfaceSet plainSurfaces = surfaces;
