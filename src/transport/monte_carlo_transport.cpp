@@ -1,0 +1,107 @@
+#include "transport/monte_carlo_transport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "core/random.h"
+#include "luxel/error.h"
+
+namespace luxel {
+namespace {
+
+std::vector<Polygon> patchPolygons(const SurfaceSet& surfaces) {
+  std::vector<Polygon> polygons;
+  polygons.reserve(surfaces.patches.size());
+  for (const Patch& p : surfaces.patches) polygons.push_back(p.polygon);
+  return polygons;
+}
+
+// A point uniform by area on the polygon from three uniform numbers: a triangle of the fan
+// (0, i, i + 1) chosen by area, then a uniform point of it. (The bilinear map of polygonPoint is
+// uniform only on parallelograms.)
+Vec3 uniformPoint(const Polygon& poly, float pick, float a, float b) {
+  const Vec3 o = poly.v[0];
+  int t = 1;
+  if (poly.count == 4) {
+    const float first = glm::length(glm::cross(poly.v[1] - o, poly.v[2] - o));
+    const float second = glm::length(glm::cross(poly.v[2] - o, poly.v[3] - o));
+    t = pick * (first + second) < first ? 1 : 2;
+  }
+  if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+  return o + a * (poly.v[size_t(t)] - o) + b * (poly.v[size_t(t) + 1] - o);
+}
+
+}  // namespace
+
+MonteCarloTransport::MonteCarloTransport(const Scene& scene, const SurfaceSet& surfaces, int raysPerElement,
+                                         const FormFactorOptions& lightOptions)
+    : surfaces_(surfaces),
+      raysPerElement_(raysPerElement),
+      patchPolygons_(patchPolygons(surfaces)),
+      tracer_(patchPolygons_),
+      lights_(scene, surfaces, lightOptions) {
+  if (raysPerElement < 1) throw Error("Monte Carlo form factors need at least one ray per element");
+  for (const SurfaceFace& f : surfaces.faces)
+    if (f.twin >= 0)
+      throw Error("Monte Carlo form factors: two-sided faces (material twoSided) are not supported: their two "
+                  "sides coincide and a ray cannot tell which one it met");
+}
+
+MonteCarloTransport::~MonteCarloTransport() = default;
+
+void MonteCarloTransport::rows(std::span<const uint32_t> elements, std::span<float> out) {
+  const size_t np = surfaces_.patches.size();
+  const float offset = rayOffsetFor(surfaces_.sceneExtent);
+  const int n = raysPerElement_;
+  const int k = std::max(1, int(std::sqrt(float(n))));  // k x k strata over the element, the rest unstratified
+  tbb::parallel_for(size_t(0), elements.size(), [&](size_t i) {
+    const Element& e = surfaces_.elements[elements[i]];
+    float* row = out.data() + i * np;
+    std::fill(row, row + np, 0.0f);
+    Rng rng(0x5EEDu ^ (elements[i] * 0x9E3779B1u));
+    const Vec3 nrm = e.normal;
+    const Vec3 t = glm::normalize(std::abs(nrm.x) > 0.9f ? glm::cross(nrm, Vec3(0, 1, 0)) : glm::cross(nrm, Vec3(1, 0, 0)));
+    const Vec3 b = glm::cross(nrm, t);
+    std::vector<RTCRayHit> hits(static_cast<size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      const bool stratum = j < k * k;
+      const float su = stratum ? (float(j % k) + rng.next()) / float(k) : rng.next();
+      const float sv = stratum ? (float(j / k) + rng.next()) / float(k) : rng.next();
+      const Vec3 x = uniformPoint(e.polygon, rng.next(), su, sv);
+      // Cosine-distributed direction (Malley): a uniform point of the unit disc lifted to the
+      // hemisphere.
+      const float r = std::sqrt(rng.next()), phi = 2.0f * std::numbers::pi_v<float> * rng.next();
+      const Vec3 d = r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1.0f - r * r)) * nrm;
+      RTCRayHit& h = hits[size_t(j)];
+      h.ray = makeRay(x + offset * nrm, d, 0.0f, std::numeric_limits<float>::infinity());
+      h.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    }
+    tracer_.intersect(hits, false);
+    const float share = 1.0f / float(n);
+    for (const RTCRayHit& h : hits) {
+      if (h.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // out of the scene
+      const Patch& p = surfaces_.patches[h.hit.primID];
+      // Only a patch's front sends light; its back absorbs the ray.
+      if (h.ray.dir_x * p.normal.x + h.ray.dir_y * p.normal.y + h.ray.dir_z * p.normal.z < 0.0f) row[h.hit.primID] += share;
+    }
+  });
+}
+
+void MonteCarloTransport::columns(std::span<const uint32_t> patches, std::span<float> out) {
+  const size_t ne = surfaces_.elements.size(), np = surfaces_.patches.size();
+  if (matrix_.size() != ne * np) {
+    std::vector<uint32_t> all(ne);
+    std::iota(all.begin(), all.end(), 0u);
+    matrix_.assign(ne * np, 0.0f);
+    rows(all, matrix_);
+  }
+  for (size_t c = 0; c < patches.size(); ++c)
+    for (size_t e = 0; e < ne; ++e) out[c * ne + e] = matrix_[e * np + patches[c]];
+}
+
+}  // namespace luxel
