@@ -115,13 +115,15 @@ int runBench(const BenchArgs& a) {
   options.runs = a.runs;
   options.cacheDir = a.cacheDir.empty() ? defaultCacheDir() : a.cacheDir;
   options.reference = !a.noReference;
+  options.referenceKind = a.reference == "monte-carlo" ? Options::ReferenceKind::MonteCarlo : Options::ReferenceKind::Cpu;
   options.hardwareLimit = !a.noLimit;
 
   const Machine m = describeMachine(threads);
   if (!a.quiet) {
     std::cout << fmt::format("luxel bench {}: {} ({} hardware threads, {} used), {}, commit {}, {}\n", suite.name,
                              m.cpuModel, m.cores, m.threads, m.os, m.commit.empty() ? "unknown" : m.commit, m.date);
-    std::cout << fmt::format("{} runs per case; times are medians; references in {}\n", a.runs, options.cacheDir);
+    std::cout << fmt::format("{} runs per case; times are medians; {} references in {}\n", a.runs, a.reference,
+                             options.cacheDir);
     printHeader();
   }
   nlohmann::json cases = nlohmann::json::array();
@@ -150,6 +152,7 @@ int runBench(const BenchArgs& a) {
         {"suite", suite.name},
         {"description", suite.description},
         {"runs", a.runs},
+        {"reference", a.noReference ? "none" : a.reference},
         {"machine", {{"cpu", m.cpuModel}, {"hardware_threads", m.cores}, {"threads", m.threads},
                      {"memory_bytes", m.memoryBytes}, {"os", m.os}}},
         {"commit", m.commit},

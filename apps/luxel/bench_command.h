@@ -13,6 +13,7 @@ struct BenchArgs {
   std::string filter;  // only cases whose name contains this
   std::string cacheDir;
   bool noReference = false;
+  std::string reference = "cpu";  // cpu or monte-carlo
   bool noLimit = false;
   bool list = false;
   int threads = 0;

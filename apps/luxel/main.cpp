@@ -258,6 +258,11 @@ int main(int argc, char** argv) {
   bench->add_option("--case", ba.filter, "Only cases whose name contains this");
   bench->add_option("--cache", ba.cacheDir, "Folder for reference solutions (default ~/.cache/luxel/references)");
   bench->add_flag("--no-reference", ba.noReference, "Skip the error column (no reference solve)");
+  bench->add_option("--reference", ba.reference,
+                    "How references are solved: cpu (gathering at high settings) or monte-carlo (cosine-distributed "
+                    "rays, 16,384 per element: an independent check of the CPU's form factors)")
+      ->check(CLI::IsMember({"cpu", "monte-carlo"}))
+      ->capture_default_str();
   bench->add_flag("--no-limit", ba.noLimit, "Skip the Embree hardware-limit measurement");
   bench->add_flag("--list", ba.list, "List the suites and their cases");
   bench->add_option("--threads", ba.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));

@@ -53,6 +53,11 @@ struct Options {
   std::string cacheDir;  // where references are kept; created when missing
   bool hardwareLimit = true;
   bool reference = true;
+  // How references are solved: gathering over the CPU backend's form factors at high settings,
+  // or over cosine-distributed Monte Carlo rays (transport/monte_carlo_transport.h), which share
+  // nothing with the CPU's estimator: a check of the estimator itself, noisier and slower.
+  enum class ReferenceKind { Cpu, MonteCarlo };
+  ReferenceKind referenceKind = ReferenceKind::Cpu;
   ProgressCallback progress;
 };
 

@@ -9,6 +9,8 @@
 
 #include "io/atomic_file.h"
 #include "luxel/error.h"
+#include "solve/solve_with_transport.h"
+#include "transport/monte_carlo_transport.h"
 
 namespace luxel::bench {
 namespace {
@@ -30,9 +32,10 @@ struct Hasher {
 
 // Everything the reference solution depends on: the elements (geometry, patch, reflectance,
 // emission), the analytic lights and the solver settings.
-uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const SolveOptions& o) {
+uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const SolveOptions& o, Options::ReferenceKind kind) {
   Hasher h;
   h.bytes("luxel-reference-4", 17);  // bump when the transport's numbers change (quadrature, sampling, visibility weighting)
+  if (kind == Options::ReferenceKind::MonteCarlo) h.bytes("monte-carlo", 11), h.value(kMonteCarloReferenceRays);
   for (const Element& e : surfaces.elements) {
     h.value(e.polygon.count);
     h.bytes(e.polygon.v.data(), sizeof(Vec3) * 4);
@@ -79,21 +82,28 @@ SolveOptions referenceSolveOptions() {
   return o;
 }
 
-Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces,
-                                 const std::string& cacheDir, const ProgressCallback& progress) {
+Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces, const std::string& cacheDir,
+                                 const ProgressCallback& progress, Options::ReferenceKind kind) {
   const SolveOptions options = referenceSolveOptions();
-  const uint64_t key = referenceKey(scene, surfaces, options);
+  const bool monteCarlo = kind == Options::ReferenceKind::MonteCarlo;
+  const uint64_t key = referenceKey(scene, surfaces, options, kind);
   std::filesystem::path dir(cacheDir);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(fmt::format("{}: cannot create the reference cache: {}", cacheDir, ec.message()));
   Reference ref;
-  ref.path = (dir / fmt::format("{}-{:016x}.ref", scene.name, key)).string();
+  ref.path = (dir / fmt::format("{}-{}{:016x}.ref", scene.name, monteCarlo ? "mc-" : "", key)).string();
   if (readCache(ref.path, key, surfaces.elements.size(), ref.radiosity)) return ref;
 
   const auto start = std::chrono::steady_clock::now();
   SurfaceSet copy = surfaces;  // solve() may refine in place; references never do, but stay safe
-  Solution sol = solve(scene, copy, options, progress);
+  Solution sol;
+  if (monteCarlo) {
+    MonteCarloTransport transport(scene, copy, kMonteCarloReferenceRays, options.formFactors);
+    sol = solveWithTransport(scene, copy, transport, options, progress);
+  } else {
+    sol = solve(scene, copy, options, progress);
+  }
   ref.radiosity = std::move(sol.radiosity);
   ref.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const uint64_t n = ref.radiosity.size();

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "luxel/bench.h"
 #include "luxel/progress.h"
 #include "luxel/scene.h"
 #include "luxel/solve.h"
@@ -22,8 +23,12 @@ struct Reference {
 // visibility rays for every pair, no pair classification, 64 samples per analytic light.
 SolveOptions referenceSolveOptions();
 
+// Rays per element of Monte Carlo references.
+inline constexpr int kMonteCarloReferenceRays = 1 << 14;
+
 // Loads the reference for `surfaces` from `cacheDir`, or solves and stores it there.
-Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces,
-                                 const std::string& cacheDir, const ProgressCallback& progress);
+Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces, const std::string& cacheDir,
+                                 const ProgressCallback& progress,
+                                 Options::ReferenceKind kind = Options::ReferenceKind::Cpu);
 
 }  // namespace luxel::bench

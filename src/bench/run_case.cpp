@@ -167,7 +167,7 @@ CaseResult runCase(const Case& c, const Options& options) {
     if (c.solve.refineBudget > 0) {
       result.errorNote = "no reference: refinement changes the discretisation";
     } else {
-      Reference ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress);
+      Reference ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress, options.referenceKind);
       result.referenceSeconds = ref.seconds;
       result.error = normalisedRmsError(surfaces, last.solution.radiosity, ref.radiosity);
     }

@@ -68,14 +68,22 @@ void MonteCarloTransport::rows(std::span<const uint32_t> elements, std::span<flo
     const Vec3 t = glm::normalize(std::abs(nrm.x) > 0.9f ? glm::cross(nrm, Vec3(0, 1, 0)) : glm::cross(nrm, Vec3(1, 0, 0)));
     const Vec3 b = glm::cross(nrm, t);
     std::vector<RTCRayHit> hits(static_cast<size_t>(n));
+    // Positions and directions are each stratified on a k x k grid, paired by a random permutation
+    // (so that neither follows the other); the rays past k x k are unstratified.
+    std::vector<uint32_t> pairing(size_t(k) * size_t(k));
+    std::iota(pairing.begin(), pairing.end(), 0u);
+    for (size_t m = pairing.size(); m > 1; --m) std::swap(pairing[m - 1], pairing[rng.nextUint() % m]);
     for (int j = 0; j < n; ++j) {
       const bool stratum = j < k * k;
       const float su = stratum ? (float(j % k) + rng.next()) / float(k) : rng.next();
       const float sv = stratum ? (float(j / k) + rng.next()) / float(k) : rng.next();
       const Vec3 x = uniformPoint(e.polygon, rng.next(), su, sv);
+      const int dj = stratum ? int(pairing[size_t(j)]) : 0;
+      const float du = stratum ? (float(dj % k) + rng.next()) / float(k) : rng.next();
+      const float dv = stratum ? (float(dj / k) + rng.next()) / float(k) : rng.next();
       // Cosine-distributed direction (Malley): a uniform point of the unit disc lifted to the
       // hemisphere.
-      const float r = std::sqrt(rng.next()), phi = 2.0f * std::numbers::pi_v<float> * rng.next();
+      const float r = std::sqrt(du), phi = 2.0f * std::numbers::pi_v<float> * dv;
       const Vec3 d = r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1.0f - r * r)) * nrm;
       RTCRayHit& h = hits[size_t(j)];
       h.ray = makeRay(x + offset * nrm, d, 0.0f, std::numeric_limits<float>::infinity());
