@@ -63,7 +63,7 @@ TEST(MonteCarloReference, CornellInterreflectionsAgreeFaceByFace) {
   }
   std::printf("worst face %.1f%%; element radiosity NRMSE %.4f\n", 100.0 * worst,
               bench::normalisedRmsError(surfaces, cpu.radiosity, mc.radiosity));
-  // Measured: the worst face (a block face by the floor) 3.2% dark, the rest within 1.2%; the
+  // Measured: the worst face (a block face by the floor) 2.6% dark, the rest within 1.3%; the
   // unweighted visibility share gave 23% (face 14) and 10-16% on six more faces.
   EXPECT_LT(worst, 0.05);
 }
