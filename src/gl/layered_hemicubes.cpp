@@ -98,7 +98,7 @@ void main() {
 }  // namespace
 
 struct LayeredHemicubes::Impl {
-  std::shared_ptr<const ItemMesh> mesh;
+  std::unique_ptr<ItemMesh> mesh;
   GLuint itemLayers = 0, distanceLayers = 0, depthLayers = 0;
   GLuint framebuffer = 0;  // all layers of the three, attached layered
   std::unique_ptr<ShaderProgram> program;
@@ -165,11 +165,6 @@ std::vector<uint32_t> LayeredHemicubes::neighbourItems(const SurfaceSet& surface
 
 LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<const uint32_t> polygonItems,
                                    Content content, int resolution, int capacity, float nearPlane, float farPlane)
-    : LayeredHemicubes(std::make_shared<const ItemMesh>(polygons, polygonItems), content, resolution, capacity,
-                       nearPlane, farPlane) {}
-
-LayeredHemicubes::LayeredHemicubes(std::shared_ptr<const ItemMesh> mesh, Content content, int resolution,
-                                   int capacity, float nearPlane, float farPlane)
     : impl_(std::make_unique<Impl>()), content_(content), resolution_(resolution), capacity_(capacity),
       near_(nearPlane), far_(farPlane) {
   GLint maxLayers = 0, vertexBlocks = 0;
@@ -186,7 +181,7 @@ LayeredHemicubes::LayeredHemicubes(std::shared_ptr<const ItemMesh> mesh, Content
   if (!(nearPlane > 0.0f && farPlane > nearPlane)) throw Error("hemicube near and far planes must be 0 < near < far");
   Impl& m = *impl_;
 
-  m.mesh = std::move(mesh);
+  m.mesh = std::make_unique<ItemMesh>(polygons, polygonItems);
 
   const GLsizei layers = 5 * capacity;
   const bool radiosity = content == Content::Radiosity;
@@ -220,8 +215,6 @@ LayeredHemicubes::LayeredHemicubes(std::shared_ptr<const ItemMesh> mesh, Content
 }
 
 LayeredHemicubes::~LayeredHemicubes() = default;
-
-const std::shared_ptr<const ItemMesh>& LayeredHemicubes::mesh() const { return impl_->mesh; }
 
 void LayeredHemicubes::render(int first, int count) {
   if (first < 0 || count < 0 || count > capacity_)

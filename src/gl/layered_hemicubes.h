@@ -16,8 +16,6 @@
 
 namespace luxel::gl {
 
-class ItemMesh;
-
 class LayeredHemicubes {
  public:
   enum class Content { ItemsAndDistances, Radiosity };
@@ -26,9 +24,6 @@ class LayeredHemicubes {
   // `capacity` hemicubes of five faces, `resolution` pixels a side.
   LayeredHemicubes(std::span<const Polygon> polygons, std::span<const uint32_t> items, Content content,
                    int resolution, int capacity, float nearPlane, float farPlane);
-  // The same, drawing a mesh another LayeredHemicubes already holds (mesh()).
-  LayeredHemicubes(std::shared_ptr<const ItemMesh> mesh, Content content, int resolution, int capacity,
-                   float nearPlane, float farPlane);
   ~LayeredHemicubes();
   LayeredHemicubes(const LayeredHemicubes&) = delete;
   LayeredHemicubes& operator=(const LayeredHemicubes&) = delete;
@@ -41,7 +36,6 @@ class LayeredHemicubes {
   // DISTANCE_TEXTURE_UNIT.
   void bindTextures() const;
 
-  const std::shared_ptr<const ItemMesh>& mesh() const;
   int resolution() const { return resolution_; }
   int capacity() const { return capacity_; }
   float nearPlane() const { return near_; }

@@ -38,7 +38,9 @@ TEST_P(CpuVisibility, PartlyOccludedFactorMatchesTheClosedForm) {
   const Solution s = solve(scene, surfaces, o);
   const double factor = s.directIrradiance[receiver].g / kPi;  // exitance pi Le, Le = 1
   const double expected = test::halfShadowFactor(true);
-  const double unweighted = test::halfShadowFactor(false) * (1.5 / 3.5);  // what Wallace's share tends to
+  // What Wallace's share tends to: the unoccluded factor times the visible share of the area.
+  const double nearArea = (1.0 - test::kHalfShadowEmitterX0) / (test::kHalfShadowEmitterX1 - test::kHalfShadowEmitterX0);
+  const double unweighted = test::halfShadowFactor(false) * nearArea;
   std::printf("factor %.5f, closed form %.5f (unweighted share: %.5f)\n", factor, expected, unweighted);
   EXPECT_NEAR(factor, expected, 0.03 * expected);
   ASSERT_GT(std::abs(unweighted - expected), 10 * 0.03 * expected);  // the test tells the two apart
