@@ -75,6 +75,7 @@ int runBake(const BakeArgs& a) {
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
   const SolveOptions so = solveOptions(a.solve);
+  validateSolveOptions(so);
   if (a.lightmaps) {
     const std::vector<uint8_t> vertexColored = meshesMatching(scene, a.vertexColorsFor);  // before the solve
     AtlasOptions ao;

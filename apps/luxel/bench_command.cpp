@@ -37,9 +37,10 @@ nlohmann::json caseJson(const CaseResult& r) {
   nlohmann::json j = {
       {"name", c.name},
       {"scene", c.scene},
-      {"backend", c.backend},
+      {"backend", c.solve.backend},
       {"setting", c.setting},
-      {"solver", c.solve.method == SolveOptions::Method::Gather ? "gather" : "progressive"},
+      {"solver", c.solve.method},
+      {"settings", c.solve.settings.values()},
       {"elements", r.elements},
       {"patches", r.patches},
       {"runs", r.runs},

@@ -24,6 +24,7 @@
 #include "bake_command.h"
 #include "solve_args.h"
 #include "bench_command.h"
+#include "solvers_command.h"
 #include "progress_bar.h"
 
 namespace fs = std::filesystem;
@@ -148,7 +149,8 @@ int runRender(const RenderArgs& a) {
   tm.curve = parseToneCurve(a.toneCurve);
   tm.exposure = a.exposure;
 
-  const SolveOptions so = cli::solveOptions(a.solve);  // before the solve: a bad name fails fast
+  const SolveOptions so = cli::solveOptions(a.solve);
+  validateSolveOptions(so);  // before the solve: a bad name fails fast
   Solution solution;
   Image image;
   RenderStats rs;
@@ -268,6 +270,10 @@ int main(int argc, char** argv) {
   bench->add_option("--threads", ba.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   bench->add_flag("-q,--quiet", ba.quiet, "Print nothing but errors");
 
+  bool solversJson = false;
+  CLI::App* solvers = app.add_subcommand("solvers", "List the registered solvers, each with its options and defaults");
+  solvers->add_flag("--json", solversJson, "Print the list as JSON");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -275,6 +281,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*render) return runRender(ra);
+    if (*solvers) return cli::listSolvers(solversJson);
     if (*bench) return cli::runBench(ba);
     if (*bake) return cli::runBake(ka);
   } catch (const Cancelled&) {

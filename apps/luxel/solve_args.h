@@ -1,9 +1,10 @@
 // The options every command that solves a scene shares (render, bake): discretisation, solver,
-// backend. One definition, so the commands cannot drift apart.
+// backend, and the chosen solver's own options. One definition, so the commands cannot drift apart.
 #pragma once
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -17,21 +18,22 @@ struct SolveArgs {
   std::string backend = "cpu";
   size_t elements = 0;
   float elementSize = 0.0f;
-  double unshot = 1e-3;
   size_t refine = 0;
-  int raysPerPair = 0;
-  int hemicubeResolution = 0;  // 0: the method's default
-  int hemicubesPerSide = 0;
-  int emitterHemicubesPerSide = -1;  // -1: the solver's default
-  int shootersPerPass = 0;  // 0: the solver's choice
-  std::string hemicubeVisibility = "item";
+  std::vector<std::string> set;  // --set NAME=VALUE, any option of the chosen solver
+  // The solver options that have flags of their own (--unshot, --rays-per-pair, ...), as
+  // (option name, value text): only those given on the command line, so that a solver is never
+  // handed an option it does not read unless the user asked for it.
+  std::vector<std::pair<std::string, std::string>> flagged;
+  CLI::App* command = nullptr;
 };
 
-// Adds --solver, --backend, --elements / --element-size, --unshot, --refine, --rays-per-pair, and
-// the GL backend's --hemicube-resolution, --hemicubes-per-side, --hemicube-visibility.
+// Adds --solver, --backend, --elements / --element-size, --refine, --set NAME=VALUE, and the
+// flags kept for solver options: --unshot, --rays-per-pair, --shooters-per-pass,
+// --hemicube-resolution, --hemicubes-per-side, --emitter-hemicubes-per-side, --hemicube-visibility.
 void addSolveOptions(CLI::App& command, SolveArgs& args);
 
 DiscretiseOptions discretiseOptions(const SolveArgs& args);
-SolveOptions solveOptions(const SolveArgs& args);  // throws Error on an unknown solver or backend
+// The request: method, backend and settings. Unknown names are caught when the solver is made.
+SolveOptions solveOptions(const SolveArgs& args);
 
 }  // namespace luxel::cli

@@ -26,10 +26,9 @@ struct SeedFigure {
 struct Case {
   std::string name;     // unique in its suite, e.g. "cornell-large/progressive"
   std::string scene;    // a built-in name, a scene file or a mesh file (as `luxel render`)
-  std::string backend = "cpu";  // "cpu", or "gl": OpenGL hemicubes (skipped, saying why, without a context)
   std::string setting;  // what this case varies, in words
   DiscretiseOptions discretise;
-  SolveOptions solve;
+  SolveOptions solve;  // backend "gl": OpenGL hemicubes (skipped, saying why, without a context)
   SeedFigure seed;
   // Cases whose pairs (elements x patches) exceed this get no reference: a gather over them
   // would take hours. Their error column says so.

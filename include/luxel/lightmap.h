@@ -75,7 +75,7 @@ TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int 
                             bool orientByLight = true);
 
 struct LightmapBakeOptions {
-  SolveOptions solve;             // refineBudget is ignored (texels are not split)
+  SolveOptions solve;             // texels are not split: refine.budget must be 0
   int texelsPerPatchSide = 8;
   // Validity: rays per texel (rounded down to a square) over the hemisphere; a texel whose rays
   // hit more than maxBackfaceShare back faces (of single-sided materials) sees the inside of

@@ -9,7 +9,8 @@
 
 #include "io/atomic_file.h"
 #include "luxel/error.h"
-#include "solve/solve_with_transport.h"
+#include "session/solver_host.h"
+#include "transport/form_factor_options.h"
 #include "transport/monte_carlo_transport.h"
 
 namespace luxel::bench {
@@ -46,9 +47,11 @@ uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const Solv
     h.value(l.innerConeAngle), h.value(l.outerConeAngle), h.value(l.angularRadius);
   }
   h.value(scene.up);
-  const FormFactorOptions& f = o.formFactors;
+  const SolverOptionValues values("reference", SolverRegistry::builtin().get(o.method, o.backend).description.options,
+                                  o.settings);
+  const FormFactorOptions f = formFactorOptions(values);
   h.value(f.raysPerPair), h.value(f.nearRaysPerPair), h.value(f.emitterRaysPerPair), h.value(f.nearFactor);
-  h.value(f.classifyVisibility), h.value(f.lightSamples), h.value(f.seed), h.value(o.residualThreshold);
+  h.value(f.classifyVisibility), h.value(f.lightSamples), h.value(f.seed), h.value(values.real("residual"));
   return h.h;
 }
 
@@ -70,15 +73,11 @@ bool readCache(const std::filesystem::path& path, uint64_t key, size_t n, std::v
 
 SolveOptions referenceSolveOptions() {
   SolveOptions o;
-  o.method = SolveOptions::Method::Gather;
-  o.residualThreshold = 1e-6;
-  o.maxIterations = 100000;
-  o.formFactors.raysPerPair = 64;
-  o.formFactors.nearRaysPerPair = 64;
-  o.formFactors.emitterRaysPerPair = 256;
-  o.formFactors.classifyVisibility = false;
-  o.formFactors.lightSamples = 256;
-  o.formFactors.seed = 7;  // independent of the default seed the benchmarked runs use
+  o.method = "gather";
+  o.settings.set("residual", 1e-6).set("max-iterations", 100000);
+  o.settings.set("rays-per-pair", 64).set("near-rays-per-pair", 64).set("emitter-rays-per-pair", 256);
+  o.settings.set("classify-visibility", false).set("light-samples", 256);
+  o.settings.set("seed", 7);  // independent of the default seed the benchmarked runs use
   return o;
 }
 
@@ -99,8 +98,13 @@ Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces,
   SurfaceSet copy = surfaces;  // solve() may refine in place; references never do, but stay safe
   Solution sol;
   if (monteCarlo) {
-    MonteCarloTransport transport(scene, copy, kMonteCarloReferenceRays, options.formFactors);
-    sol = solveWithTransport(scene, copy, transport, options, progress);
+    const SolverOptionValues values("reference", SolverRegistry::builtin().get("gather", "cpu").description.options,
+                                    options.settings);
+    MonteCarloTransport transport(scene, copy, kMonteCarloReferenceRays, formFactorOptions(values));
+    SolverHost host(scene, copy, options, {&transport, nullptr});
+    while (host.step({}, progress)) {
+    }
+    sol = host.solution();
   } else {
     sol = solve(scene, copy, options, progress);
   }

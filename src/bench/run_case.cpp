@@ -15,7 +15,7 @@
 #include "luxel/bench.h"
 #include "luxel/error.h"
 #include "luxel/import.h"
-#include "solve/solve_with_transport.h"
+#include "session/solver_host.h"
 #include "transport/cpu_transport.h"
 
 namespace luxel::bench {
@@ -37,28 +37,23 @@ struct Run {
   size_t patches = 0;
 };
 
-// One run of the whole static solve: discretise, build the transport, solve. `before` and `after`
-// see the CPU transport around the solve (recording rays). A GL case runs solve() itself, as a
-// user's --backend gl does: its context, hemicubes and GPU-resident solvers are all timed.
+// One run of the whole static solve, as a user's `luxel render` does it: discretise, build the
+// transport (and on GL the context, hemicubes and GPU-resident solver), solve. `before` and
+// `after` see the CPU transport around the solve (recording rays).
 Run solveOnce(const Scene& scene, const Case& c, const std::function<void(Transport&)>& before = {},
               const std::function<void(Transport&)>& after = {}) {
   Run r;
   const auto start = Clock::now();
   SurfaceSet surfaces = discretise(scene, c.discretise);
   r.patches = surfaces.patches.size();
-  if (c.backend == "gl") {
-    SolveOptions o = c.solve;
-    o.backend = SolveOptions::Backend::Gl;
-    const double discretised = secondsSince(start);
-    r.solution = solve(scene, surfaces, o);
-    r.setup = discretised + r.solution.stats.secondsSetup;
-  } else {
-    CpuTransport transport(scene, surfaces, c.solve.formFactors);
-    r.setup = secondsSince(start);
-    if (before) before(transport);
-    r.solution = solveWithTransport(scene, surfaces, transport, c.solve);
-    if (after) after(transport);
+  const double discretised = secondsSince(start);
+  SolverHost host(scene, surfaces, c.solve);
+  if (before) before(host.transport());
+  while (host.step()) {
   }
+  r.solution = host.solution();
+  if (after) after(host.transport());
+  r.setup = discretised + r.solution.stats.secondsSetup;
   r.formFactors = r.solution.stats.secondsFormFactors;
   r.solve = r.solution.stats.secondsSolve;
   r.total = secondsSince(start);
@@ -91,9 +86,8 @@ double embreeRawRaysPerSecond(const RayTracer& tracer, const RayTracer::RayRecor
 
 CaseResult runCase(const Case& c, const Options& options) {
   if (options.runs < 1 || options.runs > 1000) throw Error(fmt::format("runs {} must be in 1..1000", options.runs));
-  if (c.backend != "cpu" && c.backend != "gl")
-    throw Error(fmt::format("case {}: backend '{}' is not available", c.name, c.backend));
-  const bool gl = c.backend == "gl";
+  validateSolveOptions(c.solve);
+  const bool gl = c.solve.backend == "gl";
   CaseResult result;
   result.benchCase = c;
   result.runs = options.runs;
@@ -116,8 +110,11 @@ CaseResult runCase(const Case& c, const Options& options) {
       const SolveStats& st = r.solution.stats;
       hemicubeRates.push_back(r.formFactors > 0 ? double(st.hemicubes) / r.formFactors : 0.0);
       // An element gathered once is perSide^2 hemicubes; a shot is a whole pass's share.
-      const double perElement = double(c.solve.gatheringHemicubes.perSide * c.solve.gatheringHemicubes.perSide);
-      const bool gathering = c.solve.method == SolveOptions::Method::Gather;
+      const bool gathering = c.solve.method == "gather";
+      const SolverOptionValues values(c.name, SolverRegistry::builtin().get(c.solve.method, "gl").description.options,
+                                      c.solve.settings);
+      const int perSide = gathering ? values.integer("hemicubes-per-side") : 1;
+      const double perElement = double(perSide * perSide);
       gatherMs.push_back(gathering && st.hemicubes ? 1e3 * r.formFactors * perElement / double(st.hemicubes) : 0.0);
       shotMs.push_back(st.shots > 0 ? 1e3 * (r.formFactors + r.solve) / double(st.shots) : 0.0);
     }
@@ -164,7 +161,7 @@ CaseResult runCase(const Case& c, const Options& options) {
   } else {
     reportProgress(options.progress, c.name, 1.0, "reference");
     SurfaceSet surfaces = discretise(scene, c.discretise);
-    if (c.solve.refineBudget > 0) {
+    if (c.solve.refine.budget > 0) {
       result.errorNote = "no reference: refinement changes the discretisation";
     } else {
       Reference ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress, options.referenceKind);

@@ -23,8 +23,8 @@ Case progressive(const std::string& scene, double unshot, SeedFigure seed) {
   c.name = scene + "/progressive";
   c.scene = scene;
   c.setting = fmt::format("progressive to {:g} unshot", unshot);
-  c.solve.method = SolveOptions::Method::Progressive;
-  c.solve.unshotThreshold = unshot;
+  c.solve.method = "progressive";
+  c.solve.settings.set("unshot", unshot);
   c.seed = std::move(seed);
   return c;
 }
@@ -34,8 +34,8 @@ Case gather(const std::string& scene, double residual, SeedFigure seed) {
   c.name = scene + "/gather";
   c.scene = scene;
   c.setting = fmt::format("Gauss-Seidel gather to {:g} residual", residual);
-  c.solve.method = SolveOptions::Method::Gather;
-  c.solve.residualThreshold = residual;
+  c.solve.method = "gather";
+  c.solve.settings.set("residual", residual);
   c.seed = std::move(seed);
   return c;
 }
@@ -62,9 +62,7 @@ std::vector<Suite> makeSuites() {
     Case fast = progressive(r.scene, 3 * unshot, {t51, r.progressiveMs, r.progressiveError});
     fast.name += "-fast";
     fast.setting += ", 1/4/16 rays (pair/near/emitter)";
-    fast.solve.formFactors.raysPerPair = 1;
-    fast.solve.formFactors.nearRaysPerPair = 4;
-    fast.solve.formFactors.emitterRaysPerPair = 16;
+    fast.solve.settings.set("rays-per-pair", 1).set("near-rays-per-pair", 4).set("emitter-rays-per-pair", 16);
     seeds.cases.push_back(fast);
     seeds.cases.push_back(gather(r.scene, kSeedGatherResidual, {t51, r.gatherMs, r.gatherError}));
   }
@@ -92,13 +90,13 @@ std::vector<Suite> makeSuites() {
     Case sibenik = progressive("bench/scenes/sibenik.json", 1e-2, {});
     sibenik.name = "sibenik/progressive-60s";
     sibenik.setting += ", at most 60 s";
-    sibenik.solve.timeBudget = 60.0;
+    sibenik.solve.settings.set("time-budget", 60.0);
     sibenik.discretise.elementBudget = 100000;
     scenes.cases.push_back(sibenik);
     Case conference = progressive("bench/scenes/conference.json", 1e-2, {});
     conference.name = "conference/progressive-60s";
     conference.setting += ", at most 60 s";
-    conference.solve.timeBudget = 60.0;
+    conference.solve.settings.set("time-budget", 60.0);
     conference.discretise.elementBudget = 400000;
     scenes.cases.push_back(conference);
   }
@@ -119,7 +117,7 @@ std::vector<Suite> makeSuites() {
   {
     auto onGl = [](Case c, const std::string& name) {
       c.name = name;
-      c.backend = "gl";
+      c.solve.backend = "gl";
       c.setting += ", GL hemicubes";
       return c;
     };
@@ -136,7 +134,7 @@ std::vector<Suite> makeSuites() {
       Case depth = shoot;
       depth.name += "-depth";
       depth.setting += ", depth hemicubes";
-      depth.solve.hemicubeVisibility = SolveOptions::HemicubeVisibility::Distance;
+      depth.solve.settings.set("hemicube-visibility", "distance");
       gl.cases.push_back(depth);
     }
   }

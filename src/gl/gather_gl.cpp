@@ -16,14 +16,13 @@
 #include "gl/layered_hemicubes.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
+#include "core/stopwatch.h"
 #include "luxel/error.h"
 #include "transport/form_factor.h"
 
 namespace luxel::gl {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // One work group per element of the batch: the sum over its k x k hemicubes' pixels of delta
 // form factor times radiosity, reduced in shared memory (floats in a fixed order: the same
@@ -113,144 +112,201 @@ struct Buffers {
     const GLuint all[] = {deltas, gatherElements, residual, states, eyes, patches, patchElements, patchRadiosity};
     glDeleteBuffers(GLsizei(std::size(all)), all);
   }
+  void bind() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherDeltaBinding, deltas);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherElementBinding, gatherElements);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherResidualBinding, residual);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, states);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, eyes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchBinding, patches);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchElementBinding, patchElements);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchRadiosityBinding, patchRadiosity);
+  }
 };
 
-}  // namespace
+class GlGatherSolver final : public Solver {
+ public:
+  GlGatherSolver(const RadiositySystem& sys, Context& context, const GlGatherSettings& o)
+      : sys_(sys), context_(context), o_(o) {
+    const Stopwatch watch;
+    const SurfaceSet& set = sys.surfaces;
+    const size_t ne = sys.elementCount(), np = sys.patchCount();
+    samples_ = o.samplesPerSide * o.samplesPerSide;
+    const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
 
-Solution solveGatherGl(const RadiositySystem& sys, const SolveOptions& options, const GlGatherOptions& o,
-                       const ProgressCallback& progress, double& formFactorSeconds) {
-  if (o.samplesPerSide < 1 || o.samplesPerSide > 8) throw Error("hemicubes per element side must be in 1..8");
-  const SurfaceSet& set = sys.surfaces;
-  const size_t ne = sys.elementCount(), np = sys.patchCount();
-  const int samples = o.samplesPerSide * o.samplesPerSide;
-  const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
-  const auto start = Clock::now();
-
-  // Receivers: k x k hemicube centres per element (a midpoint rule), lifted off the surface.
-  std::vector<GpuShooter> eyes(ne * size_t(samples));
-  std::vector<GpuGatherElement> gatherElements(ne);
-  std::vector<GpuElementState> states(ne);
-  for (size_t e = 0; e < ne; ++e) {
-    const Element& el = set.elements[e];
-    for (int j = 0; j < samples; ++j) {
-      const float k = float(o.samplesPerSide);
-      const Vec3 x = polygonPoint(el.polygon, (float(j % o.samplesPerSide) + 0.5f) / k,
-                                  (float(j / o.samplesPerSide) + 0.5f) / k);
-      eyes[e * size_t(samples) + size_t(j)] = {glm::vec4(x + o.offset * extent * el.normal, 0.0f),
-                                               glm::vec4(el.normal, o.randomTurn ? hemicubeTurn(uint32_t(e), uint32_t(j), 0u) : 0.0f), glm::vec4(0.0f), glm::vec4(0.0f),
-                                               glm::uvec4(0u, 1u, 0u, 0u)};
+    // Receivers: k x k hemicube centres per element (a midpoint rule), lifted off the surface.
+    std::vector<GpuShooter> eyes(ne * size_t(samples_));
+    std::vector<GpuGatherElement> gatherElements(ne);
+    std::vector<GpuElementState> states(ne);
+    for (size_t e = 0; e < ne; ++e) {
+      const Element& el = set.elements[e];
+      for (int j = 0; j < samples_; ++j) {
+        const float k = float(o.samplesPerSide);
+        const Vec3 x = polygonPoint(el.polygon, (float(j % o.samplesPerSide) + 0.5f) / k,
+                                    (float(j / o.samplesPerSide) + 0.5f) / k);
+        eyes[e * size_t(samples_) + size_t(j)] = {
+            glm::vec4(x + o.offset * extent * el.normal, 0.0f),
+            glm::vec4(el.normal, o.randomTurn ? hemicubeTurn(uint32_t(e), uint32_t(j), 0u) : 0.0f), glm::vec4(0.0f),
+            glm::vec4(0.0f), glm::uvec4(0u, 1u, 0u, 0u)};
+      }
+      gatherElements[e] = {glm::vec4(sys.emission[e], sys.area[e]), glm::vec4(sys.reflectance[e], 0.0f),
+                           glm::vec4(sys.analytic[e], 0.0f)};
+      // Jacobi from B = E, so that the first iteration gathers the direct light alone.
+      states[e] = {glm::vec4(sys.emission[e], 0.0f), glm::vec4(0.0f), glm::vec4(sys.analytic[e], 0.0f),
+                   glm::vec4(sys.analytic[e], 0.0f)};
     }
-    gatherElements[e] = {glm::vec4(sys.emission[e], sys.area[e]), glm::vec4(sys.reflectance[e], 0.0f),
-                         glm::vec4(sys.analytic[e], 0.0f)};
-    // Jacobi from B = E, so that the first iteration gathers the direct light alone.
-    states[e] = {glm::vec4(sys.emission[e], 0.0f), glm::vec4(0.0f), glm::vec4(sys.analytic[e], 0.0f),
-                 glm::vec4(sys.analytic[e], 0.0f)};
+    const GpuPatches patches = gpuPatches(sys);
+    std::vector<Polygon> patchPolygons(np);
+    std::vector<uint32_t> patchItems(np);
+    std::vector<glm::vec4> patchRadiosity(np);  // B = E to start with
+    for (size_t p = 0; p < np; ++p) {
+      patchPolygons[p] = set.patches[p].polygon;
+      patchItems[p] = uint32_t(p + 1);
+      patchRadiosity[p] = patches.patches[p].emission;
+    }
+
+    // As many elements per batch as fit the layer memory: per pixel an item, an RGBA32F colour and
+    // a depth, for the five faces of each of the element's k x k hemicubes.
+    const size_t bytesPerElement = size_t(samples_) * 5 * size_t(o.resolution) * size_t(o.resolution) * 24;
+    GLint maxLayers = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    if (5 * size_t(samples_) > size_t(maxLayers))
+      throw Error(fmt::format("{} hemicubes per element need more texture layers than this OpenGL's {}", samples_, maxLayers));
+    batch_ = std::clamp<size_t>(o.layerBytes / bytesPerElement, 1,
+                                std::min<size_t>(std::max<size_t>(ne, 1), size_t(maxLayers) / (5 * size_t(samples_))));
+    hemicubes_ = std::make_unique<LayeredHemicubes>(patchPolygons, patchItems, LayeredHemicubes::Content::Radiosity,
+                                                    o.resolution, int(batch_) * samples_, o.nearPlane * extent,
+                                                    2.0f * extent);
+
+    const DeltaFormFactors deltas(o.resolution);
+    std::vector<float> deltaTable(deltas.top);
+    deltaTable.insert(deltaTable.end(), deltas.side.begin(), deltas.side.end());
+    buf_.deltas = storageBuffer(deltaTable.data(), deltaTable.size() * sizeof(float));
+    buf_.gatherElements = storageBuffer(gatherElements.data(), gatherElements.size() * sizeof(GpuGatherElement));
+    buf_.residual = storageBuffer(nullptr, 2 * sizeof(uint32_t));
+    buf_.states = storageBuffer(states.data(), states.size() * sizeof(GpuElementState));
+    buf_.eyes = storageBuffer(eyes.data(), eyes.size() * sizeof(GpuShooter));
+    buf_.patches = storageBuffer(patches.patches.data(), patches.patches.size() * sizeof(GpuPatch));
+    buf_.patchElements = storageBuffer(patches.elements.data(), patches.elements.size() * sizeof(uint32_t));
+    buf_.patchRadiosity = storageBuffer(patchRadiosity.data(), patchRadiosity.size() * sizeof(glm::vec4));
+
+    const std::string preamble = glslPreamble();
+    integrate_ = std::make_unique<ShaderProgram>("radiosity hemicube integration", preamble + kIntegrateCompute);
+    patchMean_ = std::make_unique<ShaderProgram>("patch mean radiosity", preamble + kPatchMeanCompute);
+    integrate_->use();
+    glUniform1ui(glGetUniformLocation(integrate_->id(), "samples"), GLuint(samples_));
+    glUniform1i(glGetUniformLocation(integrate_->id(), "resolution"), o.resolution);
+    firstElement_ = glGetUniformLocation(integrate_->id(), "firstElement");
+    firstIteration_ = glGetUniformLocation(integrate_->id(), "firstIteration");
+    patchMean_->use();
+    glUniform1ui(glGetUniformLocation(patchMean_->id(), "patchCount"), GLuint(np));
+    Context::check("setting up GPU gathering");
+    setupSeconds_ = watch.seconds();
   }
-  const GpuPatches patches = gpuPatches(sys);
-  std::vector<Polygon> patchPolygons(np);
-  std::vector<uint32_t> patchItems(np);
-  std::vector<glm::vec4> patchRadiosity(np);  // B = E to start with
-  for (size_t p = 0; p < np; ++p) {
-    patchPolygons[p] = set.patches[p].polygon;
-    patchItems[p] = uint32_t(p + 1);
-    patchRadiosity[p] = patches.patches[p].emission;
+
+  bool step(const StepLimit& limit, const ProgressCallback& progress) override {
+    const Stopwatch watch;
+    buf_.bind();  // another solver may have used the context since the last step
+    uint64_t units = 0;
+    while (!done_) {
+      if ((limit.units && units >= limit.units) || (limit.seconds > 0 && watch.seconds() >= limit.seconds)) break;
+      iterate(progress);
+      ++units;
+    }
+    seconds_ += watch.seconds();
+    return !done_;
   }
 
-  // As many elements per batch as fit the layer memory: per pixel an item, an RGBA32F colour and
-  // a depth, for the five faces of each of the element's k x k hemicubes.
-  const size_t bytesPerElement = size_t(samples) * 5 * size_t(o.resolution) * size_t(o.resolution) * 24;
-  GLint maxLayers = 0;
-  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  const size_t batch = std::clamp<size_t>(o.layerBytes / bytesPerElement, 1,
-                                          std::min<size_t>(std::max<size_t>(ne, 1), size_t(maxLayers) / (5 * size_t(samples))));
-  if (batch < 1 || 5 * size_t(samples) > size_t(maxLayers))
-    throw Error(fmt::format("{} hemicubes per element need more texture layers than this OpenGL's {}", samples, maxLayers));
-  LayeredHemicubes hemicubes(patchPolygons, patchItems, LayeredHemicubes::Content::Radiosity, o.resolution,
-                             int(batch) * samples, o.nearPlane * extent, 2.0f * extent);
+  bool done() const override { return done_; }
 
-  const DeltaFormFactors deltas(o.resolution);
-  std::vector<float> deltaTable(deltas.top);
-  deltaTable.insert(deltaTable.end(), deltas.side.begin(), deltas.side.end());
-  Buffers buf;
-  buf.deltas = storageBuffer(deltaTable.data(), deltaTable.size() * sizeof(float));
-  buf.gatherElements = storageBuffer(gatherElements.data(), gatherElements.size() * sizeof(GpuGatherElement));
-  buf.residual = storageBuffer(nullptr, 2 * sizeof(uint32_t));
-  buf.states = storageBuffer(states.data(), states.size() * sizeof(GpuElementState));
-  buf.eyes = storageBuffer(eyes.data(), eyes.size() * sizeof(GpuShooter));
-  buf.patches = storageBuffer(patches.patches.data(), patches.patches.size() * sizeof(GpuPatch));
-  buf.patchElements = storageBuffer(patches.elements.data(), patches.elements.size() * sizeof(uint32_t));
-  buf.patchRadiosity = storageBuffer(patchRadiosity.data(), patchRadiosity.size() * sizeof(glm::vec4));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherDeltaBinding, buf.deltas);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherElementBinding, buf.gatherElements);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGatherResidualBinding, buf.residual);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, buf.states);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, buf.eyes);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchBinding, buf.patches);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchElementBinding, buf.patchElements);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchRadiosityBinding, buf.patchRadiosity);
+  Solution solution() override {
+    const Stopwatch watch;
+    const size_t ne = sys_.elementCount();
+    std::vector<GpuElementState> states(ne);
+    glGetNamedBufferSubData(buf_.states, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
+    Context::check("reading back the GPU solution");
+    Solution sol = solutionFromStates(states);
+    seconds_ += watch.seconds();
+    sol.stats = stats();
+    return sol;
+  }
 
-  const std::string preamble = glslPreamble();
-  ShaderProgram integrate("radiosity hemicube integration", preamble + kIntegrateCompute);
-  ShaderProgram patchMean("patch mean radiosity", preamble + kPatchMeanCompute);
-  integrate.use();
-  glUniform1ui(glGetUniformLocation(integrate.id(), "samples"), GLuint(samples));
-  glUniform1i(glGetUniformLocation(integrate.id(), "resolution"), o.resolution);
-  const GLint firstElement = glGetUniformLocation(integrate.id(), "firstElement");
-  const GLint firstIteration = glGetUniformLocation(integrate.id(), "firstIteration");
-  patchMean.use();
-  glUniform1ui(glGetUniformLocation(patchMean.id(), "patchCount"), GLuint(np));
-  Context::check("setting up GPU gathering");
+  SolveStats stats() const override {
+    SolveStats st;
+    st.method = "gather";
+    st.backend = "gl";
+    st.device = context_.renderer();
+    st.iterations = uint64_t(iteration_);
+    st.residual = residual_;
+    st.hemicubes = rendered_;
+    st.secondsFormFactors = setupSeconds_ + seconds_;
+    return st;
+  }
 
-  double residual = 1.0, best = std::numeric_limits<double>::max();
-  int iteration = 0, sinceBest = 0;
-  uint64_t rendered = 0;
-  while (iteration < options.maxIterations) {
-    ++iteration;
+ private:
+  void iterate(const ProgressCallback& progress) {
+    const size_t ne = sys_.elementCount(), np = sys_.patchCount();
+    ++iteration_;
     const uint32_t zero[2] = {0, 0};
-    glNamedBufferSubData(buf.residual, 0, sizeof zero, zero);
-    for (size_t first = 0; first < ne; first += batch) {
-      const size_t count = std::min(batch, ne - first);
-      hemicubes.render(int(first) * samples, int(count) * samples);
-      rendered += count * size_t(samples);
-      hemicubes.bindTextures();
-      integrate.use();
-      glUniform1ui(firstElement, GLuint(first));
-      glUniform1i(firstIteration, iteration == 1);
+    glNamedBufferSubData(buf_.residual, 0, sizeof zero, zero);
+    for (size_t first = 0; first < ne; first += batch_) {
+      const size_t count = std::min(batch_, ne - first);
+      hemicubes_->render(int(first) * samples_, int(count) * samples_);
+      rendered_ += count * size_t(samples_);
+      hemicubes_->bindTextures();
+      integrate_->use();
+      glUniform1ui(firstElement_, GLuint(first));
+      glUniform1i(firstIteration_, iteration_ == 1);
       glDispatchCompute(GLuint(count), 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    patchMean.use();
+    patchMean_->use();
     glDispatchCompute(GLuint((np + kPowerGroup - 1) / kPowerGroup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     uint32_t bits[2] = {0, 0};
-    glGetNamedBufferSubData(buf.residual, 0, sizeof bits, bits);
+    glGetNamedBufferSubData(buf_.residual, 0, sizeof bits, bits);
     Context::check("GPU gathering");
     float change = 0.0f, largest = 0.0f;
     std::memcpy(&change, &bits[0], sizeof change);
     std::memcpy(&largest, &bits[1], sizeof largest);
-    residual = largest > 0.0f ? double(change) / double(largest) : 0.0;
+    residual_ = largest > 0.0f ? double(change) / double(largest) : 0.0;
     reportProgress(progress, "solve",
-                   std::clamp(std::log(std::max(residual, 1e-30)) / std::log(options.residualThreshold), 0.0, 1.0),
-                   fmt::format("residual {:.2e}", residual));
-    if (iteration > 1 && residual <= options.residualThreshold) break;  // the first only starts from E
+                   std::clamp(std::log(std::max(residual_, 1e-30)) / std::log(o_.residualThreshold), 0.0, 1.0),
+                   fmt::format("residual {:.2e}", residual_));
+    if (iteration_ >= o_.maxIterations) done_ = true;
+    if (iteration_ > 1 && residual_ <= o_.residualThreshold) done_ = true;  // the first only starts from E
     // Float rounding bounds how small the residual can get; stop once it no longer falls.
-    if (residual < best * 0.99) {
-      best = residual;
-      sinceBest = 0;
-    } else if (++sinceBest >= 8) {
-      break;
+    if (residual_ < best_ * 0.99) {
+      best_ = residual_;
+      sinceBest_ = 0;
+    } else if (++sinceBest_ >= 8) {
+      done_ = true;
     }
   }
-  glGetNamedBufferSubData(buf.states, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
-  Context::check("reading back the GPU solution");
-  formFactorSeconds += secondsSince(start);
 
-  Solution sol = solutionFromStates(states);
-  sol.stats.method = "gather";
-  sol.stats.iterations = uint64_t(iteration);
-  sol.stats.residual = residual;
-  sol.stats.hemicubes = rendered;
-  return sol;
+  const RadiositySystem& sys_;
+  Context& context_;
+  const GlGatherSettings o_;
+  Buffers buf_;
+  std::unique_ptr<LayeredHemicubes> hemicubes_;
+  std::unique_ptr<ShaderProgram> integrate_, patchMean_;
+  GLint firstElement_ = -1, firstIteration_ = -1;
+  int samples_ = 0;
+  size_t batch_ = 1;
+  double residual_ = 1.0, best_ = std::numeric_limits<double>::max();
+  int iteration_ = 0, sinceBest_ = 0;
+  uint64_t rendered_ = 0;
+  double setupSeconds_ = 0.0, seconds_ = 0.0;
+  bool done_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Solver> makeGlGatherSolver(const RadiositySystem& system, Context& context,
+                                           const GlGatherSettings& settings) {
+  if (settings.samplesPerSide < 1 || settings.samplesPerSide > 8)
+    throw Error("hemicubes per element side must be in 1..8");
+  return std::make_unique<GlGatherSolver>(system, context, settings);
 }
 
 }  // namespace luxel::gl

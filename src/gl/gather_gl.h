@@ -8,23 +8,32 @@
 // largest radiosity, to decide when to stop.
 #pragma once
 
-#include "luxel/solve.h"
+#include <cstddef>
+#include <memory>
+
+#include "luxel/solver.h"
 #include "solve/radiosity_system.h"
 
 namespace luxel::gl {
 
-struct GlGatherOptions {
+class Context;
+
+struct GlGatherSettings {
   int resolution = 256;      // hemicube top face, pixels a side
   int samplesPerSide = 2;    // k: k x k hemicubes per element, averaged
   float nearPlane = 1e-4f;   // relative to the scene extent
   float offset = 1e-4f;      // hemicube centres lifted off the element, relative to the extent
   bool randomTurn = true;    // turn each hemicube about its normal (seed 001 section 4.2)
   size_t layerBytes = size_t(96) << 20;  // GPU memory for the hemicubes of one batch
+  // Stopping rules, as the CPU's gather (Jacobi only).
+  double residualThreshold = 1e-5;
+  int maxIterations = 10000;
 };
 
-// Solves `system` as solveGather does (residual threshold, iteration cap, stagnation stop; Jacobi
-// only), on the current OpenGL 4.5 context. stats.hemicubes counts every hemicube rendered.
-Solution solveGatherGl(const RadiositySystem& system, const SolveOptions& options, const GlGatherOptions& gl,
-                       const ProgressCallback& progress, double& formFactorSeconds);
+// A solver of `system` as the CPU's gather (residual threshold, iteration cap, stagnation stop;
+// Jacobi only), on `context`, which must be current and outlive it. stats.hemicubes counts every
+// hemicube rendered.
+std::unique_ptr<Solver> makeGlGatherSolver(const RadiositySystem& system, Context& context,
+                                           const GlGatherSettings& settings);
 
 }  // namespace luxel::gl

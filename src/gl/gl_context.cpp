@@ -104,6 +104,13 @@ Context::Context(MessageSink sink) : sink_(std::move(sink)) {
   }
 }
 
+Context::Context(BorrowCurrent) : platform_("borrowed") {
+  const int version = epoxy_gl_version();
+  if (version < 45)
+    throw Error(fmt::format("OpenGL: the borrowed context is version {}.{}; the GL backend needs 4.5", version / 10,
+                            version % 10));
+}
+
 Context::~Context() {
   auto display = static_cast<EGLDisplay>(display_);
   if (!display) return;

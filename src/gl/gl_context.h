@@ -17,6 +17,11 @@ class Context {
   // Makes the context current on the calling thread. Throws luxel::Error saying why no 4.5 core
   // context could be made, platform by platform.
   explicit Context(MessageSink sink = {});
+  // Borrows the caller's context (a viewer's window), which must be current on the calling
+  // thread and stay alive and current while this is used; nothing is made or destroyed. Throws
+  // luxel::Error when it is older than OpenGL 4.5.
+  struct BorrowCurrent {};
+  explicit Context(BorrowCurrent);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -25,7 +30,7 @@ class Context {
   // Whether the renderer rasterises on the CPU (Mesa's llvmpipe or softpipe, SwiftShader).
   bool softwareRasteriser() const;
   std::string version() const;   // e.g. "4.5 (Core Profile) Mesa 22.3.6"
-  std::string platform() const { return platform_; }  // "device" or "surfaceless"
+  std::string platform() const { return platform_; }  // "device", "surfaceless" or "borrowed"
 
   // Throws luxel::Error naming `what` when glGetError reports an error.
   static void check(const char* what);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -15,13 +16,12 @@
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
 #include "gl/layered_hemicubes.h"
+#include "core/stopwatch.h"
 #include "luxel/error.h"
 
 namespace luxel::gl {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // The buffers as each pass declares them (std430; layouts in shared_layout.h).
 const char* kBuffersGlsl = R"(
@@ -293,162 +293,219 @@ struct Buffers {
 
 GLuint groups(size_t n, int size) { return GLuint((n + size_t(size) - 1) / size_t(size)); }
 
-}  // namespace
 
-Solution solveProgressiveGl(const RadiositySystem& sys, const SolveOptions& options, const GlProgressiveOptions& o,
-                            const ProgressCallback& progress, double& formFactorSeconds) {
-  if (o.samplesPerSide < 1 || o.samplesPerSide > 8) throw Error("hemicubes per shooter side must be in 1..8");
-  if (o.emitterSamplesPerSide < 0 || o.emitterSamplesPerSide > 8)
-    throw Error("hemicubes per emitter side must be in 1..8 (or 0: as other shooters)");
-  if (o.shootersPerPass < 1 || o.shootersPerPass > kMaxShootersPerPass)
-    throw Error(fmt::format("shooters per pass must be in 1..{}", kMaxShootersPerPass));
-  if (o.passesPerCheck < 1) throw Error("passes per check must be >= 1");
-  const SurfaceSet& set = sys.surfaces;
-  const size_t ne = sys.elementCount(), np = sys.patchCount();
-  const auto start = Clock::now();
+class GlProgressiveSolver final : public Solver {
+ public:
+  GlProgressiveSolver(const RadiositySystem& sys, Context& context, const GlProgressiveSettings& o)
+      : sys_(sys), context_(context), o_(o) {
+    const Stopwatch watch;
+    const SurfaceSet& set = sys.surfaces;
+    const size_t ne = sys.elementCount(), np = sys.patchCount();
 
-  // Inputs, once.
-  std::vector<GpuElement> elements(ne);
-  std::vector<GpuElementState> states(ne);
-  for (size_t e = 0; e < ne; ++e) {
-    const Element& el = set.elements[e];
-    GpuElement& g = elements[e];
-    for (int c = 0; c < 4; ++c) g.corners[c] = glm::vec4(el.polygon.v[size_t(c)], 0.0f);
-    g.corners[0].w = float(el.polygon.count);
-    g.normalArea = glm::vec4(el.normal, sys.area[e]);
-    g.reflectance = glm::vec4(sys.reflectance[e], 0.0f);
-    g.ids = glm::uvec4(LayeredHemicubes::itemOfFace(set, el.face), el.patch, el.face, 0u);
-    const Rgb b = sys.emission[e] + sys.reflectance[e] * sys.analytic[e];
-    states[e] = {glm::vec4(b, 0.0f), glm::vec4(b, 0.0f), glm::vec4(sys.analytic[e], 0.0f), glm::vec4(sys.analytic[e], 0.0f)};
+    // Inputs, once.
+    std::vector<GpuElement> elements(ne);
+    std::vector<GpuElementState> states(ne);
+    for (size_t e = 0; e < ne; ++e) {
+      const Element& el = set.elements[e];
+      GpuElement& g = elements[e];
+      for (int c = 0; c < 4; ++c) g.corners[c] = glm::vec4(el.polygon.v[size_t(c)], 0.0f);
+      g.corners[0].w = float(el.polygon.count);
+      g.normalArea = glm::vec4(el.normal, sys.area[e]);
+      g.reflectance = glm::vec4(sys.reflectance[e], 0.0f);
+      g.ids = glm::uvec4(LayeredHemicubes::itemOfFace(set, el.face), el.patch, el.face, 0u);
+      const Rgb b = sys.emission[e] + sys.reflectance[e] * sys.analytic[e];
+      states[e] = {glm::vec4(b, 0.0f), glm::vec4(b, 0.0f), glm::vec4(sys.analytic[e], 0.0f), glm::vec4(sys.analytic[e], 0.0f)};
+    }
+    const GpuPatches patches = gpuPatches(sys);
+
+    const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
+    samples_ = o.samplesPerSide * o.samplesPerSide;
+    batch_ = int(std::min<size_t>(size_t(o.shootersPerPass), std::max<size_t>(np, 1)));
+    // Emitters first, each with its own k_e x k_e hemicubes, as many per pass as fit the layers of
+    // a regular pass (at least one).
+    emitterSide_ = o.emitterSamplesPerSide > 0 ? o.emitterSamplesPerSide : o.samplesPerSide;
+    emitterSamples_ = emitterSide_ * emitterSide_;
+    emitterBatch_ = std::clamp(batch_ * samples_ / emitterSamples_, 1, batch_);
+    for (const GpuPatch& p : patches.patches) emitters_ += p.emission.r + p.emission.g + p.emission.b > 0.0f ? 1 : 0;
+    emittersApart_ = emitterSide_ != o.samplesPerSide && emitters_ > 0;
+    std::vector<Polygon> facePolygons;
+    std::vector<uint32_t> faceItems;
+    LayeredHemicubes::faceItems(set, facePolygons, faceItems);
+    // Room for a regular pass or an emitters' pass, whichever needs more hemicubes.
+    const int capacity = std::max(batch_ * samples_, emittersApart_ ? emitterBatch_ * emitterSamples_ : 0);
+    hemicubes_ = std::make_unique<LayeredHemicubes>(facePolygons, faceItems,
+                                                    LayeredHemicubes::Content::ItemsAndDistances, o.resolution,
+                                                    capacity, o.nearPlane * extent, 2.0f * extent);
+
+    buf_.elements = storageBuffer(elements.data(), elements.size() * sizeof(GpuElement));
+    buf_.patches = storageBuffer(patches.patches.data(), patches.patches.size() * sizeof(GpuPatch));
+    buf_.patchElements = storageBuffer(patches.elements.data(), patches.elements.size() * sizeof(uint32_t));
+    std::vector<GpuPatchState> patchStates(np, GpuPatchState{0.0f, 0u});
+    buf_.patchStates = storageBuffer(patchStates.data(), patchStates.size() * sizeof(GpuPatchState));
+    buf_.shooters = storageBuffer(nullptr, size_t(capacity) * sizeof(GpuShooter));
+    GpuSolverState initial{};
+    buf_.state = storageBuffer(&initial, sizeof initial);
+    buf_.elementStates = storageBuffer(states.data(), states.size() * sizeof(GpuElementState));
+    const std::vector<uint32_t> neighbours = LayeredHemicubes::neighbourItems(set);
+    buf_.faceNeighbours = storageBuffer(neighbours.data(), neighbours.size() * sizeof(uint32_t));
+
+    const std::string preamble = glslPreamble() + kHemicubeGlsl + kFormFactorGlsl + kBuffersGlsl;
+    power_ = std::make_unique<ShaderProgram>("patch power", preamble + kPowerCompute);
+    select_ = std::make_unique<ShaderProgram>("shooter selection", preamble + kSelectCompute);
+    reconstruct_ = std::make_unique<ShaderProgram>("shot reconstruction", preamble + kReconstructCompute);
+    auto uniform = [](const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id(), name); };
+    power_->use();
+    glUniform1ui(uniform(*power_, "patchCount"), GLuint(np));
+    select_->use();
+    glUniform1ui(uniform(*select_, "patchCount"), GLuint(np));
+    glUniform1ui(uniform(*select_, "shotLimit"),
+                 o.shotBudget ? GLuint(std::min<uint64_t>(o.shotBudget, 0xFFFFFFFFu)) : 0xFFFFFFFFu);
+    sourcePower_ = sys.sourcePower();
+    glUniform1f(uniform(*select_, "stopPower"), float(o.unshotThreshold * sourcePower_));
+    glUniform1f(uniform(*select_, "offset"), o.offset * extent);
+    selectBatch_ = uniform(*select_, "batch"), selectSide_ = uniform(*select_, "samplesPerSide"),
+    selectEmitters_ = uniform(*select_, "emittersOnly");
+    reconstruct_->use();
+    glUniform1ui(uniform(*reconstruct_, "elementCount"), GLuint(ne));
+    glUniform1i(uniform(*reconstruct_, "resolution"), o.resolution);
+    glUniform1i(uniform(*reconstruct_, "visibility"), o.visibility == HemicubeVisibility::Item ? 0 : 1);
+    glUniform1f(uniform(*reconstruct_, "nearPlane"), hemicubes_->nearPlane());
+    glUniform1f(uniform(*reconstruct_, "farPlane"), hemicubes_->farPlane());
+    reconstructSamples_ = uniform(*reconstruct_, "samples");
+    Context::check("setting up GPU progressive refinement");
+    setupSeconds_ = watch.seconds();
   }
-  const GpuPatches patches = gpuPatches(sys);
 
-  const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
-  const int samples = o.samplesPerSide * o.samplesPerSide;
-  const int batch = int(std::min<size_t>(size_t(o.shootersPerPass), std::max<size_t>(np, 1)));
-  // Emitters first, each with its own k_e x k_e hemicubes, as many per pass as fit the layers of
-  // a regular pass (at least one).
-  const int emitterSide = o.emitterSamplesPerSide > 0 ? o.emitterSamplesPerSide : o.samplesPerSide;
-  const int emitterSamples = emitterSide * emitterSide;
-  const int emitterBatch = std::clamp(batch * samples / emitterSamples, 1, batch);
-  size_t emitters = 0;
-  for (const GpuPatch& p : patches.patches) emitters += p.emission.r + p.emission.g + p.emission.b > 0.0f ? 1 : 0;
-  const bool emittersApart = emitterSide != o.samplesPerSide && emitters > 0;
-  std::vector<Polygon> facePolygons;
-  std::vector<uint32_t> faceItems;
-  LayeredHemicubes::faceItems(set, facePolygons, faceItems);
-  // Room for a regular pass or an emitters' pass, whichever needs more hemicubes.
-  const int capacity = std::max(batch * samples, emittersApart ? emitterBatch * emitterSamples : 0);
-  LayeredHemicubes hemicubes(facePolygons, faceItems, LayeredHemicubes::Content::ItemsAndDistances, o.resolution,
-                             capacity, o.nearPlane * extent, 2.0f * extent);
+  bool step(const StepLimit& limit, const ProgressCallback& progress) override {
+    const Stopwatch watch;
+    if (emittersApart_ && !emittersShot_) {
+      for (size_t shot = 0; shot < emitters_; shot += size_t(emitterBatch_)) shoot(emitterBatch_, emitterSide_, true);
+      emitterShots_ = readState().shots;
+      emittersShot_ = true;
+    }
+    uint64_t units = 0;
+    while (!done_) {
+      if ((limit.units && units >= limit.units) || (limit.seconds > 0 && watch.seconds() >= limit.seconds)) break;
+      if (o_.timeBudget > 0.0 && seconds_ + watch.seconds() >= o_.timeBudget) {
+        done_ = true;
+        break;
+      }
+      for (int pass = 0; pass < o_.passesPerCheck; ++pass) shoot(batch_, o_.samplesPerSide, false);
+      ++units;
+      const GpuSolverState s = readState();  // the only read-back while shooting: a few bytes every few passes
+      Context::check("GPU progressive refinement");
+      shots_ = s.shots;
+      unshotFraction_ = sourcePower_ > 0.0 ? s.unshotPower / sourcePower_ : 0.0;
+      if (s.chosen == 0) {  // converged, or the shot budget is spent: the GPU stopped itself
+        done_ = true;
+        break;
+      }
+      const double shown =
+          std::clamp(std::log(std::max(unshotFraction_, 1e-30)) / std::log(o_.unshotThreshold), 0.0, 1.0);
+      if (shown - lastReported_ >= 0.01) {
+        reportProgress(progress, "solve", shown, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
+        lastReported_ = shown;
+      }
+    }
+    glFinish();  // the step's GPU work belongs to its time
+    seconds_ += watch.seconds();
+    if (done_) reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
+    return !done_;
+  }
 
-  Buffers buf;
-  buf.elements = storageBuffer(elements.data(), elements.size() * sizeof(GpuElement));
-  buf.patches = storageBuffer(patches.patches.data(), patches.patches.size() * sizeof(GpuPatch));
-  buf.patchElements = storageBuffer(patches.elements.data(), patches.elements.size() * sizeof(uint32_t));
-  std::vector<GpuPatchState> patchStates(np, GpuPatchState{0.0f, 0u});
-  buf.patchStates = storageBuffer(patchStates.data(), patchStates.size() * sizeof(GpuPatchState));
-  buf.shooters = storageBuffer(nullptr, size_t(capacity) * sizeof(GpuShooter));
-  GpuSolverState initial{};
-  buf.state = storageBuffer(&initial, sizeof initial);
-  buf.elementStates = storageBuffer(states.data(), states.size() * sizeof(GpuElementState));
-  const std::vector<uint32_t> neighbours = LayeredHemicubes::neighbourItems(set);
-  buf.faceNeighbours = storageBuffer(neighbours.data(), neighbours.size() * sizeof(uint32_t));
+  bool done() const override { return done_; }
 
-  const std::string preamble = glslPreamble() + kHemicubeGlsl + kFormFactorGlsl + kBuffersGlsl;
-  ShaderProgram power("patch power", preamble + kPowerCompute);
-  ShaderProgram select("shooter selection", preamble + kSelectCompute);
-  ShaderProgram reconstruct("shot reconstruction", preamble + kReconstructCompute);
-  auto uniform = [](const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id(), name); };
-  power.use();
-  glUniform1ui(uniform(power, "patchCount"), GLuint(np));
-  select.use();
-  glUniform1ui(uniform(select, "patchCount"), GLuint(np));
-  glUniform1ui(uniform(select, "shotLimit"),
-               options.shotBudget ? GLuint(std::min<uint64_t>(options.shotBudget, 0xFFFFFFFFu)) : 0xFFFFFFFFu);
-  const double sourcePower = sys.sourcePower();
-  glUniform1f(uniform(select, "stopPower"), float(options.unshotThreshold * sourcePower));
-  glUniform1f(uniform(select, "offset"), o.offset * extent);
-  const GLint selectBatch = uniform(select, "batch"), selectSide = uniform(select, "samplesPerSide"),
-              selectEmitters = uniform(select, "emittersOnly");
-  reconstruct.use();
-  glUniform1ui(uniform(reconstruct, "elementCount"), GLuint(ne));
-  glUniform1i(uniform(reconstruct, "resolution"), o.resolution);
-  glUniform1i(uniform(reconstruct, "visibility"), o.visibility == SolveOptions::HemicubeVisibility::Item ? 0 : 1);
-  glUniform1f(uniform(reconstruct, "nearPlane"), hemicubes.nearPlane());
-  glUniform1f(uniform(reconstruct, "farPlane"), hemicubes.farPlane());
-  const GLint reconstructSamples = uniform(reconstruct, "samples");
-  Context::check("setting up GPU progressive refinement");
+  Solution solution() override {
+    const Stopwatch watch;
+    const size_t ne = sys_.elementCount();
+    choose(0, o_.samplesPerSide, false);  // the unshot power left
+    const GpuSolverState s = readState();
+    std::vector<GpuElementState> states(ne);
+    glGetNamedBufferSubData(buf_.elementStates, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
+    Context::check("reading back the GPU solution");
+    shots_ = s.shots;
+    unshotFraction_ = sourcePower_ > 0.0 ? s.unshotPower / sourcePower_ : 0.0;
+    Solution sol = solutionFromStates(states);
+    std::vector<Rgb> unshot(ne);
+    for (size_t e = 0; e < ne; ++e) unshot[e] = Rgb(states[e].unshot);
+    if (o_.ambient) addAmbientTerm(sys_, unshot, sol.radiosity, sol.irradiance);
+    seconds_ += watch.seconds();
+    sol.stats = stats();
+    return sol;
+  }
 
+  SolveStats stats() const override {
+    SolveStats st;
+    st.method = "progressive";
+    st.backend = "gl";
+    st.device = context_.renderer();
+    st.shots = shots_;
+    const uint64_t emitterShots = std::min<uint64_t>(emitterShots_, shots_);
+    st.hemicubes = emitterShots * uint64_t(emitterSamples_) + (shots_ - emitterShots) * uint64_t(samples_);
+    st.unshotFraction = st.residual = unshotFraction_;
+    // Everything on the GPU is form factors and their use at once: one figure, as the seed's.
+    st.secondsFormFactors = setupSeconds_ + seconds_;
+    return st;
+  }
+
+ private:
   // Power, then selection of `shooters` patches with k x k hemicubes each (0 shooters: only the
   // total, for the final state).
-  auto choose = [&](int shooters, int side, bool emittersOnly) {
-    buf.bind();
-    power.use();
-    glDispatchCompute(groups(np, kPowerGroup), 1, 1);
+  void choose(int shooters, int side, bool emittersOnly) {
+    buf_.bind();
+    power_->use();
+    glDispatchCompute(groups(sys_.patchCount(), kPowerGroup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    select.use();
-    glUniform1ui(selectBatch, GLuint(shooters));
-    glUniform1ui(selectSide, GLuint(side));
-    glUniform1i(selectEmitters, emittersOnly);
+    select_->use();
+    glUniform1ui(selectBatch_, GLuint(shooters));
+    glUniform1ui(selectSide_, GLuint(side));
+    glUniform1i(selectEmitters_, emittersOnly);
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  };
-  auto shoot = [&](int shooters, int side, bool emittersOnly) {
+  }
+  void shoot(int shooters, int side, bool emittersOnly) {
     choose(shooters, side, emittersOnly);
-    hemicubes.render(0, shooters * side * side);  // centres from the shooter buffer choose() bound
-    hemicubes.bindTextures();
-    reconstruct.use();
-    glUniform1ui(reconstructSamples, GLuint(side * side));
-    glDispatchCompute(groups(ne, kReconstructGroup), 1, 1);
+    hemicubes_->render(0, shooters * side * side);  // centres from the shooter buffer choose() bound
+    hemicubes_->bindTextures();
+    reconstruct_->use();
+    glUniform1ui(reconstructSamples_, GLuint(side * side));
+    glDispatchCompute(groups(sys_.elementCount(), kReconstructGroup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  };
-  auto readState = [&] {
+  }
+  GpuSolverState readState() {
     GpuSolverState s{};
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(buf.state, 0, sizeof s, &s);
+    glGetNamedBufferSubData(buf_.state, 0, sizeof s, &s);
     return s;
-  };
-
-  GpuSolverState s{};
-  uint32_t emitterShots = 0;
-  if (emittersApart) {
-    for (size_t shot = 0; shot < emitters; shot += size_t(emitterBatch))
-      shoot(emitterBatch, emitterSide, true);
-    emitterShots = readState().shots;
   }
-  double lastReported = -1.0;
-  while (true) {
-    for (int pass = 0; pass < o.passesPerCheck; ++pass) shoot(batch, o.samplesPerSide, false);
-    s = readState();  // the only read-back while shooting: a few bytes every few passes
-    Context::check("GPU progressive refinement");
-    const double fraction = sourcePower > 0.0 ? s.unshotPower / sourcePower : 0.0;
-    if (s.chosen == 0) break;  // converged, or the shot budget is spent: the GPU stopped itself
-    if (options.timeBudget > 0.0 && secondsSince(start) >= options.timeBudget) break;
-    const double shown = std::clamp(std::log(std::max(fraction, 1e-30)) / std::log(options.unshotThreshold), 0.0, 1.0);
-    if (shown - lastReported >= 0.01) {
-      reportProgress(progress, "solve", shown, fmt::format("unshot {:.3f}%", 100.0 * fraction));
-      lastReported = shown;
-    }
-  }
-  choose(0, o.samplesPerSide, false);  // the unshot power left
-  s = readState();
-  glGetNamedBufferSubData(buf.elementStates, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
-  Context::check("reading back the GPU solution");
-  formFactorSeconds += secondsSince(start);
 
-  Solution sol = solutionFromStates(states);
-  std::vector<Rgb> unshot(ne);
-  for (size_t e = 0; e < ne; ++e) unshot[e] = Rgb(states[e].unshot);
-  const double unshotFraction = sourcePower > 0.0 ? s.unshotPower / sourcePower : 0.0;
-  reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction));
-  if (options.ambient) addAmbientTerm(sys, unshot, sol.radiosity, sol.irradiance);
-  sol.stats.method = "progressive";
-  sol.stats.shots = s.shots;
-  sol.stats.hemicubes = uint64_t(emitterShots) * uint64_t(emitterSamples) + uint64_t(s.shots - emitterShots) * uint64_t(samples);
-  sol.stats.unshotFraction = unshotFraction;
-  sol.stats.residual = unshotFraction;
-  return sol;
+  const RadiositySystem& sys_;
+  Context& context_;
+  const GlProgressiveSettings o_;
+  Buffers buf_;
+  std::unique_ptr<LayeredHemicubes> hemicubes_;
+  std::unique_ptr<ShaderProgram> power_, select_, reconstruct_;
+  GLint selectBatch_ = -1, selectSide_ = -1, selectEmitters_ = -1, reconstructSamples_ = -1;
+  int samples_ = 0, batch_ = 0, emitterSide_ = 0, emitterSamples_ = 0, emitterBatch_ = 0;
+  size_t emitters_ = 0;
+  bool emittersApart_ = false, emittersShot_ = false, done_ = false;
+  double sourcePower_ = 0.0, unshotFraction_ = 1.0, lastReported_ = -1.0;
+  double setupSeconds_ = 0.0, seconds_ = 0.0;
+  uint64_t shots_ = 0;
+  uint32_t emitterShots_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Solver> makeGlProgressiveSolver(const RadiositySystem& system, Context& context,
+                                                const GlProgressiveSettings& settings) {
+  if (settings.samplesPerSide < 1 || settings.samplesPerSide > 8) throw Error("hemicubes per shooter side must be in 1..8");
+  if (settings.emitterSamplesPerSide < 0 || settings.emitterSamplesPerSide > 8)
+    throw Error("hemicubes per emitter side must be in 1..8 (or 0: as other shooters)");
+  if (settings.shootersPerPass < 1 || settings.shootersPerPass > kMaxShootersPerPass)
+    throw Error(fmt::format("shooters per pass must be in 1..{}", kMaxShootersPerPass));
+  if (settings.passesPerCheck < 1) throw Error("passes per check must be >= 1");
+  return std::make_unique<GlProgressiveSolver>(system, context, settings);
 }
 
 }  // namespace luxel::gl

@@ -15,29 +15,43 @@
 // The CPU reads a few bytes every few passes to learn whether to stop.
 #pragma once
 
-#include "luxel/solve.h"
+#include <memory>
+
+#include "luxel/solver.h"
 #include "solve/radiosity_system.h"
 
 namespace luxel::gl {
 
-struct GlProgressiveOptions {
-  SolveOptions::HemicubeVisibility visibility = SolveOptions::HemicubeVisibility::Item;
+class Context;
+
+// How a shooter's hemicube tells whether it sees a point: by the id of the nearest face (seed
+// 001's ID hemicube; the default) or by the distance to it (seed 003's depth hemicube, with the
+// face id as a fallback for surfaces seen edge-on). docs/performance.md compares them.
+enum class HemicubeVisibility { Item, Distance };
+
+struct GlProgressiveSettings {
+  HemicubeVisibility visibility = HemicubeVisibility::Item;
   int resolution = 64;          // hemicube top face, pixels a side
-  int samplesPerSide = 2;       // k: k x k hemicubes per shooting patch
+  int samplesPerSide = 3;       // k: k x k hemicubes per shooting patch
   // An emitting patch's first shot, which carries the direct light and its penumbrae, uses
   // k_e x k_e hemicubes (001's "dynamic shooter subdivision": more, smaller shooters where much
   // radiosity is shot). 0: k.
-  int emitterSamplesPerSide = 0;
+  int emitterSamplesPerSide = 6;
   int shootersPerPass = 8;      // patches shot together (at most kMaxShootersPerPass)
   int passesPerCheck = 4;       // passes between read-backs of the convergence state
   float nearPlane = 1e-4f;      // relative to the scene extent
   float offset = 1e-4f;         // hemicube centres lifted off the patch, relative to the extent
+  // Stopping rules and display, as the CPU's progressive solver.
+  double unshotThreshold = 1e-3;
+  double timeBudget = 0.0;
+  uint64_t shotBudget = 0;
+  bool ambient = true;
 };
 
-// Solves `system` as solveProgressive does (same stopping rules, ambient term and outputs), on
-// the current OpenGL 4.5 context. stats.hemicubes counts the hemicubes of real shooters.
-Solution solveProgressiveGl(const RadiositySystem& system, const SolveOptions& options,
-                            const GlProgressiveOptions& gl, const ProgressCallback& progress,
-                            double& formFactorSeconds);
+// A solver of `system` as the CPU's progressive solver (same stopping rules, ambient term and
+// outputs), on `context`, which must be current and outlive it. stats.hemicubes counts the
+// hemicubes of real shooters. Throws Error on settings out of range.
+std::unique_ptr<Solver> makeGlProgressiveSolver(const RadiositySystem& system, Context& context,
+                                                const GlProgressiveSettings& settings);
 
 }  // namespace luxel::gl

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "luxel/solve.h"
+#include "solve/radiosity_system.h"
 #include <glm/glm.hpp>
 
 namespace luxel::gl {
@@ -50,7 +50,7 @@ constexpr int kGatherResidualBinding = 5;  // uint[2]: float bits of the largest
 constexpr int kPowerGroup = 64;
 constexpr int kSelectGroup = 256;          // one work group chooses the shooters
 constexpr int kReconstructGroup = 64;
-// kMaxShootersPerPass (luxel/solve.h) sizes GpuSolverState::chosenPatch.
+// kMaxShootersPerPass (solve/radiosity_system.h) sizes GpuSolverState::chosenPatch.
 
 // Records shared by C++ (which writes them) and GLSL (which reads them), std430, vec4-aligned so
 // that the two layouts are the same by construction; the GLSL declarations are in glslPreamble().

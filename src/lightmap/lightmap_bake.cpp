@@ -79,6 +79,9 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
                            const ProgressCallback& progress) {
   if (options.validityRays < 0 || options.dilation < 0 || !(options.maxBackfaceShare >= 0.0f))
     throw Error("lightmap bake: validity rays, dilation and backface share must be >= 0");
+  if (options.solve.refine.budget > 0)
+    throw Error("lightmap bake: texels are not refined (--refine needs elements, not lightmaps)");
+  validateSolveOptions(options.solve);  // before the atlas's texels and validity rays
   LightmapBake bake;
   bake.pageSize = atlas.pageSize;
   const int size = atlas.pageSize;
@@ -97,9 +100,7 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
   bake.secondsValidity = since(t0);
 
   t0 = Clock::now();
-  SolveOptions so = options.solve;
-  so.refineBudget = 0;
-  bake.solution = solve(scene, set, so, progress);
+  bake.solution = solve(scene, set, options.solve, progress);
   bake.secondsSolve = since(t0);
 
   t0 = Clock::now();

@@ -4,10 +4,15 @@
 
 #include <vector>
 
-#include "luxel/solve.h"
-#include "transport/transport.h"
+#include "luxel/solution.h"
+#include "luxel/surface.h"
 
 namespace luxel {
+
+// Patches a progressive pass shoots together ("shooters-per-pass"): at most, and by default on
+// the CPU and on a GPU.
+inline constexpr int kMaxShootersPerPass = 32;
+inline constexpr int kDefaultShootersPerPass = 8;
 
 struct RadiositySystem {
   const SurfaceSet& surfaces;
@@ -26,14 +31,6 @@ struct RadiositySystem {
   // Power entering the system: sum A_e (E_e + rho_e H0_e), summed over channels.
   double sourcePower() const;
 };
-
-// Each solver fills radiosity, irradiance and stats.shots/iterations/residual; the caller times
-// the phases and fills the rest. `formFactorSeconds` accumulates time spent in the transport.
-Solution solveProgressive(const RadiositySystem& system, Transport& transport,
-                          const SolveOptions& options, const ProgressCallback& progress,
-                          double& formFactorSeconds);
-Solution solveGather(const RadiositySystem& system, Transport& transport, const SolveOptions& options,
-                     const ProgressCallback& progress, double& formFactorSeconds);
 
 // Cohen et al. 1988's ambient term, for display: the unshot radiosity spread uniformly and
 // multiplied by the interreflection factor 1 / (1 - mean reflectance), added to B and H.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "luxel/solve.h"
+#include "transport/form_factor_options.h"
 #include "trace/ray_tracer.h"
 #include "transport/transport.h"
 

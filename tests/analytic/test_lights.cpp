@@ -66,7 +66,7 @@ Solved solveScene(const Scene& scene, int lightSamples = 16) {
   d.elementsPerPatchSide = 10;
   Solved s{discretise(scene, d), {}};
   SolveOptions o;
-  o.formFactors.lightSamples = lightSamples;
+  o.settings.set("light-samples", lightSamples);
   s.sol = solve(scene, s.set, o);
   return s;
 }
@@ -285,7 +285,7 @@ TEST(SkyLight, VerticalWallGetsHalfTheHorizontalIrradiance) {
     d.elementSize = 0.25f;
     SurfaceSet set = discretise(*scene, d);
     SolveOptions o;
-    o.formFactors.lightSamples = 256;
+    o.settings.set("light-samples", 256);
     Solution sol = solve(*scene, set, o);
     double sum = 0.0, area = 0.0;
     for (size_t e = 0; e < set.elements.size(); ++e) {

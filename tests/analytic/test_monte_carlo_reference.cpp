@@ -14,7 +14,7 @@
 #include "luxel/error.h"
 #include "luxel/solve.h"
 #include "scene/builtin/builtin_scenes.h"
-#include "solve/solve_with_transport.h"
+#include "session/solver_host.h"
 #include "transport/monte_carlo_transport.h"
 
 namespace luxel {
@@ -22,8 +22,8 @@ namespace {
 
 SolveOptions convergedGather() {
   SolveOptions o;
-  o.method = SolveOptions::Method::Gather;
-  o.residualThreshold = 1e-6;
+  o.method = "gather";
+  o.settings.set("residual", 1e-6);
   return o;
 }
 
@@ -39,11 +39,14 @@ TEST(MonteCarloReference, CornellInterreflectionsAgreeFaceByFace) {
   SurfaceSet surfaces = discretise(scene, d);
   SurfaceSet mcSurfaces = surfaces;
   MonteCarloTransport monteCarlo(scene, mcSurfaces, 1 << 14);
-  const Solution mc = solveWithTransport(scene, mcSurfaces, monteCarlo, convergedGather());
+  SolverHost host(scene, mcSurfaces, convergedGather(), {&monteCarlo, nullptr});
+  while (host.step()) {
+  }
+  const Solution mc = host.solution();
   SolveOptions cpuOptions = convergedGather();
-  cpuOptions.formFactors.raysPerPair = 64;
-  cpuOptions.formFactors.nearRaysPerPair = 64;
-  cpuOptions.formFactors.emitterRaysPerPair = 256;
+  cpuOptions.settings.set("rays-per-pair", 64);
+  cpuOptions.settings.set("near-rays-per-pair", 64);
+  cpuOptions.settings.set("emitter-rays-per-pair", 256);
   const Solution cpu = solve(scene, surfaces, cpuOptions);
 
   // Interreflected irradiance (all minus direct), area-weighted per face.
@@ -78,7 +81,7 @@ TEST(MonteCarloReference, BenchErrorColumnAgainstEitherReference) {
   c.name = "cornell-200";
   c.scene = "cornell";
   c.discretise.elementBudget = 200;
-  c.solve.unshotThreshold = 1e-4;
+  c.solve.settings.set("unshot", 1e-4);
   bench::Options o;
   o.runs = 1;
   o.hardwareLimit = false;

@@ -23,7 +23,7 @@ TEST(VisibilityWeighting, TheClosedFormShowsTheUnweightedShareIsBiased) {
   EXPECT_NEAR(nearArea, 0.43, 0.01);
 }
 
-class CpuVisibility : public ::testing::TestWithParam<SolveOptions::Method> {};
+class CpuVisibility : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CpuVisibility, PartlyOccludedFactorMatchesTheClosedForm) {
   const Scene scene = test::halfShadowScene();
@@ -34,7 +34,7 @@ TEST_P(CpuVisibility, PartlyOccludedFactorMatchesTheClosedForm) {
 
   SolveOptions o;
   o.method = GetParam();
-  o.formFactors.emitterRaysPerPair = 256;
+  o.settings.set("emitter-rays-per-pair", 256);
   const Solution s = solve(scene, surfaces, o);
   const double factor = s.directIrradiance[receiver].g / kPi;  // exitance pi Le, Le = 1
   const double expected = test::halfShadowFactor(true);
@@ -47,9 +47,9 @@ TEST_P(CpuVisibility, PartlyOccludedFactorMatchesTheClosedForm) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothSolvers, CpuVisibility,
-                         ::testing::Values(SolveOptions::Method::Progressive, SolveOptions::Method::Gather),
+                         ::testing::Values("progressive", "gather"),
                          [](const auto& info) {
-                           return info.param == SolveOptions::Method::Progressive ? "Progressive" : "Gather";
+                           return info.param == "progressive" ? "Progressive" : "Gather";
                          });
 
 }  // namespace

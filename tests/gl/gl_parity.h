@@ -14,11 +14,11 @@ namespace luxel::test {
 // Exact factors with 64 visibility rays per pair (256 from emitters), Gauss-Seidel to 1e-6.
 inline SolveOptions convergedCpuGather() {
   SolveOptions o;
-  o.method = SolveOptions::Method::Gather;
-  o.residualThreshold = 1e-6;
-  o.formFactors.raysPerPair = 64;
-  o.formFactors.nearRaysPerPair = 64;
-  o.formFactors.emitterRaysPerPair = 256;
+  o.method = "gather";
+  o.settings.set("residual", 1e-6);
+  o.settings.set("rays-per-pair", 64);
+  o.settings.set("near-rays-per-pair", 64);
+  o.settings.set("emitter-rays-per-pair", 256);
   return o;
 }
 
@@ -42,8 +42,8 @@ inline const CornellReference& cornellReference(size_t elementBudget) {
   return solved.emplace(elementBudget, std::move(r)).first->second;
 }
 
-inline std::string visibilityName(SolveOptions::HemicubeVisibility v) {
-  return v == SolveOptions::HemicubeVisibility::Item ? "Item" : "Distance";
+inline std::string visibilityName(const std::string& v) {
+  return v == "item" ? "Item" : "Distance";
 }
 
 }  // namespace luxel::test

@@ -12,17 +12,15 @@
 
 namespace {
 
-luxel::bench::Case smallGlCase(luxel::SolveOptions::Method method) {
+luxel::bench::Case smallGlCase(const std::string& method) {
   luxel::bench::Case c;
   c.name = "cornell-200/gl";
   c.scene = "cornell";
-  c.backend = "gl";
+  c.solve.backend = "gl";
   c.discretise.elementBudget = 200;
   c.solve.method = method;
-  c.solve.residualThreshold = 1e-4;
-  c.solve.unshotThreshold = 1e-2;
-  c.solve.gatheringHemicubes.resolution = 64;
-  c.solve.shootingHemicubes.resolution = 32;
+  if (method == "gather") c.solve.settings.set("residual", 1e-4).set("hemicube-resolution", 64);
+  else c.solve.settings.set("unshot", 1e-2).set("hemicube-resolution", 32);
   return c;
 }
 
@@ -33,7 +31,7 @@ TEST(GlBench, GatherCaseReportsHemicubesAndError) {
   luxel::bench::Options o;
   o.runs = 1;
   o.cacheDir = cache.string();
-  const luxel::bench::Case c = smallGlCase(luxel::SolveOptions::Method::Gather);
+  const luxel::bench::Case c = smallGlCase("gather");
   if (!haveGl) {
     EXPECT_THROW(luxel::bench::runCase(c, o), luxel::Error);  // reported as skipped, with the reason
     GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
@@ -59,7 +57,7 @@ TEST(GlBench, ProgressiveCaseReportsMillisecondsPerShot) {
   luxel::bench::Options o;
   o.runs = 1;
   o.reference = false;
-  const luxel::bench::CaseResult r = luxel::bench::runCase(smallGlCase(luxel::SolveOptions::Method::Progressive), o);
+  const luxel::bench::CaseResult r = luxel::bench::runCase(smallGlCase("progressive"), o);
   EXPECT_GT(r.shots, 0u);
   // 3 x 3 per shooting patch, and 6 x 6 for each emitting patch's first shot (the light's).
   EXPECT_GT(r.hemicubes, 9 * r.shots);
@@ -72,8 +70,8 @@ TEST(GlBench, ProgressiveCaseReportsMillisecondsPerShot) {
 TEST(GlBench, TheGlSuiteHasOnlyGlCases) {
   const luxel::bench::Suite& s = luxel::bench::findSuite("gl");
   EXPECT_GE(s.cases.size(), 2u);
-  for (const auto& c : s.cases) EXPECT_EQ(c.backend, "gl") << c.name;
-  for (const auto& c : luxel::bench::findSuite("seeds").cases) EXPECT_EQ(c.backend, "cpu") << c.name;
+  for (const auto& c : s.cases) EXPECT_EQ(c.solve.backend, "gl") << c.name;
+  for (const auto& c : luxel::bench::findSuite("seeds").cases) EXPECT_EQ(c.solve.backend, "cpu") << c.name;
 }
 
 }  // namespace

@@ -19,10 +19,10 @@ using luxel::SolveOptions;
 
 SolveOptions glGather(int resolution, int perSide) {
   SolveOptions o;
-  o.method = SolveOptions::Method::Gather;
-  o.backend = SolveOptions::Backend::Gl;
-  o.gatheringHemicubes = {resolution, perSide};
-  o.residualThreshold = 1e-5;
+  o.method = "gather";
+  o.backend = "gl";
+  o.settings.set("hemicube-resolution", resolution).set("hemicubes-per-side", perSide);
+  o.settings.set("residual", 1e-5);
   return o;
 }
 
@@ -52,7 +52,7 @@ TEST(GlParity, CornellBoxAgreesWithTheCpuBackend) {
   const luxel::Solution& cpu = ref.cpu;
   luxel::SurfaceSet surfaces = ref.surfaces;
   SolveOptions g = glGather(64, 2);
-  g.residualThreshold = 1e-6;
+  g.settings.set("residual", 1e-6);
   const luxel::Solution gpu = luxel::solve(ref.scene, surfaces, g);
   const double rms = luxel::bench::normalisedRmsError(surfaces, gpu.radiosity, cpu.radiosity);
   const double directRms = luxel::bench::normalisedRmsError(surfaces, gpu.directIrradiance, cpu.directIrradiance);

@@ -17,16 +17,16 @@ namespace {
 
 using luxel::SolveOptions;
 
-SolveOptions glProgressive(SolveOptions::HemicubeVisibility visibility) {
+SolveOptions glProgressive(const std::string& visibility) {
   SolveOptions o;
-  o.method = SolveOptions::Method::Progressive;
-  o.backend = SolveOptions::Backend::Gl;
-  o.hemicubeVisibility = visibility;
-  o.unshotThreshold = 1e-4;
+  o.method = "progressive";
+  o.backend = "gl";
+  o.settings.set("hemicube-visibility", visibility);
+  o.settings.set("unshot", 1e-4);
   return o;
 }
 
-class GlProgressive : public ::testing::TestWithParam<SolveOptions::HemicubeVisibility> {};
+class GlProgressive : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GlProgressive, FurnaceReachesTheClosedForm) {
   std::string why;
@@ -39,8 +39,8 @@ TEST_P(GlProgressive, FurnaceReachesTheClosedForm) {
   d.elementBudget = 600;
   luxel::SurfaceSet surfaces = luxel::discretise(scene, d);
   SolveOptions o = glProgressive(GetParam());
-  o.ambient = false;  // the closed form from shooting alone
-  o.unshotThreshold = 1e-5;
+  o.settings.set("ambient", false);  // the closed form from shooting alone
+  o.settings.set("unshot", 1e-5);
   luxel::Solution s = luxel::solve(scene, surfaces, o);
   EXPECT_EQ(s.stats.backend, "gl");
   // 3 x 3 per shooting patch, 6 x 6 for each emitting patch's first shot: here every patch emits.
@@ -62,14 +62,14 @@ TEST_P(GlProgressive, CornellBoxAgreesWithTheCpuBackend) {
   luxel::SurfaceSet surfaces = ref.surfaces;
   const auto t0 = std::chrono::steady_clock::now();
   SolveOptions o = glProgressive(GetParam());
-  o.ambient = false;  // so that where no light arrives the answer is exactly dark
+  o.settings.set("ambient", false);  // so that where no light arrives the answer is exactly dark
   luxel::Solution gpu = luxel::solve(ref.scene, surfaces, o);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double rms = luxel::bench::normalisedRmsError(surfaces, gpu.radiosity, cpu.radiosity);
   const double directRms = luxel::bench::normalisedRmsError(surfaces, gpu.directIrradiance, cpu.directIrradiance);
   RecordProperty("nrmse", std::to_string(rms));
   std::printf("GL progressive (%s) vs CPU: NRMSE %.4f (direct %.4f), %llu shots, %llu hemicubes, %.2f s\n",
-              GetParam() == SolveOptions::HemicubeVisibility::Item ? "item" : "distance", rms, directRms,
+              GetParam() == "item" ? "item" : "distance", rms, directRms,
               (unsigned long long)gpu.stats.shots, (unsigned long long)gpu.stats.hemicubes, seconds);
   // Measured on llvmpipe (64 pixels, 3 x 3 hemicubes per patch, 6 x 6 for the light's first
   // shot): item 0.0104 (direct 0.0116), depth 0.0090 (0.0102). Issue 4 aims for 2%.
@@ -92,7 +92,7 @@ TEST_P(GlProgressive, CornellBoxAgreesWithTheCpuBackend) {
   std::printf("under the blocks: %zu dark elements, GL irradiance at most %.2g of the floor's mean\n", dark,
               darkMax / floorMean);
   EXPECT_GE(dark, 5u);
-  EXPECT_LT(darkMax, (GetParam() == SolveOptions::HemicubeVisibility::Item ? 1e-3 : 2e-2) * floorMean);
+  EXPECT_LT(darkMax, (GetParam() == "item" ? 1e-3 : 2e-2) * floorMean);
 }
 
 // Seed 001's dynamic shooter subdivision: the light's first shot from 6 x 6 hemicubes instead of
@@ -107,11 +107,11 @@ TEST(GlEmitterSubdivision, SharpensTheDirectLight) {
   const luxel::Solution& cpu = ref.cpu;
   luxel::SurfaceSet surfaces = ref.surfaces;
   const luxel::Scene& scene = ref.scene;
-  SolveOptions o = glProgressive(SolveOptions::HemicubeVisibility::Item);
-  o.emitterHemicubesPerSide = 0;
+  SolveOptions o = glProgressive("item");
+  o.settings.set("emitter-hemicubes-per-side", 0);
   luxel::SurfaceSet plainSurfaces = surfaces;
   const luxel::Solution plain = luxel::solve(scene, plainSurfaces, o);
-  o.emitterHemicubesPerSide = 6;
+  o.settings.set("emitter-hemicubes-per-side", 6);
   const luxel::Solution subdivided = luxel::solve(scene, surfaces, o);
   const double before = luxel::bench::normalisedRmsError(surfaces, plain.directIrradiance, cpu.directIrradiance);
   const double after = luxel::bench::normalisedRmsError(surfaces, subdivided.directIrradiance, cpu.directIrradiance);
@@ -123,8 +123,8 @@ TEST(GlEmitterSubdivision, SharpensTheDirectLight) {
 }
 
 INSTANTIATE_TEST_SUITE_P(GlVisibility, GlProgressive,
-                         ::testing::Values(SolveOptions::HemicubeVisibility::Item,
-                                           SolveOptions::HemicubeVisibility::Distance),
+                         ::testing::Values("item",
+                                           "distance"),
                          [](const auto& info) { return luxel::test::visibilityName(info.param); });
 
 }  // namespace

@@ -254,8 +254,8 @@ const Corrugated& corrugated() {
     ao.chartAngle = 10.0f;
     c.atlas = luxel::buildLightmapAtlas(c.scene, ao);
     luxel::LightmapBakeOptions lo;
-    lo.solve.shotBudget = 1;   // the seams' disagreement is the sun's, direct: no need to converge
-    lo.solve.ambient = false;  // (nor for an ambient estimate, which would hide part of it)
+    lo.solve.settings.set("shot-budget", 1);   // the seams' disagreement is the sun's, direct: no need to converge
+    lo.solve.settings.set("ambient", false);  // (nor for an ambient estimate, which would hide part of it)
     const auto t0 = std::chrono::steady_clock::now();
     c.bake = luxel::bakeLightmaps(c.scene, c.atlas, lo);
     c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -41,12 +41,12 @@ TEST(Refinement, SplitsWhereTheGradientIsLargeWithinBudget) {
 
   SolveOptions o;
   Solution before = solve(scene, coarse, o);
-  o.refineBudget = 1200;
+  o.refine.budget = 1200;
   Solution after = solve(scene, refined, o);
 
   const SolveStats& st = after.stats;
   EXPECT_GT(st.refinedElements, 0u);
-  EXPECT_LE(st.refinedElements, o.refineBudget);
+  EXPECT_LE(st.refinedElements, o.refine.budget);
   EXPECT_EQ(refined.elements.size(), coarse.elements.size() + st.refinedElements);
   EXPECT_NEAR(refined.totalArea(), area, 1e-4 * area);
   EXPECT_EQ(after.radiosity.size(), refined.elements.size());
@@ -66,7 +66,7 @@ TEST(Refinement, SplitsWhereTheGradientIsLargeWithinBudget) {
   size_t floorSplits = 0;
   for (const Element& e : refined.elements) floorSplits += (e.face == 0 && e.depth > 0) ? 1 : 0;
   EXPECT_GT(floorSplits, 0u);
-  const double threshold = o.refineThreshold;
+  const double threshold = o.refine.threshold;
   EXPECT_LT(areaWithLargeJumps(refined, after, 0, threshold), 0.85 * areaWithLargeJumps(coarse, before, 0, threshold));
 }
 
@@ -77,7 +77,7 @@ TEST(Refinement, UniformSolutionNeedsNone) {
   d.elementBudget = 300;
   SurfaceSet set = discretise(scene, d);
   SolveOptions o;
-  o.refineBudget = 1000;
+  o.refine.budget = 1000;
   Solution s = solve(scene, set, o);
   EXPECT_EQ(s.stats.refinedElements, 0u);
   EXPECT_EQ(s.stats.refinePasses, 0);

@@ -169,7 +169,7 @@ TEST(SeedScenes, CornellLowSolves) {
   Scene scene = builtin::cornellLow();
   SurfaceSet set = discretise(scene, DiscretiseOptions{});
   SolveOptions o;
-  o.unshotThreshold = 0.01;
+  o.settings.set("unshot", 0.01);
   Solution sol = solve(scene, set, o);
   ASSERT_EQ(sol.radiosity.size(), set.elements.size());
   for (size_t e = 0; e < sol.radiosity.size(); ++e)
@@ -199,7 +199,7 @@ TEST(SeedScenes, CornellLowRoomWithoutTheBoxBalances) {
   SurfaceSet set = discretise(scene, DiscretiseOptions{});
   EXPECT_EQ(set.flippedFaces, 0u);
   SolveOptions o;
-  o.unshotThreshold = 0.01;
+  o.settings.set("unshot", 0.01);
   const SolveStats st = solve(scene, set, o).stats;
   ASSERT_GT(st.emittedPower, 0.0);
   // Measured 1.001.
@@ -210,7 +210,7 @@ TEST(SeedScenes, IndirectLightRoomGetsNoDirectSun) {
   Scene scene = builtin::indirectLight();
   SurfaceSet set = discretise(scene, DiscretiseOptions{});
   SolveOptions o;
-  o.shotBudget = 150;  // enough for the sunlit ground and facade to light the room
+  o.settings.set("shot-budget", 150);  // enough for the sunlit ground and facade to light the room
   Solution sol = solve(scene, set, o);
   const float eps = 1e-3f;
   auto inside = [&](Vec3 p) {

@@ -1,0 +1,44 @@
+// What a solver produces: radiosity, irradiance and direct irradiance per element, and the
+// statistics of how it got there. Radiosity B is exitance (W/m^2); radiance is B / pi.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "luxel/scene.h"
+
+namespace luxel {
+
+struct SolveStats {
+  std::string method;                 // the registered method, e.g. "progressive"
+  std::string backend;                // "cpu" or "gl"
+  std::string device;                 // the GL renderer when backend is "gl"
+  std::vector<std::string> warnings;  // e.g. why --backend auto fell back to the CPU
+  size_t elements = 0;
+  size_t patches = 0;
+  uint64_t shots = 0;          // progressive: patches shot
+  uint64_t iterations = 0;     // gather: sweeps
+  uint64_t rays = 0;           // visibility rays traced
+  uint64_t hemicubes = 0;      // GL backend: hemicubes rendered
+  double residual = 0.0;       // gather: last relative change; progressive: unshot fraction
+  double unshotFraction = 0.0;
+  double secondsSetup = 0.0;        // BVH build, GL context, analytic lights, solver setup
+  double secondsFormFactors = 0.0;  // form factors and visibility
+  double secondsSolve = 0.0;        // iterations / shooting bookkeeping
+  double secondsTotal = 0.0;
+  size_t refinedElements = 0;
+  int refinePasses = 0;
+  double emittedPower = 0.0;   // W: sum of A E plus analytic-light power reaching surfaces
+  double absorbedPower = 0.0;  // W: sum of A (1 - rho) H
+  double raysPerSecond() const { return secondsFormFactors > 0 ? double(rays) / secondsFormFactors : 0; }
+};
+
+struct Solution {
+  std::vector<Rgb> radiosity;          // B per element (exitance), ambient term included if asked
+  std::vector<Rgb> irradiance;         // H per element: all light arriving, both sides
+  std::vector<Rgb> directIrradiance;   // the part of H that comes straight from emitters and lights
+  SolveStats stats;
+};
+
+}  // namespace luxel

@@ -1,0 +1,91 @@
+// The GL backend's solvers in the registry: progressive refinement and gathering with hemicubes,
+// resident on the GPU (progressive_gl.h, gather_gl.h). The analytic lights come from the CPU
+// transport, so both read its light options too.
+#include <fmt/format.h>
+
+#include "gl/gather_gl.h"
+#include "gl/gl_context.h"
+#include "gl/progressive_gl.h"
+#include "solve/solver_registry.h"
+#include "transport/form_factor_options.h"
+
+namespace luxel {
+
+std::vector<SolverOption> progressiveStopOptions();  // solve/progressive_solver.cpp
+std::vector<SolverOption> gatherStopOptions();       // solve/gather_solver.cpp
+
+namespace {
+
+int hemicubeResolution(const SolverOptionValues& v) {
+  const int r = v.integer("hemicube-resolution");
+  if (r % 2) v.fail(fmt::format("hemicube-resolution {} must be even", r));
+  return r;
+}
+
+void addAll(std::vector<SolverOption>& to, std::vector<SolverOption> from) {
+  for (SolverOption& o : from) to.push_back(std::move(o));
+}
+
+}  // namespace
+
+void registerGlProgressive(SolverRegistry& registry) {
+  const gl::GlProgressiveSettings d;
+  SolverEntry e;
+  e.description = {"progressive", "gl",
+                   "progressive refinement resident on the GPU: ID or depth hemicubes per shooter (seeds 001, 003)",
+                   progressiveStopOptions()};
+  addAll(e.description.options,
+         {integerOption("shooters-per-pass", 0, 0, kMaxShootersPerPass,
+                        "patches shot together in one pass (0: 8, or 1 on a software rasteriser, where it is faster)"),
+          integerOption("hemicube-resolution", d.resolution, 8, 4096, "hemicube top-face pixels a side (even)"),
+          integerOption("hemicubes-per-side", d.samplesPerSide, 1, 8, "k x k hemicubes per shooting patch"),
+          integerOption("emitter-hemicubes-per-side", d.emitterSamplesPerSide, 0, 8,
+                        "k x k hemicubes for an emitting patch's first shot (0: as other shooters)"),
+          choiceOption("hemicube-visibility", "item", {"item", "distance"},
+                       "a shooter sees a point by face id (seed 001) or by depth (seed 003)")});
+  addAll(e.description.options, analyticLightOptions());
+  e.make = [](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
+    gl::GlProgressiveSettings s;
+    s.resolution = hemicubeResolution(v);
+    s.samplesPerSide = v.integer("hemicubes-per-side");
+    s.emitterSamplesPerSide = v.integer("emitter-hemicubes-per-side");
+    s.visibility = v.choice("hemicube-visibility") == "item" ? gl::HemicubeVisibility::Item
+                                                             : gl::HemicubeVisibility::Distance;
+    const int perPass = v.integer("shooters-per-pass");
+    s.shootersPerPass = perPass > 0 ? perPass : r.glContext->softwareRasteriser() ? 1 : kDefaultShootersPerPass;
+    s.unshotThreshold = v.real("unshot");
+    s.timeBudget = v.real("time-budget");
+    s.shotBudget = uint64_t(v.integer("shot-budget"));
+    s.ambient = v.flag("ambient");
+    return gl::makeGlProgressiveSolver(r.system, *r.glContext, s);
+  };
+  e.converged.set("unshot", 1e-6);
+  // Shooting hemicubes are a midpoint rule over k x k points of the shooter (the half-shadow
+  // factor at 3 x 3: 5% low, tests/gl/test_gl_half_shadow.cpp).
+  e.accuracy.halfShadow = 0.08;
+  registry.add(std::move(e));
+}
+
+void registerGlGather(SolverRegistry& registry) {
+  const gl::GlGatherSettings d;
+  SolverEntry e;
+  e.description = {"gather", "gl",
+                   "Jacobi gathering with radiosity hemicubes on the GPU, no stored form factors (seeds 000, 001)",
+                   gatherStopOptions()};
+  addAll(e.description.options,
+         {integerOption("hemicube-resolution", d.resolution, 8, 4096, "hemicube top-face pixels a side (even)"),
+          integerOption("hemicubes-per-side", d.samplesPerSide, 1, 8, "k x k hemicubes per receiving element")});
+  addAll(e.description.options, analyticLightOptions());
+  e.make = [](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
+    gl::GlGatherSettings s;
+    s.resolution = hemicubeResolution(v);
+    s.samplesPerSide = v.integer("hemicubes-per-side");
+    s.residualThreshold = v.real("residual");
+    s.maxIterations = v.integer("max-iterations");
+    return gl::makeGlGatherSolver(r.system, *r.glContext, s);
+  };
+  e.converged.set("residual", 1e-6).set("hemicube-resolution", 64);
+  registry.add(std::move(e));
+}
+
+}  // namespace luxel

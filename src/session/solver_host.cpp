@@ -1,0 +1,159 @@
+#include "session/solver_host.h"
+
+#include <fmt/format.h>
+
+#include "gl/gl_context.h"
+#include "luxel/error.h"
+#include "solve/refinement.h"
+#include "transport/cpu_transport.h"
+#include "transport/form_factor_options.h"
+
+namespace luxel {
+
+SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options, BorrowedResources borrowed)
+    : scene_(scene), surfaces_(surfaces), options_(options) {
+  const Stopwatch watch;
+  const SolverRegistry& registry = SolverRegistry::builtin();
+  const std::string& method = options.method;
+  const std::string& backend = options.backend;
+  if (backend != "cpu" && backend != "gl" && backend != "auto")
+    throw Error(fmt::format("unknown backend '{}' (expected cpu, gl or auto)", backend));
+  if (!registry.hasMethod(method)) registry.get(method, backend);  // throws, listing the solvers
+  if (!(options.refine.threshold > 0.0f)) throw Error("refine threshold must be > 0");
+
+  // The backend: GL where asked (or where auto finds a context and the method runs there).
+  std::string chosen = backend;
+  if (backend == "auto") {
+    chosen = "cpu";
+    if (!registry.find(method, "gl")) {
+      warnings_.push_back(fmt::format("solver '{}' has no GL backend; using the CPU backend", method));
+    } else if (borrowed.glContext) {
+      chosen = "gl";
+    } else {
+      try {
+        ownContext_ = std::make_unique<gl::Context>([this](const std::string& m) { warnings_.push_back(m); });
+        chosen = "gl";
+      } catch (const Error& e) {
+        warnings_.push_back(fmt::format("{}; using the CPU backend", e.what()));
+      }
+    }
+  }
+  entry_ = &registry.get(method, chosen);
+  const std::string name = fmt::format("solver {} on {}", method, chosen);
+
+  // Options: each one must be read by the chosen solver. When auto fell back to the CPU, options
+  // only the GL solver reads are dropped with a warning instead.
+  SolverSettings settings = options.settings;
+  if (backend == "auto" && chosen == "cpu") {
+    for (const auto& [key, value] : options.settings.values()) {
+      bool read = false;
+      for (const SolverOption& o : entry_->description.options) read = read || o.name == key;
+      if (!read) {
+        warnings_.push_back(fmt::format("option {}={} is not used by {}; ignored", key, value, name));
+        settings.erase(key);
+      }
+    }
+  }
+  values_ = std::make_unique<SolverOptionValues>(name, entry_->description.options, settings);
+
+  if (chosen == "gl") {
+    if (borrowed.glContext) glContext_ = borrowed.glContext;
+    else if (!ownContext_)
+      ownContext_ = std::make_unique<gl::Context>([this](const std::string& m) { warnings_.push_back(m); });
+    if (!glContext_) glContext_ = ownContext_.get();
+  }
+  if (borrowed.transport) {
+    transport_ = borrowed.transport;
+  } else {
+    ownTransport_ = std::make_unique<CpuTransport>(scene, surfaces, formFactorOptions(*values_));
+    transport_ = ownTransport_.get();
+  }
+  setupSeconds_ = watch.seconds();
+  makeSolver();
+}
+
+SolverHost::~SolverHost() = default;
+
+void SolverHost::makeSolver() {
+  const Stopwatch watch;
+  solver_.reset();
+  system_.reset();
+  analytic_.assign(surfaces_.elements.size(), Rgb(0.0f));
+  transport_->analyticIrradiance(analytic_);
+  analyticSeconds_ += watch.seconds();
+  system_ = std::make_unique<RadiositySystem>(surfaces_, analytic_);
+  solver_ = entry_->make(SolverResources{scene_, *system_, *transport_, glContext_}, *values_);
+}
+
+bool SolverHost::refine(const ProgressCallback& progress) {
+  if (refinementOver_ || refined_ >= options_.refine.budget) return refinementOver_ = true, false;
+  const Solution current = solver_->solution();
+  const std::vector<uint32_t> split =
+      elementsToRefine(surfaces_, current.radiosity, options_.refine, options_.refine.budget - refined_);
+  if (split.empty()) return refinementOver_ = true, false;
+  // Keep the finished solver's work in the totals before it goes.
+  const SolveStats s = solver_->stats();
+  finished_.shots += s.shots, finished_.iterations += s.iterations, finished_.hemicubes += s.hemicubes;
+  finished_.secondsFormFactors += s.secondsFormFactors, finished_.secondsSolve += s.secondsSolve;
+  for (uint32_t e : split) surfaces_.splitElement(e, scene_);
+  transport_->elementsChanged();
+  refined_ += split.size() * 3;
+  ++refinePasses_;
+  reportProgress(progress, "refine", 1.0, fmt::format("split {} elements", split.size()));
+  makeSolver();
+  return true;
+}
+
+bool SolverHost::step(const StepLimit& limit, const ProgressCallback& progress) {
+  const Stopwatch watch;
+  while (true) {
+    StepLimit left = limit;
+    if (limit.seconds > 0) left.seconds = std::max(1e-9, limit.seconds - watch.seconds());
+    if (solver_->step(left, progress)) return true;  // the slice ended first
+    if (!refine(progress)) return false;
+    if (limit.seconds > 0 && watch.seconds() >= limit.seconds) return true;
+  }
+}
+
+bool SolverHost::done() const { return solver_->done() && (refinementOver_ || refined_ >= options_.refine.budget); }
+
+SolveStats SolverHost::stats() const {
+  SolveStats s = solver_->stats();
+  s.shots += finished_.shots, s.iterations += finished_.iterations, s.hemicubes += finished_.hemicubes;
+  s.secondsFormFactors += finished_.secondsFormFactors + analyticSeconds_;
+  s.secondsSolve += finished_.secondsSolve;
+  s.secondsSetup = setupSeconds_;
+  s.secondsTotal = lifetime_.seconds();
+  s.warnings = warnings_;
+  s.elements = surfaces_.elements.size();
+  s.patches = surfaces_.patches.size();
+  s.rays = transport_->raysTraced();
+  s.refinedElements = refined_;
+  s.refinePasses = refinePasses_;
+  return s;
+}
+
+Solution SolverHost::solution() {
+  Solution sol = solver_->solution();
+  sol.stats = stats();
+  // Energy balance, in the mean of the three channels: what enters the system (emission from each
+  // emitting side, analytic light landing on surfaces) against what surfaces absorb.
+  double emitted = 0.0, absorbed = 0.0;
+  for (size_t e = 0; e < surfaces_.elements.size(); ++e) {
+    const Element& el = surfaces_.elements[e];
+    emitted += el.area * (channelSum(el.exitance) + channelSum(analytic_[e]));
+    absorbed += el.area * channelSum((Rgb(1.0f) - el.reflectance) * sol.irradiance[e]);
+  }
+  sol.stats.emittedPower = emitted / 3.0;
+  sol.stats.absorbedPower = absorbed / 3.0;
+  return sol;
+}
+
+Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options, const ProgressCallback& progress) {
+  SolverHost host(scene, surfaces, options);
+  while (host.step({}, progress)) {
+  }
+  return host.solution();
+}
+
+}  // namespace luxel

@@ -1,0 +1,80 @@
+// Everything one solve needs, owned in one place and alive as long as the solve: the chosen
+// solver from the registry, the CPU transport (form factors on the CPU backend, analytic lights
+// on every backend), the GL context on the GL backend (made headless, or borrowed from the
+// caller), the radiosity system, and adaptive refinement around the solver. Session and solve()
+// are built on it.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/stopwatch.h"
+#include "luxel/solve.h"
+#include "solve/radiosity_system.h"
+#include "solve/solver_registry.h"
+#include "transport/transport.h"
+
+namespace luxel {
+
+namespace gl {
+class Context;
+}
+
+// What a caller lends a SolverHost instead of the host making it: a transport built over the same
+// scene and surfaces (the benchmark records its rays), a current GL context (a viewer's window).
+struct BorrowedResources {
+  Transport* transport = nullptr;
+  gl::Context* glContext = nullptr;
+};
+
+class SolverHost {
+ public:
+  // Chooses the backend ("auto" tries GL and falls back to the CPU with a warning), checks the
+  // options against the chosen solver, builds what it needs and makes the solver. Throws Error
+  // on an unknown method, backend or option. `scene` and `surfaces` must outlive the host;
+  // `surfaces` is refined in place when options.refine.budget > 0.
+  SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options, BorrowedResources borrowed = {});
+  ~SolverHost();
+
+  // Advances the solver by at most `limit`; when it is done and refinement has budget left,
+  // splits elements and starts a new solver on the refined surfaces. Returns true while there is
+  // work left.
+  bool step(const StepLimit& limit = {}, const ProgressCallback& progress = {});
+  bool done() const;
+  // The solution so far, with every statistic filled in (energy balance included).
+  Solution solution();
+  SolveStats stats() const;
+
+  const SolverEntry& entry() const { return *entry_; }
+  const std::string& backend() const { return entry_->description.backend; }
+  Transport& transport() { return *transport_; }
+  const SurfaceSet& surfaces() const { return surfaces_; }
+
+ private:
+  void makeSolver();  // analytic irradiance, system and solver for the current surfaces
+  bool refine(const ProgressCallback& progress);
+
+  const Scene& scene_;
+  SurfaceSet& surfaces_;
+  SolveOptions options_;
+  std::vector<std::string> warnings_;
+  const SolverEntry* entry_ = nullptr;
+  std::unique_ptr<SolverOptionValues> values_;
+  std::unique_ptr<gl::Context> ownContext_;  // declared before what uses it: destroyed after
+  gl::Context* glContext_ = nullptr;
+  std::unique_ptr<Transport> ownTransport_;
+  Transport* transport_ = nullptr;
+  std::vector<Rgb> analytic_;
+  std::unique_ptr<RadiositySystem> system_;
+  std::unique_ptr<Solver> solver_;
+  // Work of solvers replaced by refinement, and the host's own time.
+  SolveStats finished_;
+  size_t refined_ = 0;
+  int refinePasses_ = 0;
+  bool refinementOver_ = false;
+  double setupSeconds_ = 0.0, analyticSeconds_ = 0.0;
+  Stopwatch lifetime_;
+};
+
+}  // namespace luxel

@@ -1,0 +1,18 @@
+// Every solver luxel ships, one line each. Adding a solver is one new file with its
+// registerXxx function, and one line here (docs/extending.md).
+namespace luxel {
+
+class SolverRegistry;
+void registerCpuProgressive(SolverRegistry&);  // solve/progressive_solver.cpp
+void registerCpuGather(SolverRegistry&);       // solve/gather_solver.cpp
+void registerGlProgressive(SolverRegistry&);   // gl/gl_solvers.cpp
+void registerGlGather(SolverRegistry&);        // gl/gl_solvers.cpp
+
+void registerBuiltinSolvers(SolverRegistry& registry) {
+  registerCpuProgressive(registry);
+  registerCpuGather(registry);
+  registerGlProgressive(registry);
+  registerGlGather(registry);
+}
+
+}  // namespace luxel
