@@ -16,6 +16,7 @@
 #include "luxel/image.h"
 #include "luxel/import.h"
 #include "luxel/lightmap.h"
+#include "luxel/session.h"
 #include "luxel/solve.h"
 #include "progress_bar.h"
 
@@ -78,18 +79,16 @@ int runBake(const BakeArgs& a) {
   validateSolveOptions(so);
   if (a.lightmaps) {
     const std::vector<uint8_t> vertexColored = meshesMatching(scene, a.vertexColorsFor);  // before the solve
-    AtlasOptions ao;
-    ao.texelsPerMetre = a.texelsPerMetre;
-    ao.pageSize = a.lightmapSize;
-    // Every texel is an element of the solve: by default, about as many texels as the element
-    // budget (a whole 1024 page on the Cornell box would be half a million elements).
-    if (ao.texelsPerMetre <= 0.0f)
-      ao.texelsPerMetre = texelsPerMetreForBudget(scene, a.solve.elements > 0 ? a.solve.elements : 10000);
-    const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
-    LightmapBakeOptions lo;
-    lo.solve = so;
-    lo.dilation = ao.gutter;
-    const LightmapBake bake = bakeLightmaps(scene, atlas, lo, bar.callback());
+    LightmapRecipe recipe;
+    recipe.texelsPerMetre = a.texelsPerMetre;
+    recipe.texelBudget = a.solve.elements;
+    recipe.pageSize = a.lightmapSize;
+    recipe.solve = so;
+    const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
+    const LightmapAtlas& atlas = baked.atlas;
+    const LightmapBake& bake = baked.bake;
+    if (!a.quiet)
+      for (const std::string& w : bake.solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
     GlbOptions go;
     go.flippedFaces = flippedFaceFlags(scene, bake.surfaces.surfaces);
     addLightmaps(go, scene, atlas, bake, vertexColored);
@@ -129,31 +128,33 @@ int runBake(const BakeArgs& a) {
     }
     return 0;
   }
-  SurfaceSet surfaces = discretise(scene, discretiseOptions(a.solve));
-  Solution solution = solve(scene, surfaces, so, bar.callback());
+  Session session(std::move(scene), discretiseOptions(a.solve), {so});
+  const Solution solution = session.solve(bar.callback());
+  const SurfaceSet& surfaces = session.surfaces();
+  const Scene& solved = session.scene();
   if (!a.quiet)
     for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
   GlbOptions go;
-  go.flippedFaces = flippedFaceFlags(scene, surfaces);
+  go.flippedFaces = flippedFaceFlags(solved, surfaces);
   if (a.vertexColors) {  // on the element tessellation: a one-quad floor has no vertex under the light
     go.elements = &surfaces;
     go.elementColors = elementRadiance(surfaces, solution);
   }
-  writeGlb(scene, out, go);
+  writeGlb(solved, out, go);
   bar.finish();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (!a.quiet) {
     const SolveStats& s = solution.stats;
     std::cout << fmt::format("luxel: {} — {} elements in {} patches, {} ({} shots, {} iterations), unshot {:.3f}%\n",
-                             scene.name, s.elements, s.patches, s.method, s.shots, s.iterations,
+                             solved.name, s.elements, s.patches, s.method, s.shots, s.iterations,
                              100.0 * s.unshotFraction);
     if (a.vertexColors)
       std::cout << fmt::format("luxel: bake {} elements with vertex colours (radiance); total {:.3f} s\n",
                                surfaces.elements.size(), total);
     else
-      std::cout << fmt::format("luxel: bake {} triangles; total {:.3f} s\n", scene.triangleCount(), total);
+      std::cout << fmt::format("luxel: bake {} triangles; total {:.3f} s\n", solved.triangleCount(), total);
     std::cout << "luxel: wrote " << a.output << "\n";
   }
   return 0;

@@ -4,14 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
@@ -20,7 +18,9 @@
 #include "luxel/import.h"
 #include "luxel/lightmap.h"
 #include "luxel/render.h"
+#include "luxel/session.h"
 #include "luxel/solve.h"
+#include "luxel/stats.h"
 #include "bake_command.h"
 #include "solve_args.h"
 #include "bench_command.h"
@@ -68,40 +68,8 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
-// A camera that frames the scene's bounding box from +z when the scene defines none.
-Camera framingCamera(const Scene& scene, float fov) {
-  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (const Mesh& m : scene.meshes)
-    for (const Vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  Vec3 centre = 0.5f * (lo + hi);
-  float radius = 0.5f * glm::length(hi - lo);
-  Camera c;
-  c.name = "framing";
-  c.fovY = fov > 0.0f ? fov : 45.0f;
-  c.target = centre;
-  c.eye = centre + Vec3(0.0f, 0.0f, 1.1f * radius / std::tan(glm::radians(c.fovY) * 0.5f));
-  c.up = Vec3(0, 1, 0);
-  return c;
-}
-
-Camera chooseCamera(const Scene& scene, const RenderArgs& a) {
-  Camera cam;
-  if (!a.camera.empty()) {
-    const Camera* c = scene.findCamera(a.camera);
-    if (!c) {
-      std::string names;
-      for (const Camera& k : scene.cameras) names += (names.empty() ? "" : ", ") + k.name;
-      throw Error(fmt::format("scene '{}' has no camera '{}' (cameras: {})", scene.name, a.camera,
-                              names.empty() ? "none" : names));
-    }
-    cam = *c;
-  } else if (const Camera* d = scene.findCamera("default")) {
-    cam = *d;
-  } else if (!scene.cameras.empty()) {
-    cam = scene.cameras.front();
-  } else {
-    cam = framingCamera(scene, a.fov);
-  }
+Camera cameraFor(const Scene& scene, const RenderArgs& a) {
+  Camera cam = chooseCamera(scene, a.camera, a.fov);
   if (a.eye) cam.eye = parseVec3(*a.eye, "eye");
   if (a.target) cam.target = parseVec3(*a.target, "target");
   if (a.up) cam.up = parseVec3(*a.up, "up");
@@ -135,11 +103,12 @@ int runRender(const RenderArgs& a) {
   cli::ProgressBar bar(a.quiet);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = loadScene(a.scene);
+  const std::string sceneName = scene.name;
   if (!a.quiet)
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
   RenderOptions ro;
-  ro.camera = chooseCamera(scene, a);
+  ro.camera = cameraFor(scene, a);
   ro.width = width, ro.height = height;
   ro.samplesPerPixel = a.spp;
   // "lightmap": bake lightmaps and show them as an engine would (luxel::renderLightmapped).
@@ -149,26 +118,23 @@ int runRender(const RenderArgs& a) {
   tm.curve = parseToneCurve(a.toneCurve);
   tm.exposure = a.exposure;
 
-  const SolveOptions so = cli::solveOptions(a.solve);
+  SolveOptions so = cli::solveOptions(a.solve);
   validateSolveOptions(so);  // before the solve: a bad name fails fast
   Solution solution;
   Image image;
   RenderStats rs;
   if (lightmapped) {
-    AtlasOptions ao;
-    ao.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize
-                                                   : texelsPerMetreForBudget(scene, a.solve.elements > 0 ? a.solve.elements : 10000);
-    const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
-    LightmapBakeOptions lo;
-    lo.solve = so;
-    lo.dilation = ao.gutter;
-    const LightmapBake bake = bakeLightmaps(scene, atlas, lo, bar.callback());
-    solution = bake.solution;
-    image = renderLightmapped(scene, atlas, bake, ro, bar.callback(), &rs);
+    LightmapRecipe recipe;
+    recipe.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize : 0.0f;
+    recipe.texelBudget = a.solve.elements;
+    recipe.solve = so;
+    const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
+    solution = baked.bake.solution;
+    image = renderLightmapped(scene, baked.atlas, baked.bake, ro, bar.callback(), &rs);
   } else {
-    SurfaceSet surfaces = discretise(scene, cli::discretiseOptions(a.solve));
-    solution = solve(scene, surfaces, so, bar.callback());
-    image = render(scene, surfaces, solution, ro, bar.callback(), &rs);
+    Session session(std::move(scene), cli::discretiseOptions(a.solve), {so});
+    solution = session.solve(bar.callback());
+    image = render(session.scene(), session.surfaces(), solution, ro, bar.callback(), &rs);
   }
   if (!a.quiet)
     for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
@@ -178,35 +144,18 @@ int runRender(const RenderArgs& a) {
 
   const SolveStats& s = solution.stats;
   if (!a.statsPath.empty()) {
-    nlohmann::json j = {
-        {"scene", scene.name},
-        {"elements", s.elements},
-        {"patches", s.patches},
-        {"solver", s.method},
-        {"backend", s.backend},
-        {"device", s.device},
-        {"shots", s.shots},
-        {"iterations", s.iterations},
-        {"rays", s.rays},
-        {"rays_per_second", s.raysPerSecond()},
-        {"residual", s.residual},
-        {"unshot_fraction", s.unshotFraction},
-        {"refined_elements", s.refinedElements},
-        {"seconds", {{"setup", s.secondsSetup}, {"form_factors", s.secondsFormFactors}, {"solve", s.secondsSolve},
-                     {"solve_total", s.secondsTotal}, {"render", rs.seconds}, {"total", total}}},
-        {"energy", {{"emitted", s.emittedPower}, {"absorbed", s.absorbedPower}}},
-        {"image", {{"width", width}, {"height", height}, {"spp", a.spp}, {"mode", a.mode},
-                   {"mean_luminance", meanLuminance(image)}, {"render_rays", rs.rays}}},
-        {"threads", a.threads > 0 ? a.threads : tbb::info::default_concurrency()},
-        {"outputs", a.outputs},
-    };
-    std::ofstream out(a.statsPath);
-    out << j.dump(2) << "\n";
-    if (!out) throw Error(fmt::format("{}: cannot write statistics", a.statsPath));
+    RunRecord record;
+    record.scene = sceneName;
+    record.solve = s;
+    record.image = RunRecord::Image{width, height, a.spp, a.mode, meanLuminance(image), rs.rays, rs.seconds};
+    record.threads = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
+    record.outputs = a.outputs;
+    record.totalSeconds = total;
+    writeStatsJson(record, a.statsPath);
   }
   if (!a.quiet) {
     std::cout << fmt::format("luxel: {} — {} elements in {} patches, {} on {}{} ({} shots, {} iterations), unshot {:.3f}%\n",
-                             scene.name, s.elements, s.patches, s.method, s.backend,
+                             sceneName, s.elements, s.patches, s.method, s.backend,
                              s.device.empty() ? "" : " (" + s.device + ")", s.shots, s.iterations, 100.0 * s.unshotFraction);
     std::cout << fmt::format("luxel: solve {:.3f} s (setup {:.3f}, form factors {:.3f}, iterate {:.3f}), {:.1f} M rays/s\n",
                              s.secondsTotal, s.secondsSetup, s.secondsFormFactors, s.secondsSolve, s.raysPerSecond() / 1e6);

@@ -115,6 +115,22 @@ struct LightmapBake {
 LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options = {},
                            const ProgressCallback& progress = {});
 
+// The recipe `luxel render --mode lightmap` and `luxel bake --lightmaps` share: an atlas at the
+// given density (or about `texelBudget` texels, since every texel is an element of the solve: a
+// whole 1024 page on the Cornell box would be half a million), then a bake whose dilation fills
+// the atlas's gutter.
+struct LightmapRecipe {
+  float texelsPerMetre = 0.0f;  // 0: about texelBudget texels
+  size_t texelBudget = 10000;
+  int pageSize = 1024;
+  SolveOptions solve;
+};
+struct BakedLightmaps {
+  LightmapAtlas atlas;
+  LightmapBake bake;
+};
+BakedLightmaps bakeLightmaps(const Scene& scene, const LightmapRecipe& recipe, const ProgressCallback& progress = {});
+
 // A page as an image, row 0 at the top (v = 1), for writeExr.
 Image lightmapPageImage(const LightmapBake& bake, int page);
 // RGBM, 8 bits per channel, linear (no sRGB curve): value = rgb/255 * alpha/255 * range, with

@@ -63,6 +63,9 @@ void registerGlProgressive(SolverRegistry& registry) {
   // Shooting hemicubes are a midpoint rule over k x k points of the shooter (the half-shadow
   // factor at 3 x 3: 5% low, tests/gl/test_gl_half_shadow.cpp).
   e.accuracy.halfShadow = 0.08;
+  // The same rule over the Cornell box's larger patches at 300 elements: 0.0197 on llvmpipe (0.0104
+  // at 1,500 elements, tests/gl/test_gl_progressive.cpp).
+  e.accuracy.cornell = 0.03;
   registry.add(std::move(e));
 }
 
@@ -84,7 +87,9 @@ void registerGlGather(SolverRegistry& registry) {
     s.maxIterations = v.integer("max-iterations");
     return gl::makeGlGatherSolver(r.system, *r.glContext, s);
   };
-  e.converged.set("residual", 1e-6).set("hemicube-resolution", 64);
+  // Each Jacobi sweep renders every element's hemicubes: 1e-4 is converged well past the
+  // closed forms' tolerances (the furnace's error is rho^k after k sweeps) at half the sweeps of 1e-6.
+  e.converged.set("residual", 1e-4).set("hemicube-resolution", 64);
   registry.add(std::move(e));
 }
 

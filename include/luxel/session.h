@@ -1,0 +1,66 @@
+// A session: one scene, its surfaces, and everything that solves them (the transport, the GL
+// context, the solver), owned together and alive as long as the session. The command line's
+// render, bake and bench use it, and so will the viewer and the Python bindings: step it, show
+// its solution between steps, read its statistics.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "luxel/progress.h"
+#include "luxel/scene.h"
+#include "luxel/solution.h"
+#include "luxel/solve.h"
+#include "luxel/solver.h"
+#include "luxel/surface.h"
+
+namespace luxel {
+
+struct SessionOptions {
+  SolveOptions solve;
+  // The GL backend draws in the caller's OpenGL 4.5 context, current on the calling thread (a
+  // viewer's window), instead of making a headless one. It must stay current, on that thread,
+  // for every call of the session.
+  bool borrowCurrentGlContext = false;
+};
+
+class Session {
+ public:
+  // Discretises `scene` and makes the chosen solver. Throws Error on an unknown method, backend
+  // or option, or a scene that cannot be discretised.
+  Session(Scene scene, const DiscretiseOptions& discretise, const SessionOptions& options);
+  // On surfaces made by the caller (lightmap texels, a test's own cut).
+  Session(Scene scene, SurfaceSet surfaces, const SessionOptions& options);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  const Scene& scene() const;
+  const SurfaceSet& surfaces() const;  // refined in place when options.solve.refine asks for it
+  const std::string& backend() const;  // "cpu" or "gl", after "auto" has chosen
+
+  // Advances the solve by at most `limit` (StepLimit{}: to the end). Returns true while there is
+  // work left. Throws Cancelled when `progress` says stop; the session stays usable.
+  bool step(const StepLimit& limit = {}, const ProgressCallback& progress = {});
+  bool done() const;
+  // Steps to the end and returns the solution.
+  Solution solve(const ProgressCallback& progress = {});
+  // The solution so far, with every statistic (energy balance included).
+  Solution solution();
+  SolveStats stats() const;
+
+  // The camera a render of this session's scene uses: the one called `name` (Error listing the
+  // scene's cameras when there is none), else the one called "default", else the first, else one
+  // framing the scene's bounding box from +z with `fovY` degrees (45 when 0).
+  Camera camera(const std::string& name = {}, float fovY = 0.0f) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// The camera choice of Session::camera, for a scene without a session.
+Camera chooseCamera(const Scene& scene, const std::string& name = {}, float fovY = 0.0f);
+
+}  // namespace luxel

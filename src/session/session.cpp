@@ -1,0 +1,87 @@
+#include "luxel/session.h"
+
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "gl/gl_context.h"
+#include "luxel/error.h"
+#include "session/solver_host.h"
+
+namespace luxel {
+
+struct Session::State {
+  Scene scene;
+  SurfaceSet surfaces;
+  std::unique_ptr<gl::Context> borrowed;  // the caller's context, wrapped; declared before the host
+  std::unique_ptr<SolverHost> host;
+
+  void makeHost(const SessionOptions& options) {
+    BorrowedResources lent;
+    if (options.borrowCurrentGlContext && options.solve.backend != "cpu") {
+      borrowed = std::make_unique<gl::Context>(gl::Context::BorrowCurrent{});
+      lent.glContext = borrowed.get();
+    }
+    host = std::make_unique<SolverHost>(scene, surfaces, options.solve, lent);
+  }
+};
+
+
+Session::Session(Scene scene, const DiscretiseOptions& discretise, const SessionOptions& options)
+    : state_(std::make_unique<State>()) {
+  validateSolveOptions(options.solve);  // before the discretisation, which can take a while
+  state_->scene = std::move(scene);
+  state_->surfaces = luxel::discretise(state_->scene, discretise);
+  state_->makeHost(options);
+}
+
+Session::Session(Scene scene, SurfaceSet surfaces, const SessionOptions& options) : state_(std::make_unique<State>()) {
+  state_->scene = std::move(scene);
+  state_->surfaces = std::move(surfaces);
+  state_->makeHost(options);
+}
+
+Session::~Session() = default;
+
+const Scene& Session::scene() const { return state_->scene; }
+const SurfaceSet& Session::surfaces() const { return state_->surfaces; }
+const std::string& Session::backend() const { return state_->host->backend(); }
+bool Session::step(const StepLimit& limit, const ProgressCallback& progress) { return state_->host->step(limit, progress); }
+bool Session::done() const { return state_->host->done(); }
+Solution Session::solution() { return state_->host->solution(); }
+SolveStats Session::stats() const { return state_->host->stats(); }
+
+Solution Session::solve(const ProgressCallback& progress) {
+  while (step({}, progress)) {
+  }
+  return solution();
+}
+
+Camera Session::camera(const std::string& name, float fovY) const { return chooseCamera(state_->scene, name, fovY); }
+
+Camera chooseCamera(const Scene& scene, const std::string& name, float fovY) {
+  if (!name.empty()) {
+    if (const Camera* c = scene.findCamera(name)) return *c;
+    std::string names;
+    for (const Camera& k : scene.cameras) names += (names.empty() ? "" : ", ") + k.name;
+    throw Error(fmt::format("scene '{}' has no camera '{}' (cameras: {})", scene.name, name, names.empty() ? "none" : names));
+  }
+  if (const Camera* d = scene.findCamera("default")) return *d;
+  if (!scene.cameras.empty()) return scene.cameras.front();
+  // None: frame the bounding box from +z.
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Mesh& m : scene.meshes)
+    for (const Vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const Vec3 centre = 0.5f * (lo + hi);
+  const float radius = 0.5f * glm::length(hi - lo);
+  Camera c;
+  c.name = "framing";
+  c.fovY = fovY > 0.0f ? fovY : 45.0f;
+  c.target = centre;
+  c.eye = centre + Vec3(0.0f, 0.0f, 1.1f * radius / std::tan(glm::radians(c.fovY) * 0.5f));
+  c.up = Vec3(0, 1, 0);
+  return c;
+}
+
+}  // namespace luxel

@@ -1,0 +1,53 @@
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
+#include "luxel/error.h"
+#include "luxel/stats.h"
+
+namespace luxel {
+
+std::string statsJson(const RunRecord& r) {
+  const SolveStats& s = r.solve;
+  nlohmann::json j = {
+      {"scene", r.scene},
+      {"elements", s.elements},
+      {"patches", s.patches},
+      {"solver", s.method},
+      {"backend", s.backend},
+      {"device", s.device},
+      {"shots", s.shots},
+      {"iterations", s.iterations},
+      {"rays", s.rays},
+      {"rays_per_second", s.raysPerSecond()},
+      {"residual", s.residual},
+      {"unshot_fraction", s.unshotFraction},
+      {"refined_elements", s.refinedElements},
+      {"warnings", s.warnings},
+      {"seconds", {{"setup", s.secondsSetup}, {"form_factors", s.secondsFormFactors}, {"solve", s.secondsSolve},
+                   {"solve_total", s.secondsTotal}, {"render", r.image ? r.image->renderSeconds : 0.0},
+                   {"total", r.totalSeconds}}},
+      {"energy", {{"emitted", s.emittedPower}, {"absorbed", s.absorbedPower}}},
+      {"threads", r.threads},
+      {"outputs", r.outputs},
+  };
+  if (r.image)
+    j["image"] = {{"width", r.image->width},         {"height", r.image->height},
+                  {"spp", r.image->samplesPerPixel}, {"mode", r.image->mode},
+                  {"mean_luminance", r.image->meanLuminance}, {"render_rays", r.image->renderRays}};
+  return j.dump(2) + "\n";
+}
+
+void writeStatsJson(const RunRecord& record, const std::filesystem::path& path) {
+  const std::string text = statsJson(record);
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) throw Error("cannot write statistics");
+  });
+}
+
+}  // namespace luxel
