@@ -57,8 +57,23 @@ struct Face {
   int vertexCount() const { return isTriangle() ? 3 : 4; }
 };
 
+// An object: meshes placed together by one transform, from a glTF, FBX or COLLADA node or a
+// named object of a scene file. A dynamic object moves after loading (Scene::placeObject): the
+// ray tracer keeps it as an instance, so a move is a transform and a commit, not a rebuild.
+struct Object {
+  std::string name;
+  glm::mat4 transform{1.0f};  // object space to world space
+  bool dynamic = false;
+  // The transform under which its meshes' restPositions were recorded (its first move).
+  glm::mat4 restTransform{1.0f};
+};
+inline constexpr uint32_t kNoObject = 0xFFFFFFFFu;
+
 struct Mesh {
   std::string name;
+  // The object that places this mesh (index into Scene::objects), or kNoObject for geometry given
+  // in world space. `positions` are always in world space, the object's transform applied.
+  uint32_t object = kNoObject;
   std::vector<Vec3> positions;
   std::vector<Vec2> uvs;  // empty, or one per position
   // Empty, or one per position: a second UV set (glTF TEXCOORD_1) laying the mesh out in a
@@ -76,6 +91,9 @@ struct Mesh {
   // discretisation has to cut in two (non-planar or non-convex) falls back to the automatic cut;
   // the back face of a two-sided material keeps the grid.
   std::vector<std::array<uint16_t, 2>> elementGrids;
+  // World positions where the mesh stood when its object was first moved (Scene::placeObject):
+  // every later pose is computed from these, so that many moves do not accumulate rounding.
+  std::vector<Vec3> restPositions;
 };
 
 struct Light {
@@ -105,6 +123,7 @@ struct Camera {
 
 struct Scene {
   std::string name;
+  std::vector<Object> objects;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Texture> textures;
@@ -120,6 +139,19 @@ struct Scene {
   void validate() const;
   const Camera* findCamera(const std::string& name) const;
   int findMaterial(const std::string& name) const;  // -1 when absent
+  int findObject(const std::string& name) const;    // -1 when absent
+  std::vector<uint32_t> dynamicObjects() const;     // indices of the objects marked dynamic
+
+  // Moves a dynamic object to `transform` (object to world): its meshes' positions follow.
+  // Throws Error when the object is not dynamic, or the transform is not finite or not a
+  // similarity (rotation, translation and uniform scale: a mirror or a shear would change the
+  // faces' areas unevenly and turn fronts round).
+  void placeObject(uint32_t object, const glm::mat4& transform);
 };
+
+// The transform that takes geometry from where it stood under `from` to where it stands under
+// `to` (to * inverse(from)), checked to be a similarity with positive scale; `scale` receives its
+// uniform scale. Throws Error naming `what` otherwise.
+glm::mat4 similarityBetween(const glm::mat4& from, const glm::mat4& to, const std::string& what, float* scale = nullptr);
 
 }  // namespace luxel

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "luxel/progress.h"
@@ -49,6 +50,14 @@ class Session {
   // The solution so far, with every statistic (energy balance included).
   Solution solution();
   SolveStats stats() const;
+
+  // Moves dynamic objects (Scene::objects[i].dynamic) to new transforms (object to world, each a
+  // similarity of the pose they were loaded in): the scene's meshes, the surfaces and the ray
+  // tracer's instances follow (a transform and a commit, no rebuild), and the solve continues
+  // from the last solution where the solver can follow moves, or starts again where it cannot.
+  // Throws Error naming the object when it is not dynamic or the transform is not a similarity.
+  void placeObjects(const std::vector<std::pair<uint32_t, glm::mat4>>& placements);
+  void placeObject(uint32_t object, const glm::mat4& transform) { placeObjects({{object, transform}}); }
 
   // The camera a render of this session's scene uses: the one called `name` (Error listing the
   // scene's cameras when there is none), else the one called "default", else the first, else one

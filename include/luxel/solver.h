@@ -6,6 +6,7 @@
 #include <concepts>
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -97,6 +98,15 @@ class Solver {
   // Statistics so far: method, backend, work done, residual, seconds split into form factors
   // and solve. Elements, patches, rays and energy are filled in by whoever owns the transport.
   virtual SolveStats stats() const = 0;
+
+  // Dynamic objects moved: the scene, the surfaces, the transport and the system's areas and
+  // analytic irradiance are already in their new state. Returns true when the solver has brought
+  // its own state along and continues from it (what dynamic radiosity does); false, the default,
+  // when it cannot, and its owner replaces it with a fresh solver.
+  virtual bool objectsMoved(std::span<const uint32_t> objects) {
+    (void)objects;
+    return false;
+  }
 };
 
 }  // namespace luxel

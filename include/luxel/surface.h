@@ -82,7 +82,24 @@ struct SurfaceSet {
   size_t flippedFaces = 0;   // faces turned round by orientByLight
   size_t splitQuads = 0;     // non-planar quads cut into two triangles
 
+  // Each scene object's transform when these surfaces were cut (Scene::objects, same order).
+  std::vector<glm::mat4> objectTransforms;
+  // Where a dynamic object's faces, patches and elements were cut, recorded at its first move, so
+  // that every pose is computed from them (no rounding builds up over many moves).
+  struct RestPose {
+    uint32_t object = 0;
+    std::vector<uint32_t> faces, patches, elements;
+    std::vector<SurfaceFace> faceRest;
+    std::vector<Patch> patchRest;
+    std::vector<Element> elementRest;
+  };
+  std::vector<RestPose> restPoses;
+
   float totalArea() const;
+  // Moves the faces, patches and elements of scene.objects[object] to where its current transform
+  // puts them (after Scene::placeObject). Throws Error when the move is not a similarity, or the
+  // object's elements were refined after its first move.
+  void placeObject(const Scene& scene, uint32_t object);
   // Splits element `e` into four (quads at parameter midpoints, triangles at edge midpoints).
   // The first child reuses index `e`; the other three are appended. Patches are updated.
   void splitElement(uint32_t e, const Scene& scene);

@@ -322,6 +322,7 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
   for (const Mesh& mesh : scene.meshes)
     for (const Vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   set.sceneExtent = glm::length(hi - lo);
+  for (const Object& o : scene.objects) set.objectTransforms.push_back(o.transform);
 
   const float minArea = 1e-14f * set.sceneExtent * set.sceneExtent;
   std::vector<ElementGrid> grids;  // one per entry of set.faces

@@ -102,6 +102,10 @@ void Scene::validate() const {
   }
   if (glm::length(up) < 1e-12f || !finite(up))
     throw Error(fmt::format("scene '{}': up vector is zero or not finite", name));
+  for (const Mesh& mesh : meshes)
+    if (mesh.object != kNoObject && mesh.object >= objects.size())
+      throw Error(fmt::format("scene '{}': mesh '{}': object index {} out of range ({} objects)", name, mesh.name,
+                              mesh.object, objects.size()));
 }
 
 }  // namespace luxel

@@ -74,13 +74,35 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
 
 SolverHost::~SolverHost() = default;
 
-void SolverHost::makeSolver() {
+void SolverHost::computeAnalytic() {
   const Stopwatch watch;
-  solver_.reset();
-  system_.reset();
   analytic_.assign(surfaces_.elements.size(), Rgb(0.0f));
   transport_->analyticIrradiance(analytic_);
   analyticSeconds_ += watch.seconds();
+}
+
+void SolverHost::retire() {
+  // Keep the finished solver's work in the totals before it goes.
+  const SolveStats s = solver_->stats();
+  finished_.shots += s.shots, finished_.iterations += s.iterations, finished_.hemicubes += s.hemicubes;
+  finished_.secondsFormFactors += s.secondsFormFactors, finished_.secondsSolve += s.secondsSolve;
+}
+
+void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
+  if (objects.empty()) return;
+  transport_->objectsMoved(objects);
+  computeAnalytic();
+  system_->refresh(analytic_);
+  if (!solver_->objectsMoved(objects)) {
+    retire();
+    makeSolver(/*analyticIsCurrent=*/true);
+  }
+}
+
+void SolverHost::makeSolver(bool analyticIsCurrent) {
+  solver_.reset();
+  system_.reset();
+  if (!analyticIsCurrent) computeAnalytic();
   system_ = std::make_unique<RadiositySystem>(surfaces_, analytic_);
   solver_ = entry_->make(SolverResources{scene_, *system_, *transport_, glContext_}, *values_);
 }
@@ -91,10 +113,7 @@ bool SolverHost::refine(const ProgressCallback& progress) {
   const std::vector<uint32_t> split =
       elementsToRefine(surfaces_, current.radiosity, options_.refine, options_.refine.budget - refined_);
   if (split.empty()) return refinementOver_ = true, false;
-  // Keep the finished solver's work in the totals before it goes.
-  const SolveStats s = solver_->stats();
-  finished_.shots += s.shots, finished_.iterations += s.iterations, finished_.hemicubes += s.hemicubes;
-  finished_.secondsFormFactors += s.secondsFormFactors, finished_.secondsSolve += s.secondsSolve;
+  retire();
   for (uint32_t e : split) surfaces_.splitElement(e, scene_);
   transport_->elementsChanged();
   refined_ += split.size() * 3;

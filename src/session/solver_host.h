@@ -42,6 +42,10 @@ class SolverHost {
   // work left.
   bool step(const StepLimit& limit = {}, const ProgressCallback& progress = {});
   bool done() const;
+  // Dynamic objects moved: `scene` and the surfaces are already in their new places (Scene and
+  // SurfaceSet::placeObject). The transport updates its instances, the analytic light is
+  // recomputed, and the solver continues if it can follow moves or starts afresh otherwise.
+  void objectsMoved(std::span<const uint32_t> objects);
   // The solution so far, with every statistic filled in (energy balance included).
   Solution solution();
   SolveStats stats() const;
@@ -52,7 +56,10 @@ class SolverHost {
   const SurfaceSet& surfaces() const { return surfaces_; }
 
  private:
-  void makeSolver();  // analytic irradiance, system and solver for the current surfaces
+  // Analytic irradiance (unless current), system and solver for the current surfaces.
+  void makeSolver(bool analyticIsCurrent = false);
+  void computeAnalytic();
+  void retire();  // adds the current solver's work to the totals, before it is replaced
   bool refine(const ProgressCallback& progress);
 
   const Scene& scene_;

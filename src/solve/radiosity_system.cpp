@@ -2,8 +2,13 @@
 
 namespace luxel {
 
-RadiositySystem::RadiositySystem(const SurfaceSet& set, std::vector<Rgb> analyticIrradiance)
-    : surfaces(set), analytic(std::move(analyticIrradiance)) {
+RadiositySystem::RadiositySystem(const SurfaceSet& set, std::vector<Rgb> analyticIrradiance) : surfaces(set) {
+  refresh(std::move(analyticIrradiance));
+}
+
+void RadiositySystem::refresh(std::vector<Rgb> analyticIrradiance) {
+  const SurfaceSet& set = surfaces;
+  analytic = std::move(analyticIrradiance);
   const size_t n = set.elements.size();
   emission.resize(n);
   reflectance.resize(n);

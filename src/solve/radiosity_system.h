@@ -23,6 +23,8 @@ struct RadiositySystem {
   std::vector<float> patchArea;  // A_p, the sum of its elements' areas
 
   RadiositySystem(const SurfaceSet& surfaces, std::vector<Rgb> analyticIrradiance);
+  // Reads the surfaces again (areas after a move) with new analytic irradiance.
+  void refresh(std::vector<Rgb> analyticIrradiance);
 
   size_t elementCount() const { return area.size(); }
   size_t patchCount() const { return patchArea.size(); }

@@ -32,27 +32,23 @@ RTCDevice device() {
   return dev;
 }
 
-}  // namespace
-
-RayTracer::RayTracer(std::span<const Polygon> polygons) {
-  RTCDevice dev = device();
-  scene_ = rtcNewScene(dev);
-  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+// A BVH over the polygons `which` of `polygons` (all when empty).
+RTCScene buildPolygonScene(RTCDevice dev, std::span<const Polygon> polygons, const std::vector<uint32_t>* which) {
+  const size_t n = which ? which->size() : polygons.size();
+  RTCScene scene = rtcNewScene(dev);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
   RTCGeometry geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_QUAD);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), polygons.size() * 4));
-  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(uint32_t), polygons.size()));
+  auto* vertices = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), std::max<size_t>(n, 1) * 4));
+  auto* indices = static_cast<uint32_t*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(uint32_t), n));
   if (!vertices || !indices) {
     rtcReleaseGeometry(geom);
-    rtcReleaseScene(scene_);
-    throw Error(fmt::format("Embree could not allocate buffers for {} polygons: {}",
-                            polygons.size(), lastEmbreeError()));
+    rtcReleaseScene(scene);
+    throw Error(fmt::format("Embree could not allocate buffers for {} polygons: {}", n, lastEmbreeError()));
   }
-  quad_.resize(polygons.size());
-  for (size_t i = 0; i < polygons.size(); ++i) {
-    const Polygon& p = polygons[i];
-    quad_[i] = p.count == 4;
+  for (size_t i = 0; i < n; ++i) {
+    const Polygon& p = polygons[which ? (*which)[i] : i];
     for (int c = 0; c < 4; ++c) {
       // Triangles repeat their last corner, which Embree's quad geometry treats as a triangle.
       // Embree cuts a quad along its 1-3 diagonal; everything else in luxel (elements, bake,
@@ -66,26 +62,79 @@ RayTracer::RayTracer(std::span<const Polygon> polygons) {
     }
   }
   rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene_, geom);
+  rtcAttachGeometry(scene, geom);
   rtcReleaseGeometry(geom);
-  rtcCommitScene(scene_);
+  rtcCommitScene(scene);
+  return scene;
+}
+
+}  // namespace
+
+RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t> instanceOf) {
+  if (!instanceOf.empty() && instanceOf.size() != polygons.size())
+    throw Error(fmt::format("ray tracer: {} instance indices for {} polygons", instanceOf.size(), polygons.size()));
+  RTCDevice dev = device();
+  quad_.resize(polygons.size());
+  for (size_t i = 0; i < polygons.size(); ++i) quad_[i] = polygons[i].count == 4;
+  int32_t instanceCount = 0;
+  for (int32_t k : instanceOf) instanceCount = std::max(instanceCount, k + 1);
+  if (instanceCount == 0) {
+    scene_ = buildPolygonScene(dev, polygons, nullptr);
+  } else {
+    members_.resize(size_t(instanceCount) + 1);
+    for (uint32_t i = 0; i < polygons.size(); ++i) members_[size_t(instanceOf[i] + 1)].push_back(i);
+    scene_ = rtcNewScene(dev);
+    // The top level is rebuilt at every commit: a handful of instances, so fast build over speed.
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
+    const glm::mat4 identity(1.0f);
+    for (size_t part = 0; part < members_.size(); ++part) {
+      parts_.push_back(buildPolygonScene(dev, polygons, &members_[part]));
+      RTCGeometry instance = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(instance, parts_.back());
+      rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
+      rtcCommitGeometry(instance);
+      rtcAttachGeometryByID(scene_, instance, unsigned(part));
+      if (part > 0) instances_.push_back(instance);
+      else rtcReleaseGeometry(instance);
+    }
+    rtcCommitScene(scene_);
+  }
   if (rtcGetDeviceError(dev) != RTC_ERROR_NONE)
     throw Error(fmt::format("Embree could not build the scene: {}", lastEmbreeError()));
 }
 
-RayTracer::~RayTracer() {
-  if (scene_) rtcReleaseScene(scene_);
+void RayTracer::placeInstance(uint32_t instance, const glm::mat4& transform) {
+  if (instance >= instances_.size())
+    throw Error(fmt::format("ray tracer: no instance {} ({} instances)", instance, instances_.size()));
+  rtcSetGeometryTransform(instances_[instance], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+  rtcCommitGeometry(instances_[instance]);
 }
 
-namespace {
+void RayTracer::commit() {
+  rtcCommitScene(scene_);
+  if (rtcGetDeviceError(device()) != RTC_ERROR_NONE)
+    throw Error(fmt::format("Embree could not update the scene: {}", lastEmbreeError()));
+}
 
-bool visitNear(RTCPointQueryFunctionArguments* args) {
-  if ((*static_cast<const std::function<bool(uint32_t)>*>(args->userPtr))(args->primID)) return false;
+RayTracer::~RayTracer() {
+  for (RTCGeometry g : instances_) rtcReleaseGeometry(g);
+  if (scene_) rtcReleaseScene(scene_);
+  for (RTCScene part : parts_) rtcReleaseScene(part);
+}
+
+struct NearQuery {
+  const RayTracer* tracer;
+  const std::function<bool(uint32_t)>* visit;
+};
+
+bool visitNearPolygon(RTCPointQueryFunctionArguments* args) {
+  const auto* q = static_cast<const NearQuery*>(args->userPtr);
+  const unsigned part = args->context->instStackSize > 0 ? args->context->instID[0] : 0;
+  if ((*q->visit)(q->tracer->polygonOf(part, args->primID))) return false;
   args->query->radius = 0.0f;  // the visitor has seen enough: shrink the query to end traversal
   return true;                 // the query radius changed
 }
-
-}  // namespace
 
 void RayTracer::forEachNear(Vec3 p, float radius, const std::function<bool(uint32_t)>& visit) const {
   RTCPointQuery query;
@@ -94,7 +143,8 @@ void RayTracer::forEachNear(Vec3 p, float radius, const std::function<bool(uint3
   query.time = 0.0f;
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
-  rtcPointQuery(scene_, &query, &context, visitNear, const_cast<std::function<bool(uint32_t)>*>(&visit));
+  NearQuery q{this, &visit};
+  rtcPointQuery(scene_, &query, &context, visitNearPolygon, &q);
 }
 
 void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
@@ -126,11 +176,15 @@ void RayTracer::intersect(std::span<RTCRayHit> hits, bool coherent) const {
   rays_.fetch_add(hits.size(), std::memory_order_relaxed);
   // Rotated quads: Embree's u runs 1->2 and v 1->0, i.e. (u, v) = (1 - v', u') in ours. Exact on
   // both triangles, not only for parallelograms.
-  for (RTCRayHit& h : hits)
-    if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID && quad_[h.hit.primID]) {
+  // With instances, primitives are numbered within their part: back to the polygon's index.
+  for (RTCRayHit& h : hits) {
+    if (h.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    if (!members_.empty()) h.hit.primID = polygonOf(h.hit.instID[0], h.hit.primID);
+    if (quad_[h.hit.primID]) {
       const float u = 1.0f - h.hit.v, v = h.hit.u;
       h.hit.u = u, h.hit.v = v;
     }
+  }
 }
 
 }  // namespace luxel

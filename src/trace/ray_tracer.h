@@ -12,14 +12,19 @@
 
 #include <embree3/rtcore.h>
 
+#include <glm/glm.hpp>
+
 #include "luxel/surface.h"
 
 namespace luxel {
 
 class RayTracer {
  public:
-  // Builds a BVH over the polygons. Primitive i of a hit is polygons[i].
-  explicit RayTracer(std::span<const Polygon> polygons);
+  // Builds a BVH over the polygons. Primitive i of a hit is polygons[i]. With `instanceOf` (one
+  // per polygon): the polygons with instanceOf[i] = k >= 0 form instance k, a BVH of its own that
+  // placeInstance moves by a transform (Embree's two-level scenes: a moving object costs a
+  // transform and a commit of the top level, not a rebuild); -1 puts a polygon in the static BVH.
+  explicit RayTracer(std::span<const Polygon> polygons, std::span<const int32_t> instanceOf = {});
   ~RayTracer();
   RayTracer(const RayTracer&) = delete;
   RayTracer& operator=(const RayTracer&) = delete;
@@ -37,6 +42,16 @@ class RayTracer {
   // visit returns false.
   void forEachNear(Vec3 p, float radius, const std::function<bool(uint32_t)>& visit) const;
 
+  // Places instance k by `transform`, relative to where its polygons were at construction. The
+  // move takes effect at commit(); rays must not be traced between the two.
+  void placeInstance(uint32_t instance, const glm::mat4& transform);
+  void commit();
+  size_t instanceCount() const { return instances_.size(); }
+  // The polygon of primitive `primID` of top-level geometry `instID` (its hit.instID[0]).
+  uint32_t polygonOf(unsigned instID, unsigned primID) const {
+    return members_.empty() ? primID : members_[instID][primID];
+  }
+
   uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
 
   // Benchmarks only: occlusion rays as a solver cast them, stream by stream, so that Embree's raw
@@ -50,7 +65,13 @@ class RayTracer {
   void resetRayCount() { rays_.store(0, std::memory_order_relaxed); }
 
  private:
+  // The scene rays are traced in: the one BVH, or with instances the top level over the static
+  // BVH's instance and one per dynamic instance.
   RTCScene scene_ = nullptr;
+  std::vector<RTCScene> parts_;          // with instances: the static BVH, then each instance's
+  std::vector<RTCGeometry> instances_;   // the instance geometries of the dynamic instances
+  // With instances: per top-level geometry (0 static, k + 1 instance k), the polygon of each primitive.
+  std::vector<std::vector<uint32_t>> members_;
   std::vector<uint8_t> quad_;  // per polygon: 1 for quads, whose hit (u, v) intersect remaps
   mutable std::atomic<uint64_t> rays_{0};
   RayRecording* recorder_ = nullptr;

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "core/random.h"
+#include "luxel/error.h"
 #include "transport/form_factor.h"
 #include "transport/light_sampling.h"
 #include "transport/shaft.h"
@@ -34,6 +36,12 @@ constexpr int kMaxShaftCandidates = 48;
 // Patch-pair classification keeps one byte per pair: up to 64 MiB.
 constexpr size_t kMaxClassifiedPatches = 8192;
 
+float polygonRadius(const Polygon& p, Vec3 centre) {
+  float r = 0.0f;
+  for (int i = 0; i < p.count; ++i) r = std::max(r, glm::length(p.v[size_t(i)] - centre));
+  return r;
+}
+
 std::vector<Polygon> facePolygons(const SurfaceSet& set) {
   std::vector<Polygon> polys(set.faces.size());
   for (size_t i = 0; i < set.faces.size(); ++i) {
@@ -42,6 +50,21 @@ std::vector<Polygon> facePolygons(const SurfaceSet& set) {
     polys[i].v = f.corners;
   }
   return polys;
+}
+
+// Per face, the ray tracer instance it belongs to: the index among the scene's dynamic objects of
+// the object that places it, or -1 for static geometry. Empty when nothing is dynamic.
+std::vector<int32_t> faceInstances(const Scene& scene, const SurfaceSet& set) {
+  std::vector<int32_t> instanceOfObject(scene.objects.size(), -1);
+  int32_t count = 0;
+  for (uint32_t o : scene.dynamicObjects()) instanceOfObject[o] = count++;
+  if (count == 0) return {};
+  std::vector<int32_t> out(set.faces.size(), -1);
+  for (size_t f = 0; f < set.faces.size(); ++f) {
+    const uint32_t object = scene.meshes[set.faces[f].mesh].object;
+    if (object != kNoObject) out[f] = instanceOfObject[object];
+  }
+  return out;
 }
 
 int squareCount(int n) { return std::clamp(int(std::sqrt(float(n)) + 1e-3f), 1, 16); }
@@ -90,17 +113,15 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
       surfaces_(surfaces),
       options_(options),
       facePolygons_(facePolygons(surfaces)),
-      tracer_(facePolygons_),
+      tracer_(facePolygons_, faceInstances(scene, surfaces)),
       threadLocal_(std::make_unique<ThreadLocal>()) {
   rayOffset_ = rayOffsetFor(surfaces.sceneExtent);
+  for (uint32_t o : scene.dynamicObjects()) builtAt_.emplace_back(o, scene.objects[o].transform);
   patchRadius_.resize(surfaces.patches.size());
   patchEmits_.resize(surfaces.patches.size());
   for (size_t p = 0; p < surfaces.patches.size(); ++p) {
     const Patch& patch = surfaces.patches[p];
-    float r = 0.0f;
-    for (int i = 0; i < patch.polygon.count; ++i)
-      r = std::max(r, glm::length(patch.polygon.v[i] - patch.centroid));
-    patchRadius_[p] = r;
+    patchRadius_[p] = polygonRadius(patch.polygon, patch.centroid);
     bool emits = false;
     for (uint32_t e : patch.elements) {
       const Rgb& x = surfaces.elements[e].exitance;
@@ -115,6 +136,37 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
     for (size_t i = 0; i < np * np; ++i) pairVisibility_[i].store(0, std::memory_order_relaxed);
   }
 
+  elementsChanged();
+}
+
+void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
+  for (uint32_t o : objects) {
+    auto it = std::find_if(builtAt_.begin(), builtAt_.end(), [&](const auto& b) { return b.first == o; });
+    if (it == builtAt_.end())
+      throw Error(fmt::format("object {} is not one of the dynamic objects the transport was built with", o));
+    // The instance's polygons are where they stood at construction: place them relative to that.
+    const std::string what = fmt::format("object '{}'", scene_.objects[o].name);
+    tracer_.placeInstance(uint32_t(it - builtAt_.begin()), similarityBetween(it->second, scene_.objects[o].transform, what));
+  }
+  tracer_.commit();
+  // Faces and patches of the moved objects are where the surfaces now say.
+  std::vector<uint8_t> moved(scene_.objects.size(), 0);
+  for (uint32_t o : objects) moved[o] = 1;
+  auto movedFace = [&](uint32_t f) {
+    const uint32_t o = scene_.meshes[surfaces_.faces[f].mesh].object;
+    return o != kNoObject && moved[o];
+  };
+  for (uint32_t f = 0; f < surfaces_.faces.size(); ++f)
+    if (movedFace(f)) facePolygons_[f].v = surfaces_.faces[f].corners;
+  for (uint32_t p = 0; p < surfaces_.patches.size(); ++p)
+    if (movedFace(surfaces_.patches[p].face))
+      patchRadius_[p] = polygonRadius(surfaces_.patches[p].polygon, surfaces_.patches[p].centroid);
+  // Any pair's shaft may now hold a moved object, or have lost one: classify again as asked.
+  if (pairVisibility_) {
+    const size_t np = surfaces_.patches.size();
+    for (size_t i = 0; i < np * np; ++i) pairVisibility_[i].store(0, std::memory_order_relaxed);
+  }
+  // Receiver quadratures depend on how near other faces come.
   elementsChanged();
 }
 

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "luxel/solve.h"
@@ -26,6 +27,9 @@ class CpuTransport final : public Transport {
   void analyticIrradiance(std::span<Rgb> out) override;
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
   void elementsChanged() override;
+  // Moves the objects' ray tracer instances (a commit, no rebuild) and forgets what depended on
+  // where they were: pair classifications and receiver quadratures.
+  void objectsMoved(std::span<const uint32_t> objects) override;
 
   RayTracer& tracer() { return tracer_; }
 
@@ -55,6 +59,7 @@ class CpuTransport final : public Transport {
   // True when no face other than the two patches' own reaches into the shaft between them.
   bool shaftIsEmpty(const Patch& a, const Patch& b) const;
 
+  std::vector<std::pair<uint32_t, glm::mat4>> builtAt_;  // dynamic objects, by instance: transform at construction
   std::vector<float> patchRadius_;
   // Receiver patch x source patch verdicts, filled lazily; empty when classification is off.
   std::unique_ptr<std::atomic<uint8_t>[]> pairVisibility_;

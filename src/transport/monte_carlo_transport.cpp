@@ -112,4 +112,8 @@ void MonteCarloTransport::columns(std::span<const uint32_t> patches, std::span<f
     for (size_t e = 0; e < ne; ++e) out[c * ne + e] = matrix_[e * np + patches[c]];
 }
 
+void MonteCarloTransport::objectsMoved(std::span<const uint32_t>) {
+  throw Error("the Monte Carlo transport is a reference for static scenes: it cannot follow moving objects");
+}
+
 }  // namespace luxel

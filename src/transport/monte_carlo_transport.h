@@ -31,6 +31,8 @@ class MonteCarloTransport final : public Transport {
   void analyticIrradiance(std::span<Rgb> out) override { lights_.analyticIrradiance(out); }
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
   void elementsChanged() override { matrix_.clear(); }
+  // A reference for static scenes: its ray tracer holds the patches, not the scene's objects.
+  void objectsMoved(std::span<const uint32_t>) override;
 
  private:
   const SurfaceSet& surfaces_;

@@ -1,7 +1,9 @@
-// The boundary between solvers and backends: form factors in batches, never one ray at a time.
-// A solver asks for whole columns (everything a set of patches shoots into) or whole rows
-// (everything a set of elements gathers from); the CPU backend maps them onto Embree ray streams
-// on TBB threads, and a GPU backend onto hemicube passes. Solvers never know which one they run on.
+// The boundary between the CPU solvers and the form factors they use: in batches, never one ray at
+// a time. A solver asks for whole columns (everything a set of patches shoots into) or whole rows
+// (everything a set of elements gathers from); CpuTransport maps them onto Embree ray streams on
+// TBB threads, MonteCarloTransport onto cosine-distributed rays. The GPU backend's solvers keep
+// their form factors on the GPU (they are solvers of their own in the registry) and take only the
+// analytic lights from here.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +36,12 @@ class Transport {
   // The elements changed (adaptive refinement split some); patches and faces did not. Backends
   // rebuild whatever they keep per element.
   virtual void elementsChanged() = 0;
+
+  // Dynamic objects of the scene moved (Scene::placeObject and SurfaceSet::placeObject have put
+  // the scene and the surfaces this transport was built over in their new places). Backends
+  // update what depends on where those objects are, and keep the rest. Throws Error where a
+  // backend cannot follow moves.
+  virtual void objectsMoved(std::span<const uint32_t> objects) = 0;
 };
 
 }  // namespace luxel

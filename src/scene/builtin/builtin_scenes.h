@@ -22,8 +22,8 @@ Scene furnace(float rho = 0.5f, float le = 1.0f);
 Scene cieCube(float rho = 0.5f, float flux = 10000.0f);
 
 // The test scenes of the seed papers, with their element counts exactly (docs/seed-scenes.md;
-// Mesh::elementGrids fixes them, whatever the element budget). In every scene the dynamic object
-// of seed 001 is the mesh named "box".
+// Mesh::elementGrids fixes them, whatever the element budget). In every scene seed 001's moving
+// box is the one dynamic object (Object::dynamic), its origin at the box's centre.
 //
 // Seed 001 (van de Hoef 2013, Sec. 5.1): a closed Cornell box 0.55 m a side, the light 1 mm below
 // the ceiling facing down, a white 0.165 x 0.385 x 0.165 m box floating at the centre.

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 namespace luxel::builtin {
 namespace {
 
@@ -52,6 +54,11 @@ void addOutwardBox(Mesh& mesh, Vec3 centre, Vec3 size, float yawDegrees, int nx,
   face({-h.x, -h.y, -h.z}, ex, ez, nx, nz);  // -y (bottom)
   face({-h.x, -h.y, h.z}, ex, ey, nx, ny);   // +z
   face({-h.x, -h.y, -h.z}, ey, ex, ny, nx);  // -z
+}
+
+void makeDynamicObject(Scene& scene, Mesh& mesh, const std::string& name, Vec3 centre) {
+  mesh.object = uint32_t(scene.objects.size());
+  scene.objects.push_back(Object{.name = name, .transform = glm::translate(glm::mat4(1.0f), centre), .dynamic = true});
 }
 
 }  // namespace luxel::builtin

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 
 #include "luxel/scene.h"
 
@@ -24,5 +25,9 @@ void addCellGrid(Mesh& mesh, Vec3 origin, Vec3 u, Vec3 v, int nu, int nv,
 // through its centre, as six outward faces: nx x ny x nz elements along its edges, so
 // 2 (nx ny + ny nz + nz nx) elements in all.
 void addOutwardBox(Mesh& mesh, Vec3 centre, Vec3 size, float yawDegrees, int nx, int ny, int nz);
+
+// Makes `mesh` (already in `scene`) the one mesh of a new dynamic object named `name`, whose
+// origin is `centre` (so that turning the object turns the mesh about it): seed 001's moving box.
+void makeDynamicObject(Scene& scene, Mesh& mesh, const std::string& name, Vec3 centre);
 
 }  // namespace luxel::builtin

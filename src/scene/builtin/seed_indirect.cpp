@@ -89,6 +89,7 @@ Scene indirectLight() {
   // The box at the left side: 6 x 9 x 7 elements of 0.1 m (318), floating so it can turn freely.
   Mesh& box = mesh("box");
   addOutwardBox(box, Vec3(1.3f, 1.1f, 2.0f), Vec3(0.6f, 0.9f, 0.7f), 25.0f, 6, 9, 7);
+  makeDynamicObject(s, box, "box", Vec3(1.3f, 1.1f, 2.0f));
 
   // The sun behind the building (towards -x, and a little towards the front), 49 degrees high:
   // it travels towards +x, so it can never shine in through a window facing +x.
