@@ -1,7 +1,9 @@
 // Getting scenes in: mesh files through Assimp, luxel scene files (JSON), and built-in scenes.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,7 +25,16 @@ Scene importMeshFile(const std::filesystem::path& path);
 Scene loadSceneFile(const std::filesystem::path& path);
 
 // Loads an image file as a linear-RGB texture. 8-bit images are decoded from sRGB when `srgb`.
+// Same as decodeTextureBytes(contents of path, srgb, path.string()), after checking the file.
 Texture loadTexture(const std::filesystem::path& path, bool srgb);
+
+// Decodes an image held in memory (PNG, JPEG, TGA, BMP, PSD, GIF, HDR, PIC, PNM: what stb_image
+// reads; the format is found from the bytes) into a linear-RGB texture, bottom row first.
+// 8- and 16-bit images are decoded from sRGB when `srgb`, else divided by 255 or 65535; Radiance
+// .hdr is linear already and `srgb` is ignored. `name` becomes Texture::path and appears in
+// errors. Throws Error("texture '<name>': <reason>") when the bytes are empty, not an image,
+// truncated, or larger than 2 GiB.
+Texture decodeTextureBytes(std::span<const std::byte> bytes, bool srgb, std::string_view name);
 
 // The built-in scenes, by name.
 std::vector<std::string> builtinSceneNames();
