@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "luxel/resources.h"
 #include "luxel/scene.h"
 
 namespace luxel {
@@ -16,9 +17,29 @@ namespace luxel {
 // other formats Assimp reads. Materials: reflectance from OBJ Kd or glTF baseColorFactor times the
 // base colour texture; emission from OBJ Ke, or glTF emissiveFactor times
 // KHR_materials_emissive_strength times the emissive texture. KHR_lights_punctual lights and
-// cameras are imported. Throws Error naming the file when it is missing, malformed, empty, or
-// references a texture that cannot be read.
+// cameras are imported. Lengths and light units are the file's, unconverted. Throws Error naming
+// the file when it is missing, malformed, empty, or references a texture that cannot be read.
+// Side files (an OBJ's .mtl, a .gltf's buffers, textures) are read relative to the file's folder.
+// Same as importMesh(bytes of path, its extension, FileResourceReader(its folder), path.string()).
 Scene importMeshFile(const std::filesystem::path& path);
+
+// Imports a mesh from the bytes of its main file, as importMeshFile does.
+//  - `formatHint` is the file extension that says which Assimp importer reads `bytes` ("obj",
+//    "gltf", "glb", "ply", "fbx", "dae", ...; case does not matter, a leading '.' is ignored).
+//    Empty, or one Assimp does not know, leaves it to Assimp's detection from the content.
+//  - `resources` serves the files the model refers to (an OBJ's mtllib, a .gltf's buffer and
+//    image URIs, textures), by path relative to the main file's folder (luxel/resources.h).
+//    A missing .mtl is not an error (Assimp imports the OBJ without its materials, as from a
+//    file); a missing glTF buffer or texture is.
+//  - `name` stands for the main file: it starts every error and warning message, gives the
+//    scene its name (the stem: "models/box.obj" -> "box") and unnamed meshes theirs, and is the
+//    name Assimp sees (with "." + formatHint appended when it does not already end that way).
+//    Its folder part, if any, only names things: `resources` decides where side files come from.
+// `bytes` and `resources` are only used during the call. Throws Error starting "<name>: " when
+// the bytes are empty, malformed or hold no triangles, or a side file is missing or unreadable;
+// never reads the filesystem except through `resources`.
+Scene importMesh(std::span<const std::byte> bytes, std::string_view formatHint,
+                 const ResourceReader& resources, std::string_view name);
 
 // Loads a luxel scene file (JSON, see docs/scene-format.md). Relative paths resolve against the
 // file's directory. Throws Error naming the file and the JSON path of the offending value.
