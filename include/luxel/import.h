@@ -1,4 +1,9 @@
 // Getting scenes in: mesh files through Assimp, luxel scene files (JSON), and built-in scenes.
+//
+// Each loader comes twice: from memory (importMesh, loadSceneJson, decodeTextureBytes), which is
+// what a fuzzer or an archive reader calls, and from a file path (importMeshFile, loadSceneFile,
+// loadTexture), which reads the file and calls the memory one. Both throw the same Error
+// messages; the memory ones name what the caller passes as `name` where the others name the file.
 #pragma once
 
 #include <cstddef>
@@ -43,7 +48,17 @@ Scene importMesh(std::span<const std::byte> bytes, std::string_view formatHint,
 
 // Loads a luxel scene file (JSON, see docs/scene-format.md). Relative paths resolve against the
 // file's directory. Throws Error naming the file and the JSON path of the offending value.
+// Same as loadSceneJson(contents of path, path.parent_path(), path.string()).
 Scene loadSceneFile(const std::filesystem::path& path);
+
+// Loads a luxel scene from JSON text (UTF-8; comments allowed, as in files). Relative paths in it
+// (mesh files, textures) resolve against `baseFolder`, on the filesystem; absolute ones are used
+// as they are. `name` starts every error message ("<name>: /meshes/0/file: ...") and its stem is
+// the scene's name unless the JSON sets "name". Throws Error on invalid JSON (naming the byte),
+// on a value of the wrong type or range (naming its JSON path), and when a referenced file cannot
+// be loaded (with that file's own message).
+Scene loadSceneJson(std::string_view text, const std::filesystem::path& baseFolder,
+                    std::string_view name);
 
 // Loads an image file as a linear-RGB texture. 8-bit images are decoded from sRGB when `srgb`.
 // Same as decodeTextureBytes(contents of path, srgb, path.string()), after checking the file.
