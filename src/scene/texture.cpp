@@ -9,6 +9,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <span>
 #include <system_error>
 #include <vector>
 
@@ -145,6 +146,11 @@ Texture decodeTexture(const unsigned char* data, size_t size, bool srgb, const s
   return tex;
 }
 
+Texture decodeTextureBytes(std::span<const std::byte> bytes, bool srgb, std::string_view name) {
+  return decodeTexture(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), srgb,
+                       std::string(name));
+}
+
 Texture loadTexture(const std::filesystem::path& path, bool srgb) {
   const std::string name = path.string();
   std::error_code ec;
@@ -152,10 +158,9 @@ Texture loadTexture(const std::filesystem::path& path, bool srgb) {
     throw Error(fmt::format("texture '{}': no such file", name));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("texture '{}': cannot open file", name));
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                   std::istreambuf_iterator<char>());
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw Error(fmt::format("texture '{}': read error", name));
-  return decodeTexture(bytes.data(), bytes.size(), srgb, name);
+  return decodeTextureBytes(std::as_bytes(std::span<const char>(bytes)), srgb, name);
 }
 
 }  // namespace luxel

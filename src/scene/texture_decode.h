@@ -1,5 +1,5 @@
-// Decoding image bytes into a Texture: shared by loadTexture (files) and the Assimp importer
-// (textures embedded in glTF/GLB and FBX files).
+// Decoding image bytes into a Texture: behind decodeTextureBytes (and so loadTexture) and the
+// Assimp importer's embedded textures (glTF/GLB and FBX files).
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,7 @@
 // Importing mesh files through Assimp (OBJ/MTL, glTF 2.0, FBX, PLY, COLLADA, ...): geometry with
-// node transforms applied, diffuse materials, KHR_lights_punctual lights and cameras.
+// node transforms applied, diffuse materials, KHR_lights_punctual lights and cameras. Everything
+// is read from the main file's bytes and a ResourceReader (assimp_io.h); importMeshFile only
+// reads the file and points a FileResourceReader at its folder.
 //
 // We walk the node graph ourselves instead of using aiProcess_PreTransformVertices: that step
 // double-translates glTF cameras in Assimp 5.2 (their importer copies the node translation into
@@ -12,8 +14,10 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstddef>
 #include <map>
 #include <optional>
+#include <span>
 #include <system_error>
 #include <utility>
 
@@ -21,8 +25,11 @@
 
 #include "luxel/error.h"
 #include "luxel/import.h"
+#include "luxel/resources.h"
+#include "scene/import/assimp_io.h"
 #include "scene/import/gltf_extras.h"
 #include "scene/import/quads.h"
+#include "scene/import/resource_path.h"
 #include "scene/import/transform.h"
 #include "scene/texture_decode.h"
 
@@ -43,6 +50,7 @@ std::string lower(std::string s) {
   return s;
 }
 
+// From the name Assimp reads, whose extension chose the importer.
 Format formatOf(const fs::path& path) {
   std::string ext = lower(path.extension().string());
   if (ext == ".gltf" || ext == ".glb") return Format::Gltf;
@@ -83,34 +91,40 @@ std::string percentDecode(const std::string& s) {
   return out;
 }
 
-// Finds a texture the material refers to. Models authored on Windows use backslashes and get the
-// case of file names wrong (Dabrovic Sponza asks for SP_LUK.JPG and ships sp_luk.JPG), so after
-// the exact name we try a case-insensitive match in the same folder.
-fs::path resolveTexturePath(const fs::path& folder, std::string ref) {
+// Finds a texture the material refers to, as a path for the ResourceReader. Models authored on
+// Windows use backslashes and get the case of file names wrong (Dabrovic Sponza asks for
+// SP_LUK.JPG and ships sp_luk.JPG), so after the exact name we try a case-insensitive match in the
+// same folder; glTF URIs may be percent-encoded. When nothing matches, `lookedFor` is the path
+// the reference names, for the error.
+std::optional<std::string> findTexture(const ResourceReader& resources, std::string ref,
+                                       std::string& lookedFor) {
   std::replace(ref.begin(), ref.end(), '\\', '/');
   if (ref.rfind("file://", 0) == 0) ref = ref.substr(7);
-  std::error_code ec;
   for (const std::string& candidate : {ref, percentDecode(ref)}) {
-    fs::path p = fs::path(candidate).is_absolute() ? fs::path(candidate) : folder / candidate;
-    if (fs::is_regular_file(p, ec)) return p;
-    fs::path dir = p.parent_path();
-    std::string want = lower(p.filename().string());
-    if (fs::is_directory(dir, ec)) {
-      for (const fs::directory_entry& e : fs::directory_iterator(dir, ec))
-        if (lower(e.path().filename().string()) == want && e.is_regular_file(ec)) return e.path();
+    const std::string path = normalizeResourcePath(candidate);
+    if (resources.exists(path)) return path;
+    const std::string folder = resourceFolder(path);
+    const std::string want = lower(fs::path(path).filename().string());
+    for (const std::string& name : resources.list(folder)) {
+      if (lower(name) != want) continue;
+      std::string found =
+          folder.empty() ? name : (folder.back() == '/' ? folder : folder + "/") + name;
+      if (resources.exists(found)) return found;
     }
   }
-  fs::path p = fs::path(ref).is_absolute() ? fs::path(ref) : folder / ref;
-  return p.lexically_normal();
+  lookedFor = normalizeResourcePath(ref);
+  return std::nullopt;
 }
 
 class AssimpImport {
  public:
-  AssimpImport(const fs::path& path, const aiScene& ai)
-      : path_(path), file_(path.string()), ai_(ai), format_(formatOf(path)) {
-    scene_.name = path.stem().string();
+  // `file` names the model in messages; `assimpPath` is the name Assimp read it under.
+  AssimpImport(const std::string& file, const std::string& assimpPath,
+               std::span<const std::byte> bytes, const ResourceReader& resources, const aiScene& ai)
+      : path_(file), file_(file), resources_(resources), ai_(ai), format_(formatOf(assimpPath)) {
+    scene_.name = path_.stem().string();
     scene_.up = Vec3(0.0f, 1.0f, 0.0f);
-    if (format_ == Format::Gltf) gltf_ = readGltfExtras(path);
+    if (format_ == Format::Gltf) gltf_ = readGltfExtras(bytes);
   }
 
   Scene run() {
@@ -252,15 +266,25 @@ class AssimpImport {
       return addTexture(key, std::move(tex));
     }
 
-    fs::path resolved = resolveTexturePath(path_.parent_path(), refStr);
-    std::string key = "file:" + resolved.string();
+    std::string lookedFor;
+    std::optional<std::string> resource = findTexture(resources_, refStr, lookedFor);
+    auto notFound = [&](const std::string& path) {
+      return Error(fmt::format("{}: material '{}': texture '{}' not found (looked for '{}')", file_,
+                               matName, refStr, resources_.describe(path)));
+    };
+    if (!resource) throw notFound(lookedFor);
+    std::string key = "file:" + *resource;
     if (auto it = textureIndex_.find(key); it != textureIndex_.end()) return it->second;
-    std::error_code ec;
-    if (!fs::is_regular_file(resolved, ec))
-      throw Error(fmt::format("{}: material '{}': texture '{}' not found (looked for '{}')", file_,
-                              matName, refStr, resolved.string()));
+    std::optional<std::vector<std::byte>> bytes;
     try {
-      return addTexture(key, loadTexture(resolved, kSrgb));
+      bytes = resources_.read(*resource);
+    } catch (const Error& e) {
+      // The reader says "'<path>': <why>"; as loadTexture did: "texture '<path>': <why>".
+      throw Error(fmt::format("{}: material '{}': texture {}", file_, matName, e.what()));
+    }
+    if (!bytes) throw notFound(*resource);  // gone between exists() and read()
+    try {
+      return addTexture(key, decodeTextureBytes(*bytes, kSrgb, resources_.describe(*resource)));
     } catch (const Error& e) {
       throw Error(fmt::format("{}: material '{}': {}", file_, matName, e.what()));
     }
@@ -482,8 +506,9 @@ class AssimpImport {
     return fovY * 180.0f / kPi;
   }
 
-  fs::path path_;
-  std::string file_;
+  fs::path path_;     // `file` as a path, for its stem and file name
+  std::string file_;  // what messages call the model
+  const ResourceReader& resources_;
   const aiScene& ai_;
   Format format_;
   std::optional<GltfExtras> gltf_;
@@ -501,18 +526,34 @@ bool hasPolygons(const aiScene& ai) {
   return false;
 }
 
+// The name Assimp reads the main file under: `name`, with ".<hint>" appended unless it already
+// ends that way, since Assimp picks its importer from the extension (see assimp_io.h).
+std::string assimpMainPath(const std::string& name, std::string hint) {
+  if (!hint.empty() && hint.front() == '.') hint.erase(0, 1);
+  if (hint.empty()) return name;
+  if (hint.find_first_of("/\\") != std::string::npos)
+    throw Error(fmt::format("{}: format hint '{}' is not a file extension", name, hint));
+  // (fmt rather than "." + string: GCC 12 warns falsely on the latter, -Wrestrict.)
+  const std::string suffix = fmt::format(".{}", lower(hint));
+  const std::string lowerName = lower(name);
+  if (lowerName.size() >= suffix.size() &&
+      lowerName.compare(lowerName.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return name;
+  return name + suffix;
+}
+
 }  // namespace
 
-Scene importMeshFile(const fs::path& path) {
-  const std::string file = path.string();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", file));
-  if (!fs::is_regular_file(path, ec)) throw Error(fmt::format("{}: not a regular file", file));
+Scene importMesh(std::span<const std::byte> bytes, std::string_view formatHint,
+                 const ResourceReader& resources, std::string_view name) {
+  const std::string file(name);
+  const std::string assimpPath = assimpMainPath(file, std::string(formatHint));
 
   Assimp::Importer importer;
+  importer.SetIOHandler(new ResourceIOSystem(assimpPath, bytes, resources));  // owned by importer
   // Read without post-processing first: validation would reject a file without faces as
   // "Mesh contains no faces", and "contains no triangles" says what is wrong.
-  const aiScene* ai = importer.ReadFile(file, 0);
+  const aiScene* ai = importer.ReadFile(assimpPath, 0);
   if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
   if (!ai->mRootNode || !hasPolygons(*ai))
     throw Error(fmt::format("{}: contains no triangles", file));
@@ -524,7 +565,25 @@ Scene importMeshFile(const fs::path& path) {
                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
   if (ai->mNumMeshes == 0) throw Error(fmt::format("{}: contains no triangles", file));
-  return AssimpImport(path, *ai).run();
+  return AssimpImport(file, assimpPath, bytes, resources, *ai).run();
+}
+
+Scene importMeshFile(const fs::path& path) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", file));
+  if (!fs::is_regular_file(path, ec)) throw Error(fmt::format("{}: not a regular file", file));
+  // Side files and textures are found next to the model, as they always were.
+  const FileResourceReader resources(path.parent_path());
+  std::optional<std::vector<std::byte>> bytes;
+  try {
+    bytes = resources.read(path.filename().string());
+  } catch (const Error&) {
+    throw Error(fmt::format("{}: cannot open file", file));
+  }
+  if (!bytes) throw Error(fmt::format("{}: no such file", file));
+  std::string ext = path.extension().string();
+  return importMesh(*bytes, ext, resources, file);
 }
 
 }  // namespace luxel

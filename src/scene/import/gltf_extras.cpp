@@ -7,8 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -21,7 +19,7 @@ constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
 constexpr uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
 constexpr float kFactorTolerance = 1e-5f;
 
-uint32_t readU32(const std::vector<char>& b, size_t at) {
+uint32_t readU32(std::span<const std::byte> b, size_t at) {
   uint32_t v = 0;
   std::memcpy(&v, b.data() + at, 4);  // GLB is little-endian, as are the machines we build for
   return v;
@@ -44,21 +42,19 @@ bool near(Rgb a, Rgb b) {
 
 }  // namespace
 
-std::optional<GltfExtras> readGltfExtras(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-
+std::optional<GltfExtras> readGltfExtras(std::span<const std::byte> bytes) {
+  if (bytes.empty()) return std::nullopt;
+  // nlohmann::json parses chars; the bytes are viewed, not copied.
+  const char* text = reinterpret_cast<const char*>(bytes.data());
   json doc;
   if (bytes.size() >= 20 && readU32(bytes, 0) == kGlbMagic) {
     // Header (magic, version, length), then the JSON chunk (length, type, data).
     uint32_t chunkLength = readU32(bytes, 12);
     if (readU32(bytes, 16) != kGlbJsonChunk || size_t(chunkLength) > bytes.size() - 20)
       return std::nullopt;
-    doc = json::parse(bytes.begin() + 20, bytes.begin() + 20 + ptrdiff_t(chunkLength), nullptr,
-                      false);
+    doc = json::parse(text + 20, text + 20 + chunkLength, nullptr, false);
   } else {
-    doc = json::parse(bytes.begin(), bytes.end(), nullptr, false);
+    doc = json::parse(text, text + bytes.size(), nullptr, false);
   }
   if (doc.is_discarded() || !doc.is_object()) return std::nullopt;
   auto asset = doc.find("asset");

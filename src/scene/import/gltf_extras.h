@@ -8,8 +8,9 @@
 // by the name of the node that holds them (which Assimp gives the aiCamera).
 #pragma once
 
-#include <filesystem>
+#include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,10 +33,11 @@ struct GltfExtras {
   std::vector<CameraNode> cameraNodes;  // perspective cameras only
 };
 
-// Reads the JSON of a .gltf file or the JSON chunk of a .glb file. Returns nullopt when the file is
-// not glTF 2.0 JSON; the caller has already imported it through Assimp, so that only means there
+// Reads the JSON of a .gltf file or the JSON chunk of a .glb file, from the same bytes Assimp
+// imported (so that it works for models read from memory). Returns nullopt when they are not
+// glTF 2.0 JSON; the caller has already imported them through Assimp, so that only means there
 // is nothing extra to read.
-std::optional<GltfExtras> readGltfExtras(const std::filesystem::path& path);
+std::optional<GltfExtras> readGltfExtras(std::span<const std::byte> bytes);
 
 // The emissive strength of the glTF material that Assimp turned into a material with this name and
 // these factors; 1 when none matches. `ambiguous` is set when several match with different

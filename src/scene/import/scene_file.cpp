@@ -147,15 +147,17 @@ class Reader {
 
 class SceneFileLoader {
  public:
-  SceneFileLoader(const fs::path& path, std::string file)
-      : path_(path), folder_(path.parent_path()), in_(std::move(file)) {}
+  // `file` names the scene in messages (its stem is the default scene name); relative paths
+  // resolve against `folder`.
+  SceneFileLoader(fs::path folder, std::string file)
+      : name_(fs::path(file).stem().string()), folder_(std::move(folder)), in_(std::move(file)) {}
 
   Scene load(const Json& doc) {
     in_.object(doc, "");
     in_.keys(doc, "", {"name", "builtin", "up", "meshes", "materials", "lights", "cameras"});
 
     if (auto it = doc.find("builtin"); it != doc.end()) loadBuiltin(*it, "/builtin");
-    scene_.name = path_.stem().string();
+    scene_.name = name_;
     if (auto it = doc.find("name"); it != doc.end()) scene_.name = in_.string(*it, "/name");
 
     // "material" on a mesh entry is applied after /materials, which may define it.
@@ -492,7 +494,7 @@ class SceneFileLoader {
     return cam;
   }
 
-  fs::path path_;
+  std::string name_;
   fs::path folder_;
   Reader in_;
   Scene scene_;
@@ -501,14 +503,8 @@ class SceneFileLoader {
 
 }  // namespace
 
-Scene loadSceneFile(const fs::path& path) {
-  const std::string file = path.string();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw Error(fmt::format("{}: no such file", file));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(fmt::format("{}: cannot open file", file));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-
+Scene loadSceneJson(std::string_view text, const fs::path& baseFolder, std::string_view name) {
+  const std::string file(name);
   Json doc;
   try {
     doc = Json::parse(text, nullptr, true, /*ignore_comments=*/true);
@@ -525,7 +521,18 @@ Scene loadSceneFile(const fs::path& path) {
     if (size_t close = what.find("] "); close != std::string::npos) what = what.substr(close + 2);
     throw Error(fmt::format("{}: invalid JSON: {}", file, what));
   }
-  return SceneFileLoader(path, file).load(doc);
+  return SceneFileLoader(baseFolder, file).load(doc);
+}
+
+Scene loadSceneFile(const fs::path& path) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw Error(fmt::format("{}: no such file", file));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("{}: cannot open file", file));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw Error(fmt::format("{}: read error", file));
+  return loadSceneJson(text, path.parent_path(), file);
 }
 
 }  // namespace luxel
