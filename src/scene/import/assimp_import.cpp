@@ -322,10 +322,19 @@ class AssimpImport {
   void importNode(const aiNode* node, const glm::mat4& parent, std::vector<int>& uses) {
     if (!node) return;
     glm::mat4 global = parent * toGlm(node->mTransformation);
+    // A node with meshes is an object: its meshes are placed by its global transform.
+    const size_t firstMesh = scene_.meshes.size();
     for (unsigned k = 0; k < node->mNumMeshes; ++k) {
       unsigned index = node->mMeshes[k];
       if (index >= ai_.mNumMeshes) continue;
       importMesh(index, global, uses[index]++);
+    }
+    if (scene_.meshes.size() > firstMesh) {
+      const uint32_t object = uint32_t(scene_.objects.size());
+      std::string name = node->mName.length > 0 ? std::string(node->mName.C_Str())
+                                                : fmt::format("{}#node{}", path_.filename().string(), object);
+      scene_.objects.push_back(Object{.name = std::move(name), .transform = global});
+      for (size_t m = firstMesh; m < scene_.meshes.size(); ++m) scene_.meshes[m].object = object;
     }
     for (unsigned c = 0; c < node->mNumChildren; ++c) importNode(node->mChildren[c], global, uses);
   }

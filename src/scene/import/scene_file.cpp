@@ -237,7 +237,7 @@ class SceneFileLoader {
   // Returns the material to assign to all of the file's meshes, when the entry names one.
   std::optional<MaterialAssignment> addMeshFile(const Json& j, const std::string& ptr) {
     in_.object(j, ptr);
-    in_.keys(j, ptr, {"file", "translate", "rotate", "scale", "material"});
+    in_.keys(j, ptr, {"file", "name", "dynamic", "translate", "rotate", "scale", "material"});
     if (!j.contains("file")) in_.fail(ptr, "missing key 'file'");
     fs::path file = resolve(in_.string(j["file"], Reader::child(ptr, "file")));
     Scene part;
@@ -250,6 +250,19 @@ class SceneFileLoader {
     for (Mesh& mesh : part.meshes) transformMesh(mesh, m);
     for (Light& light : part.lights) transformLight(light, m);
     for (Camera& cam : part.cameras) transformCamera(cam, m);
+    // Named or dynamic: the whole file is one object, placed by the entry's transform. Otherwise
+    // the file's own objects (its nodes) stay, placed by the entry's transform times their own.
+    if (j.contains("name") || j.contains("dynamic")) {
+      Object object{.name = file.stem().string(), .transform = m};
+      if (auto it = j.find("name"); it != j.end()) object.name = in_.string(*it, Reader::child(ptr, "name"));
+      if (auto it = j.find("dynamic"); it != j.end()) object.dynamic = in_.boolean(*it, Reader::child(ptr, "dynamic"));
+      if (object.dynamic && glm::determinant(glm::mat3(m)) < 0.0f)
+        in_.fail(ptr, "a dynamic object must not be mirrored (its moves are rotations, translations and scales)");
+      part.objects = {object};
+      for (Mesh& mesh : part.meshes) mesh.object = 0;
+    } else {
+      for (Object& o : part.objects) o.transform = m * o.transform;
+    }
     merge(std::move(part));
 
     if (!j.contains("material")) return std::nullopt;
@@ -306,8 +319,11 @@ class SceneFileLoader {
       scene_.materials.push_back(std::move(m));
     }
     for (Texture& t : part.textures) scene_.textures.push_back(std::move(t));
+    const uint32_t objectBase = uint32_t(scene_.objects.size());
+    for (Object& o : part.objects) scene_.objects.push_back(std::move(o));
     for (Mesh& mesh : part.meshes) {
       mesh.material += materialBase;
+      if (mesh.object != kNoObject) mesh.object += objectBase;
       scene_.meshes.push_back(std::move(mesh));
     }
     for (Light& l : part.lights) scene_.lights.push_back(std::move(l));
