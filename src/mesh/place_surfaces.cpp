@@ -12,6 +12,13 @@ namespace {
 
 Vec3 point(const glm::mat4& m, Vec3 p) { return Vec3(m * glm::vec4(p, 1.0f)); }
 
+// A normal turned by the similarity m; a zero normal (a face with no area) stays zero, not NaN.
+Vec3 turned(const glm::mat4& m, Vec3 n) {
+  const Vec3 t = glm::mat3(m) * n;
+  const float length = glm::length(t);
+  return length > 0.0f ? t / length : t;
+}
+
 Polygon moved(const glm::mat4& m, const Polygon& p) {
   Polygon out = p;
   for (size_t i = 0; i < 4; ++i) out.v[i] = point(m, p.v[i]);
@@ -51,14 +58,14 @@ void SurfaceSet::placeObject(const Scene& scene, uint32_t object) {
     SurfaceFace& f = faces[rest->faces[i]];
     const SurfaceFace& r = rest->faceRest[i];
     for (size_t c = 0; c < 4; ++c) f.corners[c] = point(m, r.corners[c]);
-    f.normal = glm::normalize(glm::mat3(m) * r.normal);
+    f.normal = turned(m, r.normal);
   }
   for (size_t i = 0; i < rest->patches.size(); ++i) {
     Patch& p = patches[rest->patches[i]];
     const Patch& r = rest->patchRest[i];
     p.polygon = moved(m, r.polygon);
     p.centroid = point(m, r.centroid);
-    p.normal = glm::normalize(glm::mat3(m) * r.normal);
+    p.normal = turned(m, r.normal);
     p.area = r.area * areaScale;
   }
   for (size_t i = 0; i < rest->elements.size(); ++i) {
@@ -66,7 +73,7 @@ void SurfaceSet::placeObject(const Scene& scene, uint32_t object) {
     const Element& r = rest->elementRest[i];
     e.polygon = moved(m, r.polygon);
     e.centroid = point(m, r.centroid);
-    e.normal = glm::normalize(glm::mat3(m) * r.normal);
+    e.normal = turned(m, r.normal);
     e.area = r.area * areaScale;
   }
 }

@@ -37,9 +37,13 @@ RTCScene buildPolygonScene(RTCDevice dev, std::span<const Polygon> polygons, con
   const size_t n = which ? which->size() : polygons.size();
   RTCScene scene = rtcNewScene(dev);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  if (n == 0) {  // an object whose faces all had no area: nothing to hit
+    rtcCommitScene(scene);
+    return scene;
+  }
   RTCGeometry geom = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_QUAD);
   auto* vertices = static_cast<float*>(
-      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), std::max<size_t>(n, 1) * 4));
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n * 4));
   auto* indices = static_cast<uint32_t*>(
       rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, 4 * sizeof(uint32_t), n));
   if (!vertices || !indices) {

@@ -62,7 +62,11 @@ class CpuTransport final : public Transport {
   std::vector<std::pair<uint32_t, glm::mat4>> builtAt_;  // dynamic objects, by instance: transform at construction
   std::vector<float> patchRadius_;
   // Receiver patch x source patch verdicts, filled lazily; empty when classification is off.
+  // Each byte is generation << 2 | verdict; a verdict of an older generation (objects have moved
+  // since) counts as unknown.
   std::unique_ptr<std::atomic<uint8_t>[]> pairVisibility_;
+  uint32_t pairGeneration_ = 1;
+  void updateQuadrature(std::span<const uint32_t> elements);
   std::vector<float> elementRadius_;
   std::vector<uint8_t> elementQuadrature_;  // receiver midpoint rule: k x k points
   std::vector<uint8_t> patchEmits_;
