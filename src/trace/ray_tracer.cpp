@@ -82,15 +82,18 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
   for (size_t i = 0; i < polygons.size(); ++i) quad_[i] = polygons[i].count == 4;
   int32_t instanceCount = 0;
   for (int32_t k : instanceOf) instanceCount = std::max(instanceCount, k + 1);
-  if (instanceCount == 0) {
-    scene_ = buildPolygonScene(dev, polygons, nullptr);
-  } else {
+  flat_ = buildPolygonScene(dev, polygons, nullptr);
+  if (instanceCount > 0) {
+    // The two-level form, traced once an instance has moved: the static polygons as one
+    // instance, each dynamic object as another, under a top level of a handful of leaves that a
+    // commit rebuilds at once. Until then rays go through the one-level BVH of everything, which
+    // traces faster: with Embree 3's ray streams the instanced Cornell box of seed 001 took
+    // cornell-large's rays from 22.6 to 14.7 Mrays/s (docs/performance.md).
     members_.resize(size_t(instanceCount) + 1);
     for (uint32_t i = 0; i < polygons.size(); ++i) members_[size_t(instanceOf[i] + 1)].push_back(i);
-    scene_ = rtcNewScene(dev);
-    // The top level is rebuilt at every commit: a handful of instances, so fast build over speed.
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
+    layered_ = rtcNewScene(dev);
+    rtcSetSceneFlags(layered_, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(layered_, RTC_BUILD_QUALITY_LOW);
     const glm::mat4 identity(1.0f);
     for (size_t part = 0; part < members_.size(); ++part) {
       parts_.push_back(buildPolygonScene(dev, polygons, &members_[part]));
@@ -98,11 +101,11 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
       rtcSetGeometryInstancedScene(instance, parts_.back());
       rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
       rtcCommitGeometry(instance);
-      rtcAttachGeometryByID(scene_, instance, unsigned(part));
+      rtcAttachGeometryByID(layered_, instance, unsigned(part));
       if (part > 0) instances_.push_back(instance);
       else rtcReleaseGeometry(instance);
     }
-    rtcCommitScene(scene_);
+    rtcCommitScene(layered_);
   }
   if (rtcGetDeviceError(dev) != RTC_ERROR_NONE)
     throw Error(fmt::format("Embree could not build the scene: {}", lastEmbreeError()));
@@ -111,20 +114,22 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
 void RayTracer::placeInstance(uint32_t instance, const glm::mat4& transform) {
   if (instance >= instances_.size())
     throw Error(fmt::format("ray tracer: no instance {} ({} instances)", instance, instances_.size()));
+  moved_ = true;  // from now on the one-level BVH is out of date
   rtcSetGeometryTransform(instances_[instance], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
   rtcCommitGeometry(instances_[instance]);
 }
 
 void RayTracer::commit() {
-  rtcCommitScene(scene_);
+  if (layered_) rtcCommitScene(layered_);
   if (rtcGetDeviceError(device()) != RTC_ERROR_NONE)
     throw Error(fmt::format("Embree could not update the scene: {}", lastEmbreeError()));
 }
 
 RayTracer::~RayTracer() {
   for (RTCGeometry g : instances_) rtcReleaseGeometry(g);
-  if (scene_) rtcReleaseScene(scene_);
+  if (layered_) rtcReleaseScene(layered_);
   for (RTCScene part : parts_) rtcReleaseScene(part);
+  if (flat_) rtcReleaseScene(flat_);
 }
 
 struct NearQuery {
@@ -134,8 +139,8 @@ struct NearQuery {
 
 bool visitNearPolygon(RTCPointQueryFunctionArguments* args) {
   const auto* q = static_cast<const NearQuery*>(args->userPtr);
-  const unsigned part = args->context->instStackSize > 0 ? args->context->instID[0] : 0;
-  if ((*q->visit)(q->tracer->polygonOf(part, args->primID))) return false;
+  const uint32_t polygon = q->tracer->layered() ? q->tracer->polygonOf(args->context->instID[0], args->primID) : args->primID;
+  if ((*q->visit)(polygon)) return false;
   args->query->radius = 0.0f;  // the visitor has seen enough: shrink the query to end traversal
   return true;                 // the query radius changed
 }
@@ -148,7 +153,7 @@ void RayTracer::forEachNear(Vec3 p, float radius, const std::function<bool(uint3
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   NearQuery q{this, &visit};
-  rtcPointQuery(scene_, &query, &context, visitNearPolygon, &q);
+  rtcPointQuery(traced(), &query, &context, visitNearPolygon, &q);
 }
 
 void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
@@ -163,7 +168,7 @@ void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-  rtcOccluded1M(scene_, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
+  rtcOccluded1M(traced(), &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
   rays_.fetch_add(rays.size(), std::memory_order_relaxed);
 }
 
@@ -176,14 +181,14 @@ void RayTracer::intersect(std::span<RTCRayHit> hits, bool coherent) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-  rtcIntersect1M(scene_, &context, hits.data(), unsigned(hits.size()), sizeof(RTCRayHit));
+  rtcIntersect1M(traced(), &context, hits.data(), unsigned(hits.size()), sizeof(RTCRayHit));
   rays_.fetch_add(hits.size(), std::memory_order_relaxed);
   // Rotated quads: Embree's u runs 1->2 and v 1->0, i.e. (u, v) = (1 - v', u') in ours. Exact on
   // both triangles, not only for parallelograms.
   // With instances, primitives are numbered within their part: back to the polygon's index.
   for (RTCRayHit& h : hits) {
     if (h.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-    if (!members_.empty()) h.hit.primID = polygonOf(h.hit.instID[0], h.hit.primID);
+    if (layered()) h.hit.primID = polygonOf(h.hit.instID[0], h.hit.primID);
     if (quad_[h.hit.primID]) {
       const float u = 1.0f - h.hit.v, v = h.hit.u;
       h.hit.u = u, h.hit.v = v;

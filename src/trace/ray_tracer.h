@@ -24,6 +24,8 @@ class RayTracer {
   // per polygon): the polygons with instanceOf[i] = k >= 0 form instance k, a BVH of its own that
   // placeInstance moves by a transform (Embree's two-level scenes: a moving object costs a
   // transform and a commit of the top level, not a rebuild); -1 puts a polygon in the static BVH.
+  // With instances both forms are built: the one-level BVH of every polygon, which traces
+  // fastest, serves until the first move; the two-level form serves from then on.
   explicit RayTracer(std::span<const Polygon> polygons, std::span<const int32_t> instanceOf = {});
   ~RayTracer();
   RayTracer(const RayTracer&) = delete;
@@ -47,10 +49,10 @@ class RayTracer {
   void placeInstance(uint32_t instance, const glm::mat4& transform);
   void commit();
   size_t instanceCount() const { return instances_.size(); }
-  // The polygon of primitive `primID` of top-level geometry `instID` (its hit.instID[0]).
-  uint32_t polygonOf(unsigned instID, unsigned primID) const {
-    return members_.empty() ? primID : members_[instID][primID];
-  }
+  // Whether rays go through the two-level form (an instance has moved), whose primitives are
+  // numbered per part: polygonOf maps a hit's (instID[0], primID) back to the polygon.
+  bool layered() const { return moved_; }
+  uint32_t polygonOf(unsigned instID, unsigned primID) const { return members_[instID][primID]; }
 
   uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
 
@@ -65,13 +67,16 @@ class RayTracer {
   void resetRayCount() { rays_.store(0, std::memory_order_relaxed); }
 
  private:
-  // The scene rays are traced in: the one BVH, or with instances the top level over the static
-  // BVH's instance and one per dynamic instance.
-  RTCScene scene_ = nullptr;
-  std::vector<RTCScene> parts_;          // with instances: the static BVH, then each instance's
+  // The one-level BVH of every polygon, traced until an instance moves; with instances, the
+  // two-level form (parts_: the static polygons' scene, then each instance's) traced after.
+  RTCScene flat_ = nullptr;
+  RTCScene layered_ = nullptr;
+  bool moved_ = false;
+  std::vector<RTCScene> parts_;
   std::vector<RTCGeometry> instances_;   // the instance geometries of the dynamic instances
   // With instances: per top-level geometry (0 static, k + 1 instance k), the polygon of each primitive.
   std::vector<std::vector<uint32_t>> members_;
+  RTCScene traced() const { return moved_ ? layered_ : flat_; }
   std::vector<uint8_t> quad_;  // per polygon: 1 for quads, whose hit (u, v) intersect remaps
   mutable std::atomic<uint64_t> rays_{0};
   RayRecording* recorder_ = nullptr;
