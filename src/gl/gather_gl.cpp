@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <limits>
 
 #include <fmt/format.h>
 
@@ -17,6 +16,7 @@
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
 #include "core/stopwatch.h"
+#include "solve/step_control.h"
 #include "luxel/error.h"
 #include "transport/form_factor.h"
 
@@ -209,7 +209,7 @@ class GlGatherSolver final : public Solver {
     buf_.bind();  // another solver may have used the context since the last step
     uint64_t units = 0;
     while (!done_) {
-      if ((limit.units && units >= limit.units) || (limit.seconds > 0 && watch.seconds() >= limit.seconds)) break;
+      if (sliceSpent(limit, units, watch)) break;
       iterate(progress);
       ++units;
     }
@@ -275,13 +275,7 @@ class GlGatherSolver final : public Solver {
                    fmt::format("residual {:.2e}", residual_));
     if (iteration_ >= o_.maxIterations) done_ = true;
     if (iteration_ > 1 && residual_ <= o_.residualThreshold) done_ = true;  // the first only starts from E
-    // Float rounding bounds how small the residual can get; stop once it no longer falls.
-    if (residual_ < best_ * 0.99) {
-      best_ = residual_;
-      sinceBest_ = 0;
-    } else if (++sinceBest_ >= 8) {
-      done_ = true;
-    }
+    if (stagnation_.stalled(residual_)) done_ = true;
   }
 
   const RadiositySystem& sys_;
@@ -293,8 +287,9 @@ class GlGatherSolver final : public Solver {
   GLint firstElement_ = -1, firstIteration_ = -1;
   int samples_ = 0;
   size_t batch_ = 1;
-  double residual_ = 1.0, best_ = std::numeric_limits<double>::max();
-  int iteration_ = 0, sinceBest_ = 0;
+  double residual_ = 1.0;
+  StagnationStop stagnation_;
+  int iteration_ = 0;
   uint64_t rendered_ = 0;
   double setupSeconds_ = 0.0, seconds_ = 0.0;
   bool done_ = false;

@@ -17,6 +17,7 @@
 #include "gl/shared_layout.h"
 #include "gl/layered_hemicubes.h"
 #include "core/stopwatch.h"
+#include "solve/step_control.h"
 #include "luxel/error.h"
 
 namespace luxel::gl {
@@ -385,7 +386,7 @@ class GlProgressiveSolver final : public Solver {
     }
     uint64_t units = 0;
     while (!done_) {
-      if ((limit.units && units >= limit.units) || (limit.seconds > 0 && watch.seconds() >= limit.seconds)) break;
+      if (sliceSpent(limit, units, watch)) break;
       if (o_.timeBudget > 0.0 && seconds_ + watch.seconds() >= o_.timeBudget) {
         done_ = true;
         break;

@@ -5,7 +5,6 @@
 // sweeps.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -15,6 +14,7 @@
 #include "core/stopwatch.h"
 #include "luxel/error.h"
 #include "solve/solver_registry.h"
+#include "solve/step_control.h"
 #include "transport/form_factor_options.h"
 
 namespace luxel {
@@ -64,12 +64,9 @@ class GatherSolver final : public Solver {
   bool step(const StepLimit& limit, const ProgressCallback& progress) override {
     const Stopwatch watch;
     uint64_t units = 0;
-    auto sliceSpent = [&] {
-      return (limit.units && units >= limit.units) || (limit.seconds > 0 && watch.seconds() >= limit.seconds);
-    };
     // The matrix, a block of rows at a time so that progress and cancellation stay responsive.
     const size_t ne = sys_.elementCount(), np = sys_.patchCount();
-    while (rowsDone_ < ne && !sliceSpent()) {
+    while (rowsDone_ < ne && !sliceSpent(limit, units, watch)) {
       const Stopwatch block;
       std::vector<uint32_t> ids(std::min(ne - rowsDone_, kRowsPerBlock));
       std::iota(ids.begin(), ids.end(), uint32_t(rowsDone_));
@@ -78,7 +75,7 @@ class GatherSolver final : public Solver {
       formFactorSeconds_ += block.seconds();
       reportProgress(progress, "form factors", double(rowsDone_) / double(ne));
     }
-    while (rowsDone_ == ne && !done_ && !sliceSpent()) {
+    while (rowsDone_ == ne && !done_ && !sliceSpent(limit, units, watch)) {
       sweep(progress);
       ++units;
     }
@@ -166,13 +163,7 @@ class GatherSolver final : public Solver {
                    std::clamp(std::log(std::max(residual_, 1e-30)) / std::log(s_.residualThreshold), 0.0, 1.0),
                    fmt::format("residual {:.2e}", residual_));
     if (residual_ <= s_.residualThreshold || iterations_ >= s_.maxIterations) done_ = true;
-    // Float rounding bounds how small the residual can get; stop once it no longer falls.
-    if (residual_ < best_ * 0.99) {
-      best_ = residual_;
-      sinceBest_ = 0;
-    } else if (++sinceBest_ >= 8) {
-      done_ = true;
-    }
+    if (stagnation_.stalled(residual_)) done_ = true;
   }
 
   const RadiositySystem& sys_;
@@ -182,8 +173,9 @@ class GatherSolver final : public Solver {
   size_t rowsDone_ = 0;
   std::vector<Rgb> radiosity_, irradiance_;
   std::vector<float> pr_, pg_, pb_;
-  double residual_ = 1.0, best_ = std::numeric_limits<double>::max();
-  int iterations_ = 0, sinceBest_ = 0;
+  double residual_ = 1.0;
+  StagnationStop stagnation_;
+  int iterations_ = 0;
   double seconds_ = 0.0, formFactorSeconds_ = 0.0;
   bool done_ = false;
 };

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "solve/solver_registry.h"
+#include "solve/step_control.h"
 #include "core/stopwatch.h"
 #include "transport/form_factor_options.h"
 
@@ -51,7 +52,7 @@ class ProgressiveSolver final : public Solver {
     const Stopwatch watch;
     uint64_t units = 0;
     while (!done_) {
-      if ((limit.units && units >= limit.units) || (limit.seconds > 0 && watch.seconds() >= limit.seconds)) break;
+      if (sliceSpent(limit, units, watch)) break;
       shootOnePass(progress, seconds_ + watch.seconds());
       ++units;
     }
