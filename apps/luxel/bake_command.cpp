@@ -72,6 +72,7 @@ int runBake(const BakeArgs& a) {
   ProgressBar bar(a.quiet);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = loadScene(a.scene);
+  addCommandLineLights(scene, a.solve);
   if (!a.quiet)
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 

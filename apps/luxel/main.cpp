@@ -103,6 +103,7 @@ int runRender(const RenderArgs& a) {
   cli::ProgressBar bar(a.quiet);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = loadScene(a.scene);
+  cli::addCommandLineLights(scene, a.solve);
   const std::string sceneName = scene.name;
   if (!a.quiet)
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
@@ -171,6 +172,7 @@ int runRender(const RenderArgs& a) {
 int main(int argc, char** argv) {
   CLI::App app{"luxel: radiosity global illumination"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("luxel ") + LUXEL_VERSION);
   RenderArgs ra;
   CLI::App* render = app.add_subcommand("render", "Solve a scene and render an image");
   render->add_option("scene", ra.scene, "Built-in name (" + fmt::format("{}", fmt::join(builtinSceneNames(), ", ")) +

@@ -1,5 +1,10 @@
 #include "solve_args.h"
 
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+
 #include "luxel/error.h"
 
 namespace luxel::cli {
@@ -22,6 +27,9 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
   auto* elements = c.add_option("--elements", a.elements, "Element budget (default 10000)");
   c.add_option("--element-size", a.elementSize, "Element edge length in scene units")->excludes(elements);
   c.add_option("--refine", a.refine, "Adaptive refinement: extra elements allowed (0: off)");
+  c.add_option("--sky", a.sky, "Add a uniform sky of this radiance (W/(m2 sr), or cd/m2: 5000 is a bright overcast day)")
+      ->check(CLI::PositiveNumber);
+  c.add_option("--sun", a.sun, "Add a sun shining along X,Y,Z (the direction light travels), 100,000 lux, 0.53 degrees wide");
   c.add_option("--set", a.set, "A solver option NAME=VALUE (repeatable; luxel solvers lists each solver's)");
   solverFlag(c, a, "unshot", "progressive: stop below this unshot fraction (default 0.001)");
   solverFlag(c, a, "rays-per-pair", "cpu: visibility rays per element-patch pair (default 4)");
@@ -37,6 +45,24 @@ DiscretiseOptions discretiseOptions(const SolveArgs& a) {
   if (a.elementSize > 0.0f) d.elementSize = a.elementSize;
   if (a.elements > 0) d.elementBudget = a.elements;
   return d;
+}
+
+void addCommandLineLights(Scene& scene, const SolveArgs& a) {
+  if (a.sky > 0.0f) scene.lights.push_back(Light{.type = Light::Type::Sky, .name = "sky (--sky)", .intensity = a.sky});
+  if (!a.sun.empty()) {
+    Vec3 d;
+    char c1 = 0, c2 = 0;
+    std::istringstream in(a.sun);
+    if (!(in >> d.x >> c1 >> d.y >> c2 >> d.z) || c1 != ',' || c2 != ',' || !in.eof() || !std::isfinite(d.x) ||
+        !std::isfinite(d.y) || !std::isfinite(d.z) || glm::length(d) < 1e-12f)
+      throw Error(fmt::format("--sun '{}': expected a direction X,Y,Z, not zero", a.sun));
+    // 100,000 lux on a surface facing it: a clear-sky sun; its disc 0.53 degrees across.
+    scene.lights.push_back(Light{.type = Light::Type::Directional,
+                                 .name = "sun (--sun)",
+                                 .intensity = 100000.0f,
+                                 .direction = glm::normalize(d),
+                                 .angularRadius = 0.00465f});
+  }
 }
 
 SolveOptions solveOptions(const SolveArgs& a) {

@@ -20,6 +20,8 @@ struct SolveArgs {
   float elementSize = 0.0f;
   size_t refine = 0;
   std::vector<std::string> set;  // --set NAME=VALUE, any option of the chosen solver
+  float sky = 0.0f;              // --sky RADIANCE: a uniform sky added to the scene
+  std::string sun;               // --sun X,Y,Z: a sun travelling along this direction
   // The solver options that have flags of their own (--unshot, --rays-per-pair, ...), as
   // (option name, value text): only those given on the command line, so that a solver is never
   // handed an option it does not read unless the user asked for it.
@@ -33,6 +35,8 @@ struct SolveArgs {
 void addSolveOptions(CLI::App& command, SolveArgs& args);
 
 DiscretiseOptions discretiseOptions(const SolveArgs& args);
+// Adds the lights of --sky and --sun to `scene`. Throws Error on a bad direction.
+void addCommandLineLights(Scene& scene, const SolveArgs& args);
 // The request: method, backend and settings. Unknown names are caught when the solver is made.
 SolveOptions solveOptions(const SolveArgs& args);
 

@@ -140,6 +140,9 @@ struct Scene {
   const Camera* findCamera(const std::string& name) const;
   int findMaterial(const std::string& name) const;  // -1 when absent
   int findObject(const std::string& name) const;    // -1 when absent
+  // Whether anything gives light: a light of positive intensity, or an emissive material that a
+  // face uses. A scene without light solves to black.
+  bool hasLight() const;
   std::vector<uint32_t> dynamicObjects() const;     // indices of the objects marked dynamic
 
   // Moves a dynamic object to `transform` (object to world): its meshes' positions follow.

@@ -38,6 +38,14 @@ int Scene::findMaterial(const std::string& materialName) const {
   return -1;
 }
 
+bool Scene::hasLight() const {
+  for (const Light& l : lights)
+    if (l.intensity > 0.0f && (l.color.r > 0.0f || l.color.g > 0.0f || l.color.b > 0.0f)) return true;
+  for (const Mesh& m : meshes)
+    if (!m.faces.empty() && m.material < materials.size() && materials[m.material].isEmissive()) return true;
+  return false;
+}
+
 void Scene::validate() const {
   if (faceCount() == 0) throw Error(fmt::format("scene '{}': contains no faces", name));
   for (const Material& m : materials) {

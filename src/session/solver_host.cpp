@@ -13,6 +13,11 @@ namespace luxel {
 SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options, BorrowedResources borrowed)
     : scene_(scene), surfaces_(surfaces), options_(options) {
   const Stopwatch watch;
+  if (!scene.hasLight())
+    warnings_.push_back(fmt::format(
+        "scene '{}' has no light, so it solves to black: add a sky or a sun (luxel --sky RADIANCE, --sun X,Y,Z; "
+        "\"lights\" in a scene file) or emission (Ke in an OBJ's .mtl, emissiveFactor in glTF)",
+        scene.name));
   const SolverRegistry& registry = SolverRegistry::builtin();
   const std::string& method = options.method;
   const std::string& backend = options.backend;

@@ -118,3 +118,42 @@ TEST(SolversCli, AutoFallsBackToTheCpuAndWarnsAboutGlOnlyOptions) {
 }
 
 }  // namespace
+
+namespace {
+
+// A scene without any light solves to black: luxel says so, names the scene and how to add light,
+// and --sky / --sun add it from the command line.
+TEST(LightlessScene, WarnsAndTheCommandLineCanAddASkyOrASun) {
+  const fs::path dir = scratchDir();
+  // A floor and a wall, no emission, no lights.
+  writeFile(dir / "room.obj", "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 0 -1.5\nv 1 0 -1.5\nv 1 2 -1.5\nv -1 2 -1.5\n"
+                              "f 1 4 3 2\nf 5 6 7 8\n");
+  CliRun r = luxel(dir, {"render", "room.obj", "-o", "a.exr", "--size", "16x16", "--spp", "1", "--stats", "a.json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("scene 'room' has no light, so it solves to black"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--sky RADIANCE"), std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(readFile(dir / "a.json")).at("image").at("mean_luminance"), 0.0);
+
+  r = luxel(dir, {"render", "room.obj", "-o", "b.exr", "--size", "16x16", "--spp", "1", "--stats", "b.json", "--sky",
+                  "1000", "--sun", "0.3,-1,-0.2"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err.find("has no light"), std::string::npos) << r.err;
+  EXPECT_GT(nlohmann::json::parse(readFile(dir / "b.json")).at("image").at("mean_luminance").get<double>(), 1.0);
+
+  r = luxel(dir, {"bake", "room.obj", "-o", "c.glb", "--lightmaps"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("has no light"), std::string::npos) << r.err;
+
+  r = luxel(dir, {"render", "room.obj", "-o", "d.exr", "--sun", "0,0,0"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--sun '0,0,0': expected a direction X,Y,Z, not zero"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "d.exr"));
+}
+
+TEST(LightlessScene, VersionFlag) {
+  const CliRun r = luxel(scratchDir(), {"--version"});
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out, "luxel 0.1.0\n");
+}
+
+}  // namespace
