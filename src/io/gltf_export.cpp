@@ -390,11 +390,41 @@ tinygltf::Primitive makePrimitive(tinygltf::Model& model, MeshBuilder& b, int ma
   prim.material = material;
   prim.attributes["POSITION"] = addFloatAccessor<3>(model, b.positions, TINYGLTF_TYPE_VEC3, true);
   prim.attributes["NORMAL"] = addFloatAccessor<3>(model, b.normals, TINYGLTF_TYPE_VEC3, false);
-  if (b.hasUv) prim.attributes["TEXCOORD_0"] = addFloatAccessor<2>(model, b.uv0, TINYGLTF_TYPE_VEC2, false);
-  if (b.hasUv1) prim.attributes["TEXCOORD_1"] = addFloatAccessor<2>(model, b.uv1, TINYGLTF_TYPE_VEC2, false);
+  if (b.hasUv1) {
+    const int uv1 = addFloatAccessor<2>(model, b.uv1, TINYGLTF_TYPE_VEC2, false);
+    prim.attributes["TEXCOORD_1"] = uv1;
+    // glTF numbers each semantic's sets from 0 without gaps: a mesh without its own uvs shares the
+    // lightmap's accessor as TEXCOORD_0, which no texture of its material reads.
+    prim.attributes["TEXCOORD_0"] = b.hasUv ? addFloatAccessor<2>(model, b.uv0, TINYGLTF_TYPE_VEC2, false) : uv1;
+  } else if (b.hasUv) {
+    prim.attributes["TEXCOORD_0"] = addFloatAccessor<2>(model, b.uv0, TINYGLTF_TYPE_VEC2, false);
+  }
   if (b.hasColor) prim.attributes["COLOR_0"] = addFloatAccessor<3>(model, b.colors, TINYGLTF_TYPE_VEC3, false);
   prim.indices = addIndexAccessor(model, b.indices, b.positions.size());
   return prim;
+}
+
+}  // namespace
+
+namespace {
+
+// Materials no primitive uses (the scene's originals once every mesh took a lightmap copy, or
+// materials of no face) are left out, so that a validator sees no unused objects.
+void dropUnusedMaterials(tinygltf::Model& model) {
+  std::vector<int> newIndex(model.materials.size(), -1);
+  for (const tinygltf::Mesh& m : model.meshes)
+    for (const tinygltf::Primitive& p : m.primitives)
+      if (p.material >= 0) newIndex[size_t(p.material)] = 0;
+  std::vector<tinygltf::Material> kept;
+  for (size_t i = 0; i < model.materials.size(); ++i)
+    if (newIndex[i] == 0) newIndex[i] = int(kept.size()), kept.push_back(std::move(model.materials[i]));
+  model.materials = std::move(kept);
+  for (tinygltf::Mesh& m : model.meshes)
+    for (tinygltf::Primitive& p : m.primitives)
+      if (p.material >= 0) p.material = newIndex[size_t(p.material)];
+  bool strength = false;
+  for (const auto& g : model.materials) strength |= g.extensions.count("KHR_materials_emissive_strength") > 0;
+  if (!strength) std::erase(model.extensionsUsed, std::string("KHR_materials_emissive_strength"));
 }
 
 }  // namespace
@@ -447,6 +477,7 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
     model.scenes[0].extras = tinygltf::Value(extras);
   }
   if (model.meshes.empty()) throw Error(fmt::format("{}: scene '{}' has no faces to write", path.string(), scene.name));
+  dropUnusedMaterials(model);
 
   // Cameras, sized to the scene: clip planes at a thousandth and a hundred times its extent
   // (tinygltf always writes zfar, so it cannot be left infinite).
