@@ -1,9 +1,12 @@
 // What moving one object costs in a real scene (Sibenik, 75k triangles, sun and sky; the `scenes`
 // suite's 100,000-element cut), beside what rebuilding would cost (issue: the engine core):
-//  - SibenikTransportBuild: the CPU transport from scratch: BVH build and every element's
-//    receiver quadrature;
+//  - SibenikTransportBuild/0 and /1: the CPU transport from scratch (BVH build and every element's
+//    receiver quadrature), without and with the dynamic object (which adds the two-level form's
+//    BVHs to the one-level one);
 //  - SibenikMoveObject: one dynamic object moved: the scene's meshes, the surfaces, the ray
 //    tracer's instance (transform and top-level commit) and the quadratures near it;
+//  - SibenikInstanceCommit: the ray tracer's part of a move alone: the instance's transform and the
+//    top-level commit;
 //  - SibenikAnalyticLight: the sun and sky's irradiance on every element, which a move changes
 //    anywhere the object's shadow may fall (recomputed in full today).
 // The object is the scene's mesh at the 90th percentile of face count, made a dynamic object.
@@ -57,10 +60,12 @@ Sibenik* sibenik() {
 void SibenikTransportBuild(benchmark::State& state) {
   Sibenik* s = sibenik();
   if (!s) return state.SkipWithError("sibenik-cathedral not unzipped under the build folder");
+  s->scene.objects[s->object].dynamic = state.range(0) != 0;
   for (auto _ : state) {
     CpuTransport transport(s->scene, s->surfaces, FormFactorOptions{});
     benchmark::DoNotOptimize(&transport);
   }
+  s->scene.objects[s->object].dynamic = true;
   state.counters["elements"] = double(s->surfaces.elements.size());
   state.counters["faces"] = double(s->surfaces.faces.size());
 }
@@ -81,6 +86,17 @@ void SibenikMoveObject(benchmark::State& state) {
   state.counters["object faces"] = double(s->objectFaces);
 }
 
+void SibenikInstanceCommit(benchmark::State& state) {
+  Sibenik* s = sibenik();
+  if (!s) return state.SkipWithError("sibenik-cathedral not unzipped under the build folder");
+  CpuTransport transport(s->scene, s->surfaces, FormFactorOptions{});
+  int k = 0;
+  for (auto _ : state) {
+    transport.tracer().placeInstance(0, glm::translate(glm::mat4(1.0f), Vec3(0.0f, 0.01f * float(++k % 10), 0.0f)));
+    transport.tracer().commit();
+  }
+}
+
 void SibenikAnalyticLight(benchmark::State& state) {
   Sibenik* s = sibenik();
   if (!s) return state.SkipWithError("sibenik-cathedral not unzipped under the build folder");
@@ -93,8 +109,9 @@ void SibenikAnalyticLight(benchmark::State& state) {
   }
 }
 
-BENCHMARK(SibenikTransportBuild)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(SibenikTransportBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(SibenikMoveObject)->Unit(benchmark::kMillisecond)->Iterations(20);
+BENCHMARK(SibenikInstanceCommit)->Unit(benchmark::kMicrosecond)->Iterations(200);
 BENCHMARK(SibenikAnalyticLight)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace

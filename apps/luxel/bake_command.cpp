@@ -76,8 +76,7 @@ int runBake(const BakeArgs& a) {
   if (!a.quiet)
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
-  const SolveOptions so = solveOptions(a.solve);
-  validateSolveOptions(so);
+  const SolveOptions so = solveOptions(a.solve);  // checked by the session or recipe before any work
   if (a.lightmaps) {
     const std::vector<uint8_t> vertexColored = meshesMatching(scene, a.vertexColorsFor);  // before the solve
     LightmapRecipe recipe;

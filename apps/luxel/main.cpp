@@ -119,8 +119,9 @@ int runRender(const RenderArgs& a) {
   tm.curve = parseToneCurve(a.toneCurve);
   tm.exposure = a.exposure;
 
+  // A bad solver, backend or option fails before any work: the session and the lightmap recipe
+  // check them first.
   SolveOptions so = cli::solveOptions(a.solve);
-  validateSolveOptions(so);  // before the solve: a bad name fails fast
   Solution solution;
   Image image;
   RenderStats rs;

@@ -150,6 +150,8 @@ struct Scene {
   // similarity (rotation, translation and uniform scale: a mirror or a shear would change the
   // faces' areas unevenly and turn fronts round).
   void placeObject(uint32_t object, const glm::mat4& transform);
+  // What placeObject checks, without moving anything.
+  void checkPlacement(uint32_t object, const glm::mat4& transform) const;
 };
 
 // The transform that takes geometry from where it stood under `from` to where it stands under

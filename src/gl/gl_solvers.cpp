@@ -60,11 +60,10 @@ void registerGlProgressive(SolverRegistry& registry) {
     return gl::makeGlProgressiveSolver(r.system, *r.glContext, s);
   };
   e.converged.set("unshot", 1e-6);
-  // Shooting hemicubes are a midpoint rule over k x k points of the shooter (the half-shadow
-  // factor at 3 x 3: 5% low, tests/gl/test_gl_half_shadow.cpp).
+  // Shooting hemicubes are a midpoint rule over k x k points of the shooter: coarser than the
+  // CPU's factors where a shadow edge crosses a shooter, and over the Cornell box's larger
+  // patches at 300 elements (measured figures: docs/algorithms.md, "Solvers").
   e.accuracy.halfShadow = 0.08;
-  // The same rule over the Cornell box's larger patches at 300 elements: 0.0197 on llvmpipe (0.0104
-  // at 1,500 elements, tests/gl/test_gl_progressive.cpp).
   e.accuracy.cornell = 0.03;
   registry.add(std::move(e));
 }

@@ -60,22 +60,19 @@ void SurfaceSet::placeObject(const Scene& scene, uint32_t object) {
     for (size_t c = 0; c < 4; ++c) f.corners[c] = point(m, r.corners[c]);
     f.normal = turned(m, r.normal);
   }
-  for (size_t i = 0; i < rest->patches.size(); ++i) {
-    Patch& p = patches[rest->patches[i]];
-    const Patch& r = rest->patchRest[i];
-    p.polygon = moved(m, r.polygon);
-    p.centroid = point(m, r.centroid);
-    p.normal = turned(m, r.normal);
-    p.area = r.area * areaScale;
-  }
-  for (size_t i = 0; i < rest->elements.size(); ++i) {
-    Element& e = elements[rest->elements[i]];
-    const Element& r = rest->elementRest[i];
-    e.polygon = moved(m, r.polygon);
-    e.centroid = point(m, r.centroid);
-    e.normal = turned(m, r.normal);
-    e.area = r.area * areaScale;
-  }
+  // Patches and elements alike: polygon, centroid, normal and area from their rest pose.
+  auto place = [&](auto& all, const std::vector<uint32_t>& which, const auto& restPose) {
+    for (size_t i = 0; i < which.size(); ++i) {
+      auto& x = all[which[i]];
+      const auto& r = restPose[i];
+      x.polygon = moved(m, r.polygon);
+      x.centroid = point(m, r.centroid);
+      x.normal = turned(m, r.normal);
+      x.area = r.area * areaScale;
+    }
+  };
+  place(patches, rest->patches, rest->patchRest);
+  place(elements, rest->elements, rest->elementRest);
 }
 
 }  // namespace luxel

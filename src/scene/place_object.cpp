@@ -43,11 +43,17 @@ glm::mat4 similarityBetween(const glm::mat4& from, const glm::mat4& to, const st
   return delta;
 }
 
-void Scene::placeObject(uint32_t object, const glm::mat4& transform) {
+void Scene::checkPlacement(uint32_t object, const glm::mat4& transform) const {
   if (object >= objects.size())
     throw Error(fmt::format("scene '{}': no object {} ({} objects)", name, object, objects.size()));
-  Object& o = objects[object];
+  const Object& o = objects[object];
   if (!o.dynamic) throw Error(fmt::format("scene '{}': object '{}' is not dynamic, so it cannot move", name, o.name));
+  similarityBetween(o.transform, transform, fmt::format("scene '{}': object '{}'", name, o.name));
+}
+
+void Scene::placeObject(uint32_t object, const glm::mat4& transform) {
+  checkPlacement(object, transform);  // before anything changes
+  Object& o = objects[object];
   // The first move records every mesh's rest pose; later poses are computed from it.
   bool captured = false;
   for (const Mesh& m : meshes) captured = captured || (m.object == object && !m.restPositions.empty());
@@ -56,7 +62,7 @@ void Scene::placeObject(uint32_t object, const glm::mat4& transform) {
       if (m.object == object) m.restPositions = m.positions;
     o.restTransform = o.transform;
   }
-  const glm::mat4 delta = similarityBetween(o.restTransform, transform, fmt::format("scene '{}': object '{}'", name, o.name));
+  const glm::mat4 delta = transform * glm::inverse(o.restTransform);
   for (Mesh& m : meshes) {
     if (m.object != object) continue;
     for (size_t i = 0; i < m.positions.size(); ++i) m.positions[i] = Vec3(delta * glm::vec4(m.restPositions[i], 1.0f));

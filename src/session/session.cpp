@@ -60,14 +60,7 @@ Solution Session::solve(const ProgressCallback& progress) {
 
 void Session::placeObjects(const std::vector<std::pair<uint32_t, glm::mat4>>& placements) {
   // Every placement is checked before any is made: a bad one leaves the session as it was.
-  Scene& scene = state_->scene;
-  for (const auto& [object, transform] : placements) {
-    if (object >= scene.objects.size())
-      throw Error(fmt::format("scene '{}': no object {} ({} objects)", scene.name, object, scene.objects.size()));
-    const Object& o = scene.objects[object];
-    if (!o.dynamic) throw Error(fmt::format("scene '{}': object '{}' is not dynamic, so it cannot move", scene.name, o.name));
-    similarityBetween(o.transform, transform, fmt::format("scene '{}': object '{}'", scene.name, o.name));
-  }
+  for (const auto& [object, transform] : placements) state_->scene.checkPlacement(object, transform);
   std::vector<uint32_t> moved;
   for (const auto& [object, transform] : placements) {
     state_->scene.placeObject(object, transform);

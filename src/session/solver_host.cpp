@@ -21,9 +21,7 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
   const SolverRegistry& registry = SolverRegistry::builtin();
   const std::string& method = options.method;
   const std::string& backend = options.backend;
-  if (backend != "cpu" && backend != "gl" && backend != "auto")
-    throw Error(fmt::format("unknown backend '{}' (expected cpu, gl or auto)", backend));
-  if (!registry.hasMethod(method)) registry.get(method, backend);  // throws, listing the solvers
+  validateSolveOptions(options);  // method, backend and option names; values when the backend is fixed
   if (!(options.refine.threshold > 0.0f)) throw Error("refine threshold must be > 0");
 
   // The backend: GL where asked (or where auto finds a context and the method runs there).

@@ -135,7 +135,7 @@ class ProgressiveSolver final : public Solver {
   // not repay). Sets done_ when the stopping rules say so instead.
   void shootOnePass(const ProgressCallback& progress, double secondsSpent) {
     const size_t np = sys_.patchCount();
-    unshotFraction_ = currentUnshotFraction();
+    // unshotFraction_ and ranked_ are current: set by the constructor or the previous pass.
     if (unshotFraction_ <= s_.unshotThreshold || (s_.shotBudget && shots_ >= s_.shotBudget) ||
         (s_.timeBudget > 0.0 && secondsSpent >= s_.timeBudget)) {
       done_ = true;

@@ -87,8 +87,7 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
     // The two-level form, traced once an instance has moved: the static polygons as one
     // instance, each dynamic object as another, under a top level of a handful of leaves that a
     // commit rebuilds at once. Until then rays go through the one-level BVH of everything, which
-    // traces faster: with Embree 3's ray streams the instanced Cornell box of seed 001 took
-    // cornell-large's rays from 22.6 to 14.7 Mrays/s (docs/performance.md).
+    // traces faster with Embree 3's ray streams (docs/performance.md, "The engine core").
     members_.resize(size_t(instanceCount) + 1);
     for (uint32_t i = 0; i < polygons.size(); ++i) members_[size_t(instanceOf[i] + 1)].push_back(i);
     layered_ = rtcNewScene(dev);
@@ -114,7 +113,11 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
 void RayTracer::placeInstance(uint32_t instance, const glm::mat4& transform) {
   if (instance >= instances_.size())
     throw Error(fmt::format("ray tracer: no instance {} ({} instances)", instance, instances_.size()));
-  moved_ = true;  // from now on the one-level BVH is out of date
+  if (!moved_ && flat_) {  // from now on the one-level BVH is out of date: give its memory back
+    rtcReleaseScene(flat_);
+    flat_ = nullptr;
+  }
+  moved_ = true;
   rtcSetGeometryTransform(instances_[instance], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
   rtcCommitGeometry(instances_[instance]);
 }
