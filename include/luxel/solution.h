@@ -21,6 +21,11 @@ struct SolveStats {
   uint64_t iterations = 0;     // gather: sweeps
   uint64_t rays = 0;           // visibility rays traced
   uint64_t hemicubes = 0;      // GL backend: hemicubes rendered
+  uint64_t links = 0;          // hierarchical: transfers computed (links are not stored)
+  size_t clusterElements = 0;  // hierarchical: clusters in the element tree
+  size_t clusterLeaves = 0;    // hierarchical: its leaves, which hold the irradiance
+  double secondsHierarchy = 0.0;  // hierarchical: building the face-cluster tree
+  size_t hierarchyBytes = 0;      // hierarchical: the face-cluster tree's memory
   double residual = 0.0;       // gather: last relative change; progressive: unshot fraction
   double unshotFraction = 0.0;
   double secondsSetup = 0.0;        // BVH build, GL context, analytic lights, solver setup

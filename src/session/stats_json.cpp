@@ -33,6 +33,12 @@ std::string statsJson(const RunRecord& r) {
       {"threads", r.threads},
       {"outputs", r.outputs},
   };
+  if (s.method == "hierarchical")
+    j["hierarchy"] = {{"seconds", s.secondsHierarchy},
+                      {"bytes", s.hierarchyBytes},
+                      {"links", s.links},
+                      {"elements", s.clusterElements},
+                      {"leaves", s.clusterLeaves}};
   if (r.image)
     j["image"] = {{"width", r.image->width},         {"height", r.image->height},
                   {"spp", r.image->samplesPerPixel}, {"mode", r.image->mode},

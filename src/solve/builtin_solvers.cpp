@@ -5,12 +5,14 @@ namespace luxel {
 class SolverRegistry;
 void registerCpuProgressive(SolverRegistry&);  // solve/progressive_solver.cpp
 void registerCpuGather(SolverRegistry&);       // solve/gather_solver.cpp
+void registerCpuHierarchical(SolverRegistry&); // hierarchical/hierarchical_solver.cpp
 void registerGlProgressive(SolverRegistry&);   // gl/gl_solvers.cpp
 void registerGlGather(SolverRegistry&);        // gl/gl_solvers.cpp
 
 void registerBuiltinSolvers(SolverRegistry& registry) {
   registerCpuProgressive(registry);
   registerCpuGather(registry);
+  registerCpuHierarchical(registry);
   registerGlProgressive(registry);
   registerGlGather(registry);
 }

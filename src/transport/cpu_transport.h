@@ -32,6 +32,7 @@ class CpuTransport final : public Transport {
   void objectsMoved(std::span<const uint32_t> objects) override;
 
   RayTracer& tracer() { return tracer_; }
+  RayTracer* rayTracer() override { return &tracer_; }
 
   // One element-patch pair, written to *out.
   struct Pair {

@@ -39,7 +39,9 @@ inline float edgeTerm(Vec3 a, Vec3 b, Vec3 n) {
 // F = (1/2pi) |sum_i gamma_i n . (R_i x R_i+1) / |R_i x R_i+1||, gamma_i the angle between R_i
 // and R_i+1. The formula assumes the polygon lies wholly in the upper hemisphere, so the polygon
 // is clipped against the tangent plane first (Sutherland-Hodgman).
-float upperHemisphereFormFactor(Vec3 p, Vec3 n, const Polygon& poly) {
+// The corners of the part of `poly` above the plane through `p` with normal `n`, relative to
+// `p` (Sutherland-Hodgman); fewer than 3 when nothing of it is above.
+int clipAbove(Vec3 p, Vec3 n, const Polygon& poly, Vec3 r[8]) {
   float d[4];
   bool allAbove = true, allBelow = true;
   for (int i = 0; i < poly.count; ++i) {
@@ -47,24 +49,27 @@ float upperHemisphereFormFactor(Vec3 p, Vec3 n, const Polygon& poly) {
     allAbove &= d[i] >= 0.0f;  // corners in the plane bound the visible part exactly
     allBelow &= d[i] <= 0.0f;
   }
-  if (allBelow) return 0.0f;
-
-  Vec3 r[8];
+  if (allBelow) return 0;
   int count = 0;
   if (allAbove) {
     for (int i = 0; i < poly.count; ++i) r[count++] = poly.v[i] - p;
-  } else {
-    for (int i = 0; i < poly.count; ++i) {
-      int j = i + 1 == poly.count ? 0 : i + 1;
-      if (d[i] > 0.0f) r[count++] = poly.v[i] - p;
-      if ((d[i] > 0.0f) != (d[j] > 0.0f)) {
-        float t = d[i] / (d[i] - d[j]);
-        r[count++] = poly.v[i] + t * (poly.v[j] - poly.v[i]) - p;
-      }
-    }
-    if (count < 3) return 0.0f;
+    return count;
   }
+  for (int i = 0; i < poly.count; ++i) {
+    int j = i + 1 == poly.count ? 0 : i + 1;
+    if (d[i] > 0.0f) r[count++] = poly.v[i] - p;
+    if ((d[i] > 0.0f) != (d[j] > 0.0f)) {
+      float t = d[i] / (d[i] - d[j]);
+      r[count++] = poly.v[i] + t * (poly.v[j] - poly.v[i]) - p;
+    }
+  }
+  return count;
+}
 
+float upperHemisphereFormFactor(Vec3 p, Vec3 n, const Polygon& poly) {
+  Vec3 r[8];
+  const int count = clipAbove(p, n, poly, r);
+  if (count < 3) return 0.0f;
   float sum = 0.0f;
   for (int i = 0; i < count; ++i) sum += edgeTerm(r[i], r[i + 1 == count ? 0 : i + 1], n);
   return std::abs(sum) * kInv2Pi;
@@ -186,6 +191,24 @@ double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source
       }
   }
   return total > 0.0 ? weighted / total : 0.0;
+}
+
+Vec3 polygonIrradianceVector(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNormal) {
+  if (glm::dot(polyNormal, p - poly.v[0]) <= 0.0f) return Vec3(0.0f);  // behind a one-sided source
+  Vec3 r[8];
+  const int count = clipAbove(p, n, poly, r);
+  if (count < 3) return Vec3(0.0f);
+  Vec3 sum(0.0f);
+  for (int i = 0; i < count; ++i) {
+    const Vec3 a = r[i], b = r[i + 1 == count ? 0 : i + 1];
+    const Vec3 c = glm::cross(a, b);
+    const float cl = glm::length(c);
+    if (cl <= 0.0f) continue;
+    sum += (std::atan2(cl, glm::dot(a, b)) / cl) * c;
+  }
+  // The contour's winding decides the sign: the vector points from p towards the polygon.
+  if (glm::dot(sum, n) < 0.0f) sum = -sum;
+  return sum * kInv2Pi;
 }
 
 float pointPolygonDistance(Vec3 p, const Polygon& poly) {

@@ -30,6 +30,14 @@ float pointToPolygonFormFactor(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNor
 void pointToPolygonFormFactors4(const Vec3 p[4], const Vec3 n[4], const Polygon& poly, Vec3 polyNormal,
                                 float out[4]);
 
+// The irradiance vector per unit exitance of the one-sided polygon (unit normal polyNormal) at
+// `p`, the polygon clipped to the half-space in front of the plane through `p` with normal `n`:
+// (1/2pi) sum_i gamma_i (R_i x R_i+1) / |R_i x R_i+1|, pointing from p towards the polygon. Its
+// dot product with n is pointToPolygonFormFactor(p, n, poly, polyNormal, Front, Front); with another
+// normal m whose half-space holds the clipped polygon, m . vector is the factor for m (Arvo,
+// "The Irradiance Jacobian for Partially Occluded Polyhedral Sources", SIGGRAPH 1994).
+Vec3 polygonIrradianceVector(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNormal);
+
 // Area-to-area form factor F(receiver -> source), the point form factor integrated over the
 // receiver with a regular k x k (quads) or k^2 (triangles) midpoint rule.
 double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source, int k,

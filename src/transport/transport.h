@@ -13,6 +13,8 @@
 
 namespace luxel {
 
+class RayTracer;
+
 class Transport {
  public:
   virtual ~Transport() = default;
@@ -29,6 +31,10 @@ class Transport {
   // Irradiance at each element from the scene's analytic lights (point, spot, sun, skies),
   // with shadows, averaged over the element.
   virtual void analyticIrradiance(std::span<Rgb> out) = 0;
+
+  // The ray tracer over the scene's faces, for solvers that trace their own rays (the
+  // hierarchical solver); null where the backend has none.
+  virtual RayTracer* rayTracer() { return nullptr; }
 
   // Rays traced so far (0 for backends that do not trace rays).
   virtual uint64_t raysTraced() const = 0;

@@ -1,0 +1,382 @@
+#include "cluster/face_cluster_tree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <queue>
+#include <span>
+
+#include <fmt/format.h>
+
+#include <tbb/parallel_sort.h>
+
+#include "core/stopwatch.h"
+#include "luxel/error.h"
+
+namespace luxel {
+
+float FaceCluster::selfFormFactorBound() const {
+  if (convex || area <= 0.0f) return 0.0f;
+  // Separate pieces can light each other whatever their normals (a lamp facing down over a floor
+  // patch facing up, with a one-sided sheet between facing down: the vector area says almost
+  // none, and a tenth of the lamp's light lands on the floor).
+  if (!connected) return 1.0f;
+  return std::clamp(1.0f - glm::length(vectorArea) / area, 0.0f, 1.0f);
+}
+
+namespace {
+
+// What contraction needs to know of a cluster (Garland et al. 2001, section 3): moments of its
+// area for the best-fit plane, its vector area for the spread of its normals, its perimeter for
+// its shape, and its material.
+struct Moments {
+  double area = 0.0;
+  glm::dvec3 vectorArea{0.0};
+  glm::dvec3 first{0.0};            // sum A c
+  std::array<double, 6> second{};   // sum A c c^T: xx, yy, zz, xy, xz, yz
+  double perimeter = 0.0;
+  glm::dvec3 reflectance{0.0};      // sum A rho
+  bool emits = false;
+  bool convex = true;
+
+  void add(const Moments& o) {
+    area += o.area, vectorArea += o.vectorArea, first += o.first, perimeter += o.perimeter;
+    for (int i = 0; i < 6; ++i) second[size_t(i)] += o.second[size_t(i)];
+    reflectance += o.reflectance;
+    emits = emits || o.emits;
+    convex = convex && o.convex;
+  }
+};
+
+struct Neighbour {
+  uint32_t node;
+  float length;  // of the boundary shared with it
+  bool convex;   // no edge of that boundary is concave
+};
+
+// The cost of contracting a and b (sharing a boundary of `shared` length): how far the union is
+// from a plane (mean squared distance over area), how spread its normals are (1 - |sum A n| / A,
+// Willmott's bound on its self form factor), how much less compact it is than either part
+// (perimeter^2 / (4 pi A), weighted 0.1 as Garland et al. weigh shape), and whether it joins
+// different materials or an emitter to a non-emitter.
+double contractionCost(const Moments& a, const Moments& b, double shared) {
+  const double area = a.area + b.area;
+  if (area <= 0.0) return 0.0;
+  const glm::dvec3 va = a.vectorArea + b.vectorArea;
+  const double spread = std::max(0.0, 1.0 - glm::length(va) / area);
+  const glm::dvec3 mean = (a.first + b.first) / area;
+  std::array<double, 6> c;
+  const double mm[6] = {mean.x * mean.x, mean.y * mean.y, mean.z * mean.z, mean.x * mean.y, mean.x * mean.z, mean.y * mean.z};
+  for (int i = 0; i < 6; ++i) c[size_t(i)] = (a.second[size_t(i)] + b.second[size_t(i)]) / area - mm[i];
+  const double fit = std::max(0.0, smallestEigenvalue(c)) / area;
+  auto irregularity = [](double perimeter, double area) {
+    return area > 0.0 ? perimeter * perimeter / (4.0 * std::numbers::pi * area) : 0.0;
+  };
+  const double perimeter = std::max(0.0, a.perimeter + b.perimeter - 2.0 * shared);
+  const double shape = std::max(0.0, irregularity(perimeter, area) -
+                                          std::max(irregularity(a.perimeter, a.area), irregularity(b.perimeter, b.area)));
+  const glm::dvec3 ra = a.area > 0 ? a.reflectance / a.area : glm::dvec3(0), rb = b.area > 0 ? b.reflectance / b.area : glm::dvec3(0);
+  const glm::dvec3 dr = glm::abs(ra - rb);
+  const double material = std::max({dr.x, dr.y, dr.z}) + (a.emits != b.emits ? 1.0 : 0.0);
+  return fit + spread + 0.1 * shape + material;
+}
+
+struct HeapEntry {
+  double cost;
+  uint32_t a, b;
+  bool operator>(const HeapEntry& o) const {
+    if (cost != o.cost) return cost > o.cost;
+    return a != o.a ? a > o.a : b > o.b;  // ties broken by index: the same tree every run
+  }
+};
+
+// Which of the face's corners the parameters (s, t) name, or -1 inside or along an edge.
+int faceCornerAt(const SurfaceFace& face, Vec2 st) {
+  if (st == Vec2(0, 0)) return 0;
+  if (st == Vec2(1, 0)) return 1;
+  if (face.triangle) return st == Vec2(0, 1) ? 2 : -1;
+  if (st == Vec2(1, 1)) return 2;
+  return st == Vec2(0, 1) ? 3 : -1;
+}
+
+// Corners at exactly the same position are the same vertex.
+std::vector<uint32_t> weldCorners(const SurfaceSet& s, std::vector<uint32_t>& firstCorner) {
+  struct Corner {
+    std::array<uint32_t, 3> bits;
+    uint32_t index;
+  };
+  std::vector<Corner> corners;
+  firstCorner.assign(s.elements.size() + 1, 0);
+  for (size_t e = 0; e < s.elements.size(); ++e) {
+    firstCorner[e] = uint32_t(corners.size());
+    const Element& el = s.elements[e];
+    const SurfaceFace& face = s.faces[el.face];
+    const Polygon& p = el.polygon;
+    for (int c = 0; c < p.count; ++c) {
+      Corner k;
+      // A corner at one of its face's corners takes the face's own position: the one computed
+      // from the face's parameters can differ from it in the last bit, and then two faces that
+      // share a mesh vertex would not be found adjacent.
+      Vec3 v = p.v[size_t(c)];
+      const Vec2 st = el.param[size_t(c)];
+      const int corner = faceCornerAt(face, st);
+      if (corner >= 0) v = face.corners[size_t(corner)];
+      v += Vec3(0.0f);  // -0 and +0 alike
+      std::memcpy(k.bits.data(), &v, sizeof(v));
+      k.index = uint32_t(corners.size());
+      corners.push_back(k);
+    }
+  }
+  firstCorner[s.elements.size()] = uint32_t(corners.size());
+  std::vector<Corner> sorted = corners;
+  tbb::parallel_sort(sorted.begin(), sorted.end(), [](const Corner& a, const Corner& b) {
+    return a.bits != b.bits ? a.bits < b.bits : a.index < b.index;
+  });
+  std::vector<uint32_t> vertex(corners.size());
+  uint32_t id = 0;
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    if (i > 0 && sorted[i].bits != sorted[i - 1].bits) ++id;
+    vertex[sorted[i].index] = id;
+  }
+  return vertex;
+}
+
+}  // namespace
+
+FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
+  const Stopwatch watch;
+  const size_t n = surfaces.elements.size();
+  if (n == 0) throw Error("face clusters: the scene has no elements");
+  if (n >= size_t(kNoCluster) / 2) throw Error(fmt::format("face clusters: {} elements is more than the hierarchy indexes", n));
+  FaceClusterTree tree;
+  tree.nodes.resize(2 * n - 1);
+  std::vector<Moments> moments(2 * n - 1);
+  std::vector<Vec3> lo(2 * n - 1), hi(2 * n - 1);
+  std::vector<std::vector<Neighbour>> adjacency(2 * n - 1);
+  std::vector<uint8_t> alive(2 * n - 1, 0);
+
+  for (size_t e = 0; e < n; ++e) {
+    const Element& el = surfaces.elements[e];
+    Moments& m = moments[e];
+    const glm::dvec3 c(el.centroid);
+    m.area = el.area;
+    m.vectorArea = glm::dvec3(el.normal) * double(el.area);
+    m.first = c * double(el.area);
+    m.second = {el.area * c.x * c.x, el.area * c.y * c.y, el.area * c.z * c.z,
+                el.area * c.x * c.y, el.area * c.x * c.z, el.area * c.y * c.z};
+    for (int k = 0; k < el.polygon.count; ++k)
+      m.perimeter += glm::length(el.polygon.v[size_t((k + 1) % el.polygon.count)] - el.polygon.v[size_t(k)]);
+    m.reflectance = glm::dvec3(el.reflectance) * double(el.area);
+    m.emits = el.exitance.r > 0 || el.exitance.g > 0 || el.exitance.b > 0;
+    lo[e] = hi[e] = el.polygon.v[0];
+    for (int k = 1; k < el.polygon.count; ++k)
+      lo[e] = glm::min(lo[e], el.polygon.v[size_t(k)]), hi[e] = glm::max(hi[e], el.polygon.v[size_t(k)]);
+    alive[e] = 1;
+  }
+
+  // The dual graph: elements that share an edge, with the edge's length and whether the surface
+  // folds away (convex) or towards itself (concave) across it.
+  {
+    std::vector<uint32_t> firstCorner;
+    const std::vector<uint32_t> vertex = weldCorners(surfaces, firstCorner);
+    struct Edge {
+      uint64_t key;
+      uint32_t element;
+      float length;
+    };
+    std::vector<Edge> edges;
+    edges.reserve(vertex.size());
+    for (size_t e = 0; e < n; ++e) {
+      const Polygon& p = surfaces.elements[e].polygon;
+      for (int k = 0; k < p.count; ++k) {
+        const uint32_t a = vertex[firstCorner[e] + uint32_t(k)], b = vertex[firstCorner[e] + uint32_t((k + 1) % p.count)];
+        if (a == b) continue;
+        edges.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(e),
+                         glm::length(p.v[size_t((k + 1) % p.count)] - p.v[size_t(k)])});
+      }
+    }
+    tbb::parallel_sort(edges.begin(), edges.end(), [](const Edge& a, const Edge& b) {
+      return a.key != b.key ? a.key < b.key : a.element < b.element;
+    });
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i + 1;
+      while (j < edges.size() && edges[j].key == edges[i].key) ++j;
+      // Usually two elements; a non-manifold edge links every pair (at most a few).
+      for (size_t x = i; x < j && x < i + 8; ++x)
+        for (size_t y = x + 1; y < j && y < i + 8; ++y) {
+          const uint32_t a = edges[x].element, b = edges[y].element;
+          if (a == b) continue;
+          const Element &ea = surfaces.elements[a], &eb = surfaces.elements[b];
+          const float tolerance = 1e-4f * edges[x].length;
+          const bool convex = glm::dot(ea.normal, eb.centroid - ea.centroid) <= tolerance &&
+                              glm::dot(eb.normal, ea.centroid - eb.centroid) <= tolerance;
+          adjacency[a].push_back({b, edges[x].length, convex});
+          adjacency[b].push_back({a, edges[x].length, convex});
+        }
+      i = j;
+    }
+  }
+  // One entry per neighbour (two elements of a split face can share two edges).
+  auto combine = [](std::vector<Neighbour>& list) {
+    std::sort(list.begin(), list.end(), [](const Neighbour& a, const Neighbour& b) { return a.node < b.node; });
+    size_t out = 0;
+    for (size_t i = 0; i < list.size(); ++i) {
+      if (out > 0 && list[out - 1].node == list[i].node) {
+        list[out - 1].length += list[i].length;
+        list[out - 1].convex = list[out - 1].convex && list[i].convex;
+      } else {
+        list[out++] = list[i];
+      }
+    }
+    list.resize(out);
+  };
+  std::vector<HeapEntry> initial;
+  for (uint32_t e = 0; e < n; ++e) {
+    combine(adjacency[e]);
+    for (const Neighbour& nb : adjacency[e])
+      if (nb.node > e) initial.push_back({contractionCost(moments[e], moments[nb.node], nb.length), e, nb.node});
+  }
+  std::priority_queue<HeapEntry, std::vector<HeapEntry>, std::greater<HeapEntry>> heap(std::greater<HeapEntry>(),
+                                                                                       std::move(initial));
+
+  auto link = [&](uint32_t parent, uint32_t a, uint32_t b) {
+    FaceCluster& p = tree.nodes[parent];
+    p.child = {a, b};
+    tree.nodes[a].parent = tree.nodes[b].parent = parent;
+    moments[parent] = moments[a];
+    moments[parent].add(moments[b]);
+    lo[parent] = glm::min(lo[a], lo[b]), hi[parent] = glm::max(hi[a], hi[b]);
+  };
+
+  // Greedy contraction, cheapest dual edge first.
+  uint32_t next = uint32_t(n);
+  while (!heap.empty()) {
+    const HeapEntry top = heap.top();
+    heap.pop();
+    if (!alive[top.a] || !alive[top.b]) continue;
+    const uint32_t a = top.a, b = top.b, c = next++;
+    bool sharedConvex = true;
+    for (const Neighbour& nb : adjacency[a])
+      if (nb.node == b) sharedConvex = nb.convex;
+    link(c, a, b);
+    moments[c].convex = moments[a].convex && moments[b].convex && sharedConvex;
+    alive[a] = alive[b] = 0, alive[c] = 1;
+    std::vector<Neighbour>& list = adjacency[c];
+    for (uint32_t side : {a, b})
+      for (const Neighbour& nb : adjacency[side])
+        if (nb.node != a && nb.node != b) list.push_back(nb);
+    combine(list);
+    std::vector<Neighbour>().swap(adjacency[a]);
+    std::vector<Neighbour>().swap(adjacency[b]);
+    for (const Neighbour& nb : list) {
+      // In the neighbour's list, a and b become c.
+      std::vector<Neighbour>& other = adjacency[nb.node];
+      for (Neighbour& o : other)
+        if (o.node == a || o.node == b) o.node = c;
+      combine(other);
+      heap.push({contractionCost(moments[c], moments[nb.node], nb.length), std::min(c, nb.node), std::max(c, nb.node)});
+    }
+  }
+
+  // The components that share no edge: joined by median splits along the widest axis of their
+  // boxes' centres, so that the root holds everything.
+  std::vector<uint32_t> roots;
+  for (uint32_t i = 0; i < next; ++i)
+    if (alive[i]) roots.push_back(i);
+  tree.components = uint32_t(roots.size());
+  auto join = [&](auto& self, std::span<uint32_t> part) -> uint32_t {
+    if (part.size() == 1) return part[0];
+    Vec3 clo(std::numeric_limits<float>::max()), chi(-std::numeric_limits<float>::max());
+    for (uint32_t r : part) {
+      const Vec3 centre = 0.5f * (lo[r] + hi[r]);
+      clo = glm::min(clo, centre), chi = glm::max(chi, centre);
+    }
+    const Vec3 extent = chi - clo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const size_t half = part.size() / 2;
+    std::nth_element(part.begin(), part.begin() + std::ptrdiff_t(half), part.end(), [&](uint32_t x, uint32_t y) {
+      const float cx = lo[x][axis] + hi[x][axis], cy = lo[y][axis] + hi[y][axis];
+      return cx != cy ? cx < cy : x < y;
+    });
+    const uint32_t left = self(self, part.subspan(0, half));
+    const uint32_t right = self(self, part.subspan(half));
+    const uint32_t c = next++;
+    link(c, left, right);
+    moments[c].convex = false;
+    tree.nodes[c].connected = false;
+    return c;
+  };
+  tree.root = join(join, roots);
+  tree.nodes.resize(next);
+
+  // Each cluster's elements contiguous: the leaves in depth-first order.
+  tree.order.reserve(n);
+  std::vector<uint32_t> stack{tree.root};
+  while (!stack.empty()) {
+    const uint32_t i = stack.back();
+    stack.pop_back();
+    FaceCluster& c = tree.nodes[i];
+    if (c.leaf()) {
+      c.begin = uint32_t(tree.order.size()), c.count = 1;
+      tree.order.push_back(i);
+    } else {
+      stack.push_back(c.child[1]);
+      stack.push_back(c.child[0]);
+    }
+  }
+
+  // Children are made before their parents, so one pass in index order fills every node.
+  for (uint32_t i = 0; i < next; ++i) {
+    FaceCluster& c = tree.nodes[i];
+    const Moments& m = moments[i];
+    c.area = float(m.area);
+    c.vectorArea = Vec3(m.vectorArea);
+    c.reflectance = m.area > 0 ? Rgb(m.reflectance / m.area) : Rgb(0.0f);
+    c.convex = m.convex;
+    if (c.leaf()) {
+      const Element& el = surfaces.elements[i];
+      c.maxReflectance = std::max({el.reflectance.r, el.reflectance.g, el.reflectance.b});
+      c.cone = {el.normal, 1.0f};
+      c.box = fitOrientedBox({el.polygon.v.data(), size_t(el.polygon.count)}, el.normal);
+      for (int j = 0; j < 3; ++j) {
+        const float d = glm::dot(el.normal, c.box.axis[size_t(j)]) * el.area;
+        c.axisAreas[size_t(j)] = std::max(0.0f, d), c.axisAreas[size_t(j) + 3] = std::max(0.0f, -d);
+      }
+      continue;
+    }
+    const FaceCluster &a = tree.nodes[c.child[0]], &b = tree.nodes[c.child[1]];
+    c.begin = std::min(a.begin, b.begin), c.count = a.count + b.count;
+    c.maxReflectance = std::max(a.maxReflectance, b.maxReflectance);
+    c.cone = mergeCones(a.cone, b.cone);
+    const float len = glm::length(c.vectorArea);
+    Vec3 normal = len > 1e-6f * c.area ? c.vectorArea / len : (a.area >= b.area ? a.box.axis[2] : b.box.axis[2]);
+    std::array<Vec3, 16> points;
+    const std::array<Vec3, 8> ca = a.box.corners(), cb = b.box.corners();
+    std::copy(ca.begin(), ca.end(), points.begin());
+    std::copy(cb.begin(), cb.end(), points.begin() + 8);
+    // From the children's boxes, not every vertex: O(1) per node. The box is a little larger than
+    // the tightest, and still holds every face.
+    c.box = fitOrientedBox(points, normal);
+    if (c.count <= 64) {  // exact, from the faces
+      c.axisAreas.fill(0.0f);
+      for (uint32_t k = c.begin; k < c.begin + c.count; ++k) {
+        const Element& el = surfaces.elements[tree.order[k]];
+        for (int j = 0; j < 3; ++j) {
+          const float d = glm::dot(el.normal, c.box.axis[size_t(j)]) * el.area;
+          c.axisAreas[size_t(j)] += std::max(0.0f, d), c.axisAreas[size_t(j) + 3] += std::max(0.0f, -d);
+        }
+      }
+    } else {  // bounded by the children's bounds along the new axes, so that the build stays linear
+      for (int j = 0; j < 3; ++j) {
+        const Vec3 u = c.box.axis[size_t(j)];
+        c.axisAreas[size_t(j)] = a.maxProjectedArea(u) + b.maxProjectedArea(u);
+        c.axisAreas[size_t(j) + 3] = a.maxProjectedArea(-u) + b.maxProjectedArea(-u);
+      }
+    }
+  }
+  tree.seconds = watch.seconds();
+  return tree;
+}
+
+}  // namespace luxel

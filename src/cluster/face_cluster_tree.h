@@ -1,0 +1,62 @@
+// The face-cluster hierarchy: a binary tree over a scene's elements whose every node is a
+// connected, nearly planar, compact piece of surface, after Garland, Willmott and Heckbert,
+// "Hierarchical Face Clustering on Polygonal Surfaces", I3D 2001 (greedy contraction of the dual
+// graph, cheapest edge first), as Gobbetti, Spano and Agus, "Hierarchical Higher Order Face
+// Cluster Radiosity", Eurographics 2003, section 3.1 build and query it. Pieces that share no edge
+// (separate objects, or faces that only touch) are joined above the contracted components by a
+// spatial median split, so that one root holds the whole scene.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "cluster/cluster_geometry.h"
+#include "luxel/surface.h"
+
+namespace luxel {
+
+inline constexpr uint32_t kNoCluster = std::numeric_limits<uint32_t>::max();
+
+struct FaceCluster {
+  uint32_t begin = 0, count = 0;  // its elements: FaceClusterTree::order[begin, begin + count)
+  std::array<uint32_t, 2> child{kNoCluster, kNoCluster};
+  uint32_t parent = kNoCluster;
+  float area = 0.0f;
+  Vec3 vectorArea{0.0f};                // sum A_k n_k
+  OrientedBox box;                      // z along the area-averaged normal
+  std::array<float, 6> axisAreas{};     // D+_j, D-_j: projected area along +-box.axis[j]
+  NormalCone cone;
+  Rgb reflectance{0.0f};                // area-weighted mean
+  float maxReflectance = 0.0f;          // largest channel of any element
+  // Made by contracting dual edges none of which is concave: the surface is locally convex
+  // everywhere, so no part of it sees another (its self form factor is 0).
+  bool convex = true;
+  bool connected = true;                // false for the nodes that join separate components
+
+  bool leaf() const { return child[0] == kNoCluster; }
+  float minProjectedArea(Vec3 r) const { return luxel::minProjectedArea(vectorArea, r); }
+  float maxProjectedArea(Vec3 r) const { return luxel::maxProjectedArea(box, axisAreas, r); }
+  // Upper bound on the share of the light leaving the cluster that lands on itself (Willmott):
+  // 1 - |sum A_k n_k| / A for a connected surface, 0 for a convex one, 1 for separate pieces.
+  float selfFormFactorBound() const;
+};
+
+struct FaceClusterTree {
+  // Leaves first: node e (e < elementCount) is element e. Then the joined nodes; the root last.
+  std::vector<FaceCluster> nodes;
+  std::vector<uint32_t> order;  // element indices, each cluster's a contiguous run
+  uint32_t root = kNoCluster;
+  uint32_t components = 0;      // connected components the contraction ended with
+  double seconds = 0.0;         // build time
+
+  size_t elementCount() const { return order.size(); }
+  size_t bytes() const { return nodes.capacity() * sizeof(FaceCluster) + order.capacity() * sizeof(uint32_t); }
+};
+
+// Builds the hierarchy over `surfaces.elements`. Elements are adjacent when they share an edge
+// (both corners at exactly the same position). Throws Error when there are no elements.
+FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces);
+
+}  // namespace luxel
