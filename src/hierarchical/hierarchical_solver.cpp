@@ -569,7 +569,7 @@ void registerCpuHierarchical(SolverRegistry& registry) {
                            v.integer("receiver-points"), v.integer("emitter-points")};
     return std::make_unique<HierarchicalSolver>(r.scene, r.system, r.transport, s);
   };
-  e.converged.set("error", 1e-6).set("unshot", 1e-7).set("receiver-points", 4).set("emitter-points", 8);
+  e.converged.set("error", 1e-5).set("unshot", 1e-6).set("receiver-points", 3).set("emitter-points", 8);
   e.accuracy.furnace = 5e-3;  // the target for the furnace
   // The visibility of a leaf emitter is a ratio over its 8 x 8 point grid: a shadow edge falls
   // anywhere within one column, a column of the half-shadow emitter carries about a tenth of the

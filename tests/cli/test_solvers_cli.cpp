@@ -84,9 +84,9 @@ TEST(SolversCli, AnOptionTheSolverDoesNotReadIsAnError) {
 
 TEST(SolversCli, UnknownSolverOrBackendListsWhatExists) {
   const fs::path dir = scratchDir();
-  CliRun r = luxel(dir, {"render", "cornell", "-o", "c.exr", "--solver", "hierarchical"});
+  CliRun r = luxel(dir, {"render", "cornell", "-o", "c.exr", "--solver", "photon-map"});
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("unknown solver 'hierarchical' (registered: progressive/cpu, gather/cpu, progressive/gl, gather/gl)"),
+  EXPECT_NE(r.err.find("unknown solver 'photon-map' (registered: progressive/cpu, gather/cpu, hierarchical/cpu, progressive/gl, gather/gl)"),
             std::string::npos)
       << r.err;
   r = luxel(dir, {"render", "cornell", "-o", "c.exr", "--backend", "vulkan"});
