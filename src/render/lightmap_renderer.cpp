@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/random.h"
+#include "luxel/bake.h"
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
 #include "render/camera_frame.h"
@@ -56,6 +57,9 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
     }
   }
   RayTracer tracer(polygons);
+  // The bake turned round the faces whose back got the light (walls wound out of the room) and
+  // baked that side: it is the one to show, and the other is the culled back.
+  const std::vector<std::vector<uint8_t>> turned = flippedFaceFlags(scene, bake.surfaces.surfaces);
   const Vec3 up = glm::normalize(scene.up);
   std::vector<const Light*> skies;
   for (const Light& l : scene.lights)
@@ -90,7 +94,8 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
         const Face& face = mesh.faces[ref.face];
         const Polygon& poly = polygons[rh.hit.primID];
         const Material& mat = scene.materials[mesh.material];
-        if (!mat.twoSided && glm::dot(poly.normal(), dir) >= 0.0f) continue;  // a one-sided back is black
+        const bool facesAway = glm::dot(poly.normal(), dir) >= 0.0f;
+        if (!mat.twoSided && facesAway != bool(turned[ref.mesh][ref.face])) continue;  // a one-sided back is black
         // The bake rasterised quads as triangles (0,1,2) and (0,2,3), the ones the tracer hits.
         const auto [i1, i2, w] = hitTriangle(poly.count, rh.hit.u, rh.hit.v);
         const LightmapAtlas::FaceUv& fuv = atlas.faces[ref.mesh][ref.face];
