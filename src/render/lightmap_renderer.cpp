@@ -66,6 +66,7 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
     if (l.type == Light::Type::Sky || l.type == Light::Type::CieOvercastSky) skies.push_back(&l);
 
   Image image(options.width, options.height);
+  image.coverage.assign(image.pixels.size(), 0.0f);
   const CameraFrame cam(options.camera, options.width, options.height);
   const int spp = options.samplesPerPixel;
   std::atomic<int> rowsDone{0};
@@ -82,6 +83,7 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
     tracer.intersect(hits);
     for (int x = 0; x < options.width; ++x) {
       Rgb sum(0.0f);
+      int hitSamples = 0;
       for (int s = 0; s < spp; ++s) {
         const RTCRayHit& rh = hits[size_t(x) * spp + size_t(s)];
         const Vec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
@@ -89,6 +91,7 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
           for (const Light* sky : skies) sum += skyRadiance(*sky, dir, up);
           continue;
         }
+        ++hitSamples;
         const FaceRef ref = refs[rh.hit.primID];
         const Mesh& mesh = scene.meshes[ref.mesh];
         const Face& face = mesh.faces[ref.face];
@@ -110,6 +113,7 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
         sum += le + rho * kInvPi * irradiance;
       }
       image.at(x, y) = sum / float(spp);
+      image.coverage[size_t(y) * size_t(options.width) + size_t(x)] = float(hitSamples) / float(spp);
     }
     const int done = ++rowsDone;
     if (progress && (done % 16 == 0 || done == options.height))
