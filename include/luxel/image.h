@@ -14,6 +14,9 @@ struct Image {
   int width = 0;
   int height = 0;
   std::vector<Rgb> pixels;
+  // Per pixel, the share of its samples whose primary ray hit a surface (renders fill it); empty:
+  // unknown, every pixel counts as covered. Automatic exposure meters on covered pixels only.
+  std::vector<float> coverage;
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), pixels(size_t(w) * size_t(h), Rgb(0.0f)) {}
@@ -26,9 +29,16 @@ struct ToneMap {
   Curve curve = Curve::Filmic;
   // Exposure in stops, added to the automatic exposure when autoExposure is on.
   float exposure = 0.0f;
-  // Scale so that the log-average luminance maps to middle grey (0.18).
+  // Scale so that the log-average luminance of the pixels that show a surface maps to middle
+  // grey (0.18): see autoExposureScale.
   bool autoExposure = true;
 };
+
+// The multiplier automatic exposure applies: middle grey (0.18) over the log-average luminance
+// (Reinhard et al. 2002), each pixel weighted by its coverage, so that background (black, or a sky)
+// does not pull the exposure. With no coverage, or none covered, every pixel counts equally;
+// an image with no light at all gets 1. Throws Error when coverage is neither empty nor one per pixel.
+double autoExposureScale(const Image& image);
 
 // Parses "filmic", "reinhard" or "clamp"; throws Error otherwise.
 ToneMap::Curve parseToneCurve(const std::string& name);

@@ -3,7 +3,8 @@
 // Three steps per pixel:
 //  1. Exposure. Automatic exposure follows Reinhard et al. 2002, "Photographic Tone Reproduction
 //     for Digital Images", eq. 1-2: the log-average luminance exp(mean(log(delta + Lw))) is mapped
-//     to middle grey (key 0.18), then scaled by 2^exposure.
+//     to middle grey (key 0.18), then scaled by 2^exposure. The mean is over the pixels that show
+//     a surface (Image::coverage): black background around a model is not part of the scene.
 //  2. A curve: the ACES filmic fit (Narkowicz 2016, "ACES Filmic Tone Mapping Curve",
 //     knarkowicz.wordpress.com/2016/01/06/aces-filmic-tone-mapping-curve/), Reinhard's simple
 //     operator L/(1+L) (Reinhard et al. 2002, eq. 3), or a clamp.
@@ -40,27 +41,41 @@ bool isFinite(const Rgb& c) {
   return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
 }
 
-// Multiplier that maps the log-average luminance to middle grey. Non-finite pixels are ignored;
-// an image with no light at all keeps a multiplier of 1.
+}  // namespace
+
 double autoExposureScale(const Image& image) {
-  double sum = 0.0;
-  size_t count = 0;
-  for (const Rgb& c : image.pixels) {
-    if (!isFinite(c)) continue;
-    sum += std::max(0.0, double(luminance(c)));
-    ++count;
+  if (!image.coverage.empty() && image.coverage.size() != image.pixels.size())
+    throw Error(fmt::format("auto exposure: {} coverage values for {} pixels", image.coverage.size(),
+                            image.pixels.size()));
+  // Each pixel weighted by the share of its samples that hit a surface; all alike when none did.
+  std::vector<double> weight(image.pixels.size(), 1.0);
+  double covered = 0.0;
+  for (size_t i = 0; i < image.coverage.size(); ++i) {
+    const float c = image.coverage[i];
+    covered += weight[i] = std::isfinite(c) ? std::clamp(double(c), 0.0, 1.0) : 0.0;
   }
-  if (count == 0 || !(sum > 0.0) || !std::isfinite(sum)) return 1.0;
-  const double delta = kLogAverageDelta * (sum / double(count));
+  if (!(covered > 0.0)) std::fill(weight.begin(), weight.end(), 1.0);
+  double sum = 0.0, weights = 0.0;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const Rgb& c = image.pixels[i];
+    if (!isFinite(c)) continue;
+    sum += weight[i] * std::max(0.0, double(luminance(c)));
+    weights += weight[i];
+  }
+  if (!(weights > 0.0) || !(sum > 0.0) || !std::isfinite(sum)) return 1.0;
+  const double delta = kLogAverageDelta * (sum / weights);
 
   double logSum = 0.0;
-  for (const Rgb& c : image.pixels) {
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const Rgb& c = image.pixels[i];
     if (!isFinite(c)) continue;
-    logSum += std::log(delta + std::max(0.0, double(luminance(c))));
+    logSum += weight[i] * std::log(delta + std::max(0.0, double(luminance(c))));
   }
-  const double logAverage = std::exp(logSum / double(count));
+  const double logAverage = std::exp(logSum / weights);
   return kMiddleGrey / logAverage;
 }
+
+namespace {
 
 // NaN and negative values become 0 so that no curve, and no PNG writer, ever sees them.
 float sanitize(float v) { return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, kMaxScaled); }

@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/random.h"
+#include "luxel/bake.h"
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
 #include "render/camera_frame.h"
@@ -56,12 +57,16 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
     }
   }
   RayTracer tracer(polygons);
+  // The bake turned round the faces whose back got the light (walls wound out of the room) and
+  // baked that side: it is the one to show, and the other is the culled back.
+  const std::vector<std::vector<uint8_t>> turned = flippedFaceFlags(scene, bake.surfaces.surfaces);
   const Vec3 up = glm::normalize(scene.up);
   std::vector<const Light*> skies;
   for (const Light& l : scene.lights)
     if (l.type == Light::Type::Sky || l.type == Light::Type::CieOvercastSky) skies.push_back(&l);
 
   Image image(options.width, options.height);
+  image.coverage.assign(image.pixels.size(), 0.0f);
   const CameraFrame cam(options.camera, options.width, options.height);
   const int spp = options.samplesPerPixel;
   std::atomic<int> rowsDone{0};
@@ -78,6 +83,7 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
     tracer.intersect(hits);
     for (int x = 0; x < options.width; ++x) {
       Rgb sum(0.0f);
+      int hitSamples = 0;
       for (int s = 0; s < spp; ++s) {
         const RTCRayHit& rh = hits[size_t(x) * spp + size_t(s)];
         const Vec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
@@ -85,12 +91,14 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
           for (const Light* sky : skies) sum += skyRadiance(*sky, dir, up);
           continue;
         }
+        ++hitSamples;
         const FaceRef ref = refs[rh.hit.primID];
         const Mesh& mesh = scene.meshes[ref.mesh];
         const Face& face = mesh.faces[ref.face];
         const Polygon& poly = polygons[rh.hit.primID];
         const Material& mat = scene.materials[mesh.material];
-        if (!mat.twoSided && glm::dot(poly.normal(), dir) >= 0.0f) continue;  // a one-sided back is black
+        const bool facesAway = glm::dot(poly.normal(), dir) >= 0.0f;
+        if (!mat.twoSided && facesAway != bool(turned[ref.mesh][ref.face])) continue;  // a one-sided back is black
         // The bake rasterised quads as triangles (0,1,2) and (0,2,3), the ones the tracer hits.
         const auto [i1, i2, w] = hitTriangle(poly.count, rh.hit.u, rh.hit.v);
         const LightmapAtlas::FaceUv& fuv = atlas.faces[ref.mesh][ref.face];
@@ -105,6 +113,7 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
         sum += le + rho * kInvPi * irradiance;
       }
       image.at(x, y) = sum / float(spp);
+      image.coverage[size_t(y) * size_t(options.width) + size_t(x)] = float(hitSamples) / float(spp);
     }
     const int done = ++rowsDone;
     if (progress && (done % 16 == 0 || done == options.height))

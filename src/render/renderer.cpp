@@ -79,6 +79,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     if (l.type == Light::Type::Sky || l.type == Light::Type::CieOvercastSky) skies.push_back(&l);
 
   Image image(options.width, options.height);
+  image.coverage.assign(image.pixels.size(), 0.0f);
   const CameraFrame cam(options.camera, options.width, options.height);
   const int tilesX = (options.width + kTile - 1) / kTile, tilesY = (options.height + kTile - 1) / kTile;
   const int tileCount = tilesX * tilesY;
@@ -92,6 +93,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     const int x1 = std::min(x0 + kTile, options.width), y1 = std::min(y0 + kTile, options.height);
     std::vector<RTCRayHit> hits;
     std::vector<Rgb> sums(size_t(kTile * kTile), Rgb(0.0f));
+    std::vector<int> hitSamples(size_t(kTile * kTile), 0);  // for Image::coverage
     std::vector<RTCRay> shadowRays;
     std::vector<Rgb> shadowValues;
     std::vector<Rgb*> shadowTargets;
@@ -123,6 +125,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
             for (const Light* sky : skies) sum += skyRadiance(*sky, dir, up);
             continue;
           }
+          ++hitSamples[size_t((y - y0) * kTile + (x - x0))];
           const uint32_t e = rh.hit.primID;
           const Element& el = surfaces.elements[e];
           const SurfaceFace& face = surfaces.faces[el.face];
@@ -157,7 +160,11 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
         if (!isOccluded(shadowRays[k])) *shadowTargets[k] += shadowValues[k];
     }
     for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) image.at(x, y) = sums[size_t((y - y0) * kTile + (x - x0))] / float(spp);
+      for (int x = x0; x < x1; ++x) {
+        const size_t t = size_t((y - y0) * kTile + (x - x0));
+        image.at(x, y) = sums[t] / float(spp);
+        image.coverage[size_t(y) * size_t(options.width) + size_t(x)] = float(hitSamples[t]) / float(spp);
+      }
 
     int done = ++tilesDone;
     if (progress && (done % 16 == 0 || done == tileCount)) {

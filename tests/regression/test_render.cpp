@@ -164,6 +164,20 @@ TEST(FurnaceRender, EveryPixelIsTwoInBothModes) {
   }
 }
 
+// Coverage (what auto exposure meters on): inside the closed furnace every sample hits a surface;
+// looking away from the open Cornell box, none does.
+TEST(FurnaceRender, CoverageIsWholeInsideAndNoneLookingAway) {
+  Solved s = solveScene(builtin::furnace(0.5f, 1.0f), 600);
+  const Image inside = renderWith(s, RenderOptions::Mode::HighQuality, 8, 4);
+  ASSERT_EQ(inside.coverage.size(), inside.pixels.size());
+  for (float c : inside.coverage) EXPECT_EQ(c, 1.0f);
+  Solved cornell = solveScene(builtin::cornellBox(), 200);
+  for (Camera& cam : cornell.scene.cameras) cam.target = cam.eye + (cam.eye - cam.target);  // facing out
+  const Image away = renderWith(cornell, RenderOptions::Mode::HighQuality, 8, 4);
+  ASSERT_EQ(away.coverage.size(), away.pixels.size());
+  for (float c : away.coverage) EXPECT_EQ(c, 0.0f);
+}
+
 TEST(CornerValues, DoNotBleedAcrossMaterials) {
   // Per-element value 1 on the red wall (material 1), 0 elsewhere: every corner of a red-wall
   // element averages red-wall elements only, so is exactly 1, and every other corner exactly 0,

@@ -285,6 +285,41 @@ TEST(ToneMap, AutoExposureIgnoresUnitsAndNonFinitePixels) {
   }
 }
 
+// Metering by coverage: pixels that showed no surface (coverage 0) do not count, a half-covered
+// pixel counts half, and without any coverage every pixel counts (as for an image read from EXR).
+TEST(ToneMap, AutoExposureMetersOnCoveredPixels) {
+  Image image(4, 1);
+  image.pixels = {Rgb(2.0f), Rgb(0.5f), Rgb(0.0f), Rgb(0.0f)};  // two surfaces, two background
+  image.coverage = {1.0f, 0.5f, 0.0f, 0.0f};
+  // Weighted log-average, with Reinhard's delta at 1e-4 of the weighted mean luminance.
+  const double mean = (2.0 + 0.5 * 0.5) / 1.5, delta = 1e-4 * mean;
+  const double logAverage = std::exp((std::log(2.0 + delta) + 0.5 * std::log(0.5 + delta)) / 1.5);
+  EXPECT_NEAR(luxel::autoExposureScale(image), 0.18 / logAverage, 1e-6);
+  // The PNG path uses it: the brightest pixel under the clamp curve.
+  ToneMap options;
+  options.curve = ToneMap::Curve::Clamp;
+  EXPECT_NEAR(luxel::toneMap(image, options)[0].x, srgb(std::min(1.0, 2.0 * 0.18 / logAverage)), 1e-6);
+
+  // More background changes nothing.
+  Image wider(8, 1);
+  wider.pixels = image.pixels;
+  wider.pixels.resize(8, Rgb(0.0f));
+  wider.coverage = image.coverage;
+  wider.coverage.resize(8, 0.0f);
+  EXPECT_NEAR(luxel::autoExposureScale(wider), luxel::autoExposureScale(image), 1e-9);
+
+  // Nothing covered (a view of the sky), or no coverage at all: every pixel counts alike.
+  Image sky = constantImage(2, 2, Rgb(3.0f));
+  EXPECT_NEAR(luxel::autoExposureScale(sky), 0.18 / (3.0 * (1.0 + 1e-4)), 1e-6);
+  sky.coverage.assign(4, 0.0f);
+  EXPECT_NEAR(luxel::autoExposureScale(sky), 0.18 / (3.0 * (1.0 + 1e-4)), 1e-6);
+
+  // Coverage that is not one value per pixel is a caller's mistake, named.
+  image.coverage.pop_back();
+  EXPECT_NE(errorMessage([&] { luxel::autoExposureScale(image); }).find("3 coverage values for 4 pixels"),
+            std::string::npos);
+}
+
 TEST(ToneMap, BlackImageStaysBlack) {
   const auto out = luxel::toneMap(constantImage(2, 2, Rgb(0.0f)), ToneMap{});
   for (const Rgb& p : out) EXPECT_EQ(p.x, 0.0f);

@@ -53,6 +53,9 @@ TEST(LightmapRender, CornellLooksLikeTheElementSolution) {
   // The light itself (image centre (32, 9)) shows its radiance (17, 12, 4), luminance 12.5, plus a
   // little reflected light.
   EXPECT_NEAR(meanLuminance(lit, 31, 8, 33, 10), 0.2126 * 17 + 0.7152 * 12 + 0.0722 * 4, 0.5);
+  // Coverage for auto exposure: the light's pixel shows a surface with every sample.
+  ASSERT_EQ(lit.coverage.size(), lit.pixels.size());
+  EXPECT_EQ(lit.coverage[9 * 64 + 32], 1.0f);
 }
 
 TEST(LightmapRender, RejectsAForeignAtlas) {
