@@ -18,9 +18,8 @@ namespace luxel {
 
 float FaceCluster::selfFormFactorBound() const {
   if (convex || area <= 0.0f) return 0.0f;
-  // Separate pieces can light each other whatever their normals (a lamp facing down over a floor
-  // patch facing up, with a one-sided sheet between facing down: the vector area says almost
-  // none, and a tenth of the lamp's light lands on the floor).
+  // Separate pieces can light each other whatever their normals, which the bound does not see
+  // (docs/algorithms.md, "Face-cluster radiosity", item 5).
   if (!connected) return 1.0f;
   return std::clamp(1.0f - glm::length(vectorArea) / area, 0.0f, 1.0f);
 }

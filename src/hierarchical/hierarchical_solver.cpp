@@ -60,9 +60,8 @@ float maxChannel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
 
 class HierarchicalSolver final : public Solver {
  public:
-  HierarchicalSolver(const Scene& scene, const RadiositySystem& sys, Transport& transport, const HierarchicalSettings& s)
+  HierarchicalSolver(const RadiositySystem& sys, Transport& transport, const HierarchicalSettings& s)
       : sys_(sys), s_(s) {
-    (void)scene;
     tracer_ = transport.rayTracer();
     if (!tracer_) throw Error("the hierarchical solver needs a transport that traces rays (the CPU transport)");
     const Stopwatch watch;
@@ -273,7 +272,10 @@ class HierarchicalSolver final : public Solver {
   // Per receiver traversal: links refined, coefficients computed, rays traced. One per task.
   struct Scratch {
     std::vector<SurfacePoint> emitterPoints;
-    std::vector<RTCRay> rays;
+    std::vector<RTCRay> rays;     // one per receiver x emitter point pair; flags 1: not traced
+    std::vector<RTCRay> traced;   // the pairs that can exchange light, as one stream
+    std::vector<size_t> where;    // each traced ray's pair
+    std::vector<uint8_t> visible; // per pair
     std::vector<Vec3> transport;  // per receiver point
   };
 
@@ -295,13 +297,13 @@ class HierarchicalSolver final : public Solver {
     return hi - std::min(lo, hi);
   }
 
-  // The vector irradiance per unit radiosity of emitter j at each receiver point, with
-  // visibility; returns the share of rays that were blocked among those that count.
+  // The vector irradiance per unit radiosity of emitter j (whose points s.emitterPoints holds) at
+  // each receiver point, with visibility; returns the share of rays that were blocked among
+  // those that count.
   float couple(uint32_t j, const Receiver& r, Scratch& s) const {
     const FaceCluster& b = tree_.nodes[j];
     const size_t np = r.points.size();
     s.transport.assign(np, Vec3(0.0f));
-    points_->points(j, s_.emitterSide, s.emitterPoints);
     const std::vector<SurfacePoint>& q = s.emitterPoints;
     s.rays.clear();
     // Ray for pair (p, k) where the pair can exchange light.
@@ -318,13 +320,14 @@ class HierarchicalSolver final : public Solver {
         s.rays.push_back(makeRay(r.points[p].position, d, rayOffset_ / len, 1.0f - rayOffset_ / len));
       }
     // Trace the pairs that count, in one stream.
-    std::vector<RTCRay> traced;
-    std::vector<size_t> where;
-    traced.reserve(s.rays.size()), where.reserve(s.rays.size());
+    std::vector<RTCRay>& traced = s.traced;
+    std::vector<size_t>& where = s.where;
+    traced.clear(), where.clear();
     for (size_t k = 0; k < s.rays.size(); ++k)
       if (s.rays[k].flags == 0) traced.push_back(s.rays[k]), where.push_back(k);
     if (!traced.empty()) tracer_->occluded(traced);
-    std::vector<uint8_t> visible(s.rays.size(), 0);
+    std::vector<uint8_t>& visible = s.visible;
+    visible.assign(s.rays.size(), 0);
     size_t blocked = 0;
     for (size_t k = 0; k < traced.size(); ++k) {
       visible[where[k]] = !isOccluded(traced[k]);
@@ -370,8 +373,7 @@ class HierarchicalSolver final : public Solver {
   }
 
   // Splits receiver element i: its children become elements, its field goes down to them.
-  void splitReceiver(uint32_t i, const Receiver* mine) {
-    (void)mine;
+  void splitReceiver(uint32_t i) {
     if (split_[i]) return;
     const FaceCluster& c = tree_.nodes[i];
     const uint32_t f = field_[i].load(std::memory_order_relaxed);
@@ -416,7 +418,7 @@ class HierarchicalSolver final : public Solver {
       auto refine = [&] {
         const bool receiverSide = !c.leaf() && (b.leaf() || c.area >= b.area);
         if (receiverSide) {
-          splitReceiver(i, &r);
+          splitReceiver(i);
           for (int k = 0; k < 2; ++k)
             if (facing(c.child[size_t(k)], j)) childShooters[size_t(k)].push_back(j);
         } else {
@@ -434,8 +436,8 @@ class HierarchicalSolver final : public Solver {
         refine();
         continue;
       }
+      points_->points(j, s_.emitterSide, s.emitterPoints);
       if (!bothLeaves) {
-        points_->points(j, s_.emitterSide, s.emitterPoints);
         if (scale * transferSpread(i, j, r, s.emitterPoints) > threshold) {
           refine();
           continue;
@@ -471,7 +473,7 @@ class HierarchicalSolver final : public Solver {
     if (!c.leaf()) {
       const double self = maxChannel(emitterUnshot(i)) * c.area * c.selfFormFactorBound();
       if (self > threshold) {
-        splitReceiver(i, &r);
+        splitReceiver(i);
         const uint32_t a = c.child[0], b = c.child[1];
         if (facing(a, b) && maxChannel(emitterUnshot(b)) > 0.0f) childShooters[0].push_back(b);
         if (facing(b, a) && maxChannel(emitterUnshot(a)) > 0.0f) childShooters[1].push_back(a);
@@ -567,7 +569,7 @@ void registerCpuHierarchical(SolverRegistry& registry) {
   e.make = [](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
     HierarchicalSettings s{basisSize(v.choice("basis")), v.real("error"), v.real("unshot"), v.integer("iterations"),
                            v.integer("receiver-points"), v.integer("emitter-points")};
-    return std::make_unique<HierarchicalSolver>(r.scene, r.system, r.transport, s);
+    return std::make_unique<HierarchicalSolver>(r.system, r.transport, s);
   };
   e.converged.set("error", 1e-5).set("unshot", 1e-6).set("receiver-points", 3).set("emitter-points", 8);
   e.accuracy.furnace = 5e-3;  // the issue's target for the furnace
@@ -575,10 +577,9 @@ void registerCpuHierarchical(SolverRegistry& registry) {
   // anywhere within one column, a column of the half-shadow emitter carries about a tenth of the
   // factor, so half of that.
   e.accuracy.halfShadow = 0.06;
-  // NOT a tolerance from theory: the Cornell box's direct light agrees with the references to 1%,
-  // but faces lit only indirectly (the blocks' sides) are off by up to 40%, the same against the
-  // CPU gather and the GL hemicube gather, at any point count and error threshold. A known defect
-  // (issue 14's note); this bound only keeps it from getting worse until it is found.
+  // NOT a tolerance from theory: a bound on a known defect in the indirect light of faces lit
+  // only by interreflection (docs/algorithms.md, "Face-cluster radiosity", Known defect), which
+  // keeps it from getting worse until it is found.
   e.accuracy.cornell = 0.09;
   registry.add(std::move(e));
 }
