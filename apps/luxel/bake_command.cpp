@@ -70,6 +70,7 @@ int runBake(const BakeArgs& a) {
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
 
   ProgressBar bar(a.quiet);
+  if (!a.tracePath.empty()) bar.traceTo(a.tracePath);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = loadScene(a.scene);
   addCommandLineLights(scene, a.solve);
@@ -99,6 +100,7 @@ int runBake(const BakeArgs& a) {
       writeExr(lightmapPageImage(bake, p), exr);
     }
     bar.finish();
+    bar.writeTrace();
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!a.quiet) {
       std::cout << fmt::format("luxel: lightmaps — {} pages of {}², {:.1f} texels per metre, {} texels in {} patches, "
@@ -143,6 +145,7 @@ int runBake(const BakeArgs& a) {
   }
   writeGlb(solved, out, go);
   bar.finish();
+  bar.writeTrace();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (!a.quiet) {

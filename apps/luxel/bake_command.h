@@ -28,6 +28,7 @@ struct BakeArgs {
   SolveArgs solve;
   int threads = 0;
   bool quiet = false;
+  std::string tracePath;  // --progress-trace FILE
 };
 
 int runBake(const BakeArgs& args);
