@@ -1,11 +1,13 @@
 // How long a phase has left, from its progress reports (ProgressEvent::fraction against time).
 //
-// The average rate since the start of a phase is a poor guide for a progressive solve: its
-// fraction is logarithmic in the unshot energy, and a decade of unshot energy takes longer and
-// longer as the energy spreads from the lights over the whole scene (Sibenik: the last tenth of the
-// fraction took ten times as long as the first). So the rate is fitted over the recent part of the
-// phase only (least squares of fraction against time), and extrapolated to 1. docs/algorithms.md
-// has the traces it was checked on.
+// The average rate since the start of a phase is a poor guide for a progressive solve: its fraction
+// is logarithmic in the unshot energy, and each decade of unshot energy takes longer than the last,
+// as what is left sits more and more in poorly lit, poorly coupled places (a sum of decays at many
+// rates: a stretched exponential, U = exp(-(t / tau)^p), whose log grows as a power of time). So
+// fraction = (t / T)^p is fitted to the recent reports (least squares of log fraction against log
+// time, over the last `window` of the elapsed time) and followed from the latest report to 1. A
+// steady phase (p = 1) comes out exact. docs/algorithms.md has the recorded solves it was checked
+// on.
 #pragma once
 
 #include <optional>
@@ -23,8 +25,9 @@ class EtaEstimator {
   // an earlier time, a NaN or a fraction outside [0, 1] throws Error.
   void add(double seconds, double fraction);
 
-  // Seconds left, or nothing while the estimate is not reliable: fewer than kMinReports reports in
-  // the window, less than kMinSeconds elapsed, or no progress over the window.
+  // Seconds left, or nothing while the estimate is not reliable: fewer than kMinReports reports
+  // (with time and fraction above 0) in the window, less than kMinSeconds elapsed, or no progress
+  // over the window.
   std::optional<double> remaining() const;
 
   static constexpr double kDefaultWindow = 0.5;

@@ -1,7 +1,8 @@
-// EtaEstimator (luxel/progress_eta.h): the rate of a phase over its recent reports, extrapolated.
+// EtaEstimator (luxel/progress_eta.h): the power law of a phase's recent reports, extrapolated.
 #include "luxel/progress_eta.h"
 
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -37,20 +38,24 @@ void EtaEstimator::add(double seconds, double fraction) {
 
 std::optional<double> EtaEstimator::remaining() const {
   if (seconds_.empty()) return std::nullopt;
-  const double now = seconds_.back(), from = now * (1.0 - window_);
-  if (now < kMinSeconds) return std::nullopt;
-  // Least-squares slope of fraction against time over the reports in the window.
-  double n = 0.0, st = 0.0, sf = 0.0;
-  for (size_t i = seconds_.size(); i-- > 0 && seconds_[i] >= from;) n += 1.0, st += seconds_[i], sf += fractions_[i];
-  if (n < kMinReports) return std::nullopt;
-  const double mt = st / n, mf = sf / n;
-  double stt = 0.0, stf = 0.0;
-  for (size_t i = seconds_.size(); i-- > 0 && seconds_[i] >= from;) {
-    stt += (seconds_[i] - mt) * (seconds_[i] - mt);
-    stf += (seconds_[i] - mt) * (fractions_[i] - mf);
-  }
-  if (!(stt > 0.0) || !(stf > 0.0)) return std::nullopt;
-  return (1.0 - fractions_.back()) * stt / stf;
+  const double now = seconds_.back(), done = fractions_.back(), from = now * (1.0 - window_);
+  if (now < kMinSeconds || !(done > 0.0)) return std::nullopt;
+  // Least-squares slope of log fraction against log time over the reports in the window: the
+  // power of fraction ~ time^power.
+  std::vector<std::pair<double, double>> logs;
+  for (size_t i = seconds_.size(); i-- > 0 && seconds_[i] >= from;)
+    if (seconds_[i] > 0.0 && fractions_[i] > 0.0) logs.emplace_back(std::log(seconds_[i]), std::log(fractions_[i]));
+  if (logs.size() < size_t(kMinReports)) return std::nullopt;
+  double mx = 0.0, my = 0.0;
+  for (auto [x, y] : logs) mx += x, my += y;
+  mx /= double(logs.size()), my /= double(logs.size());
+  double sxx = 0.0, sxy = 0.0;
+  for (auto [x, y] : logs) sxx += (x - mx) * (x - mx), sxy += (x - mx) * (y - my);
+  if (!(sxx > 0.0) || !(sxy > 0.0)) return std::nullopt;
+  const double power = sxy / sxx;
+  // From the latest report along that power to fraction 1.
+  const double left = now * (std::pow(done, -1.0 / power) - 1.0);
+  return std::isfinite(left) ? std::optional<double>(left) : std::nullopt;
 }
 
 }  // namespace luxel

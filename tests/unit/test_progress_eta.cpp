@@ -27,15 +27,13 @@ TEST(Eta, SteadyPhaseIsExact) {
   EXPECT_NEAR(*eta.remaining(), 6.0, 1e-9);
 }
 
-TEST(Eta, RecentRateNotTheAverage) {
-  // Fast for 2 s (40%), then 5% a second: at 8 s (70%) the rest takes 6 s at the recent rate, where
-  // the average since the start says 3.4 s. The window (the last half of the elapsed time, 4..8 s)
-  // lies wholly in the slow part.
+TEST(Eta, StretchedProgressIsExact) {
+  // A progressive solve's shape: fraction = (t / 100)^0.4. At 20 s, 52% done, 80 s are left, where
+  // the average rate since the start says 18 s.
   EtaEstimator eta;
-  for (int i = 0; i <= 20; ++i) eta.add(0.1 * i, 0.02 * i);
-  for (int i = 1; i <= 60; ++i) eta.add(2.0 + 0.1 * i, 0.4 + 0.005 * i);
+  for (int i = 1; i <= 200; ++i) eta.add(0.1 * i, std::pow(0.1 * i / 100.0, 0.4));
   ASSERT_TRUE(eta.remaining());
-  EXPECT_NEAR(*eta.remaining(), (1.0 - 0.7) / 0.05, 1e-9);
+  EXPECT_NEAR(*eta.remaining(), 80.0, 1e-6);
 }
 
 TEST(Eta, NothingUntilReliable) {
