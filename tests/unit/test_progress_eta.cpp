@@ -4,6 +4,7 @@
 // the estimate the progress bar used before (issue 13, item 5), was 3 to 5 times too short.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -94,15 +95,21 @@ std::vector<Report> solveReports(const fs::path& path) {
   return out;
 }
 
-class RecordedSolve : public ::testing::TestWithParam<const char*> {};
+struct Trace {
+  const char* file;
+  bool averageFails;  // the average since the start misses the factor 2 on it
+};
+
+class RecordedSolve : public ::testing::TestWithParam<Trace> {};
 
 // At 30% of the solve's time: how far is the estimate from the time it really took? The rate of a
 // progressive solve keeps falling as its unshot energy spreads (fraction per second fell 10x over
 // Sibenik's solve), so a rate measured over the recent past can only be too fast; what it must get
-// right is the scale: within a factor 2, where the average since the start was 3 to 5x short
-// (docs/algorithms.md has both for each trace).
+// right is the scale: within a factor 2, where the average since the start was 3 to 5x short on the
+// element solves (docs/algorithms.md has both for each trace). Sibenik's lightmap bake (texels as
+// elements) runs close to a steady rate, which the power law must not overshoot.
 TEST_P(RecordedSolve, EstimateAtThirtyPercentIsWithinAFactorTwo) {
-  const fs::path path = fs::path(__FILE__).parent_path().parent_path() / "data" / "progress" / GetParam();
+  const fs::path path = fs::path(__FILE__).parent_path().parent_path() / "data" / "progress" / GetParam().file;
   const std::vector<Report> reports = solveReports(path);
   ASSERT_GE(reports.size(), 50u) << path;
   ASSERT_EQ(reports.back().fraction, 1.0) << path << " is not a whole solve";
@@ -119,15 +126,19 @@ TEST_P(RecordedSolve, EstimateAtThirtyPercentIsWithinAFactorTwo) {
   const double estimate = *eta.remaining();
   EXPECT_GT(estimate, truth / 2.0) << "at " << now.seconds << " s of " << total;
   EXPECT_LT(estimate, truth * 2.0) << "at " << now.seconds << " s of " << total;
-  // The old estimate, elapsed x (1 - f) / f, fails the same bound on these traces.
+  // The old estimate, elapsed x (1 - f) / f, fails the same bound on the element solves.
   const double average = now.seconds * (1.0 - now.fraction) / now.fraction;
-  EXPECT_LT(average, truth / 2.0) << "the trace no longer shows the old estimate's error";
+  if (GetParam().averageFails) EXPECT_LT(average, truth / 2.0) << "the trace no longer shows the old estimate's error";
 }
 
-INSTANTIATE_TEST_SUITE_P(Traces, RecordedSolve, ::testing::Values("sibenik.tsv", "conference.tsv"),
+INSTANTIATE_TEST_SUITE_P(Traces, RecordedSolve,
+                         ::testing::Values(Trace{"sibenik.tsv", true}, Trace{"conference.tsv", true},
+                                           Trace{"sibenik-lightmaps.tsv", false}),
                          [](const auto& info) {
-                           std::string name = info.param;
-                           return name.substr(0, name.find('.'));
+                           std::string name = info.param.file;
+                           name = name.substr(0, name.find('.'));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
                          });
 
 }  // namespace
