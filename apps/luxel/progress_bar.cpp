@@ -1,5 +1,5 @@
-// Terminal progress bar and log-friendly progress lines. The ETA is luxel::EtaEstimator's: the
-// phase's recent rate, and none until that is reliable.
+// Terminal progress bar and log-friendly progress lines. The ETA is luxel::EtaEstimator's: a power
+// of time fitted to the phase's recent reports, and none until there are enough.
 #include "progress_bar.h"
 
 #include <sys/ioctl.h>

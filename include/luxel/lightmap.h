@@ -136,7 +136,7 @@ constexpr int kMaxDefaultPageSize = 1024;
 // per metre, what it ships for a level. Luxel solves every texel as an element, so denser (Unity's
 // default 40 texels per unit, for its path tracer) costs 64x the texels of a solve.
 constexpr float kGameTexelsPerMetre = 5.0f;
-// Small scenes get more: the density of about this many texels, a solve of a second or so.
+// Small scenes get more: the density of about this many texels, a short solve.
 constexpr size_t kSmallSceneTexels = 10000;
 // max(kGameTexelsPerMetre, the density of kSmallSceneTexels texels over the scene's faces).
 float defaultTexelsPerMetre(const Scene& scene);

@@ -17,7 +17,7 @@ namespace luxel {
 
 class EtaEstimator {
  public:
-  // `window`: the share of the elapsed time, counted back from now, whose reports the rate is
+  // `window`: the share of the elapsed time, counted back from now, whose reports the power law is
   // fitted to, in (0, 1]. Throws Error otherwise.
   explicit EtaEstimator(double window = kDefaultWindow);
 
