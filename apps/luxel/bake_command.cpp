@@ -70,6 +70,7 @@ int runBake(const BakeArgs& a) {
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
 
   ProgressBar bar(a.quiet);
+  if (!a.tracePath.empty()) bar.traceTo(a.tracePath);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = loadScene(a.scene);
   addCommandLineLights(scene, a.solve);
@@ -99,6 +100,7 @@ int runBake(const BakeArgs& a) {
       writeExr(lightmapPageImage(bake, p), exr);
     }
     bar.finish();
+    bar.writeTrace();
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!a.quiet) {
       std::cout << fmt::format("luxel: lightmaps — {} pages of {}², {:.1f} texels per metre, {} texels in {} patches, "
@@ -143,6 +145,7 @@ int runBake(const BakeArgs& a) {
   }
   writeGlb(solved, out, go);
   bar.finish();
+  bar.writeTrace();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (!a.quiet) {
@@ -162,9 +165,12 @@ int runBake(const BakeArgs& a) {
 
 void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
   bake.add_flag("--lightmaps", a.lightmaps, "Bake lightmaps (TEXCOORD_1, RGBM pages in the glb, EXR pages beside it)");
-  bake.add_option("--texels-per-metre", a.texelsPerMetre, "Lightmap density (default: about as many texels as --elements)")
+  bake.add_option("--texels-per-metre", a.texelsPerMetre,
+                  "Lightmap density (default: about --elements texels when given, else 5 texels per metre, Godot's "
+                  "0.2 m texel, or more on a small scene: about 10,000 texels)")
       ->check(CLI::NonNegativeNumber);
-  bake.add_option("--lightmap-size", a.lightmapSize, "Lightmap page size in texels (default 1024)")
+  bake.add_option("--lightmap-size", a.lightmapSize,
+                  "Lightmap page size in texels (default: each bake's pages sized to their content, up to 1024)")
       ->check(CLI::Range(16, 16384));
   bake.add_option("--vertex-colors-for", a.vertexColorsFor,
                   "With --lightmaps: meshes whose names match these globs (comma-separated) get vertex colours "

@@ -20,14 +20,15 @@ struct BakeArgs {
   // --lightmaps: bake texels as elements (docs/lightmaps.md) and write TEXCOORD_1, the pages as RGBM
   // PNGs in the glb and as float EXR files beside it (OUT.lightmapN.exr).
   bool lightmaps = false;
-  float texelsPerMetre = 0.0f;  // 0: about as many texels as the element budget
-  int lightmapSize = 1024;
+  float texelsPerMetre = 0.0f;  // 0: --elements texels when given, else luxel::defaultTexelsPerMetre
+  int lightmapSize = 0;         // 0: pages sized to their content, up to 1024
   // --vertex-colors-for PATTERN[,PATTERN...] (with --lightmaps): meshes whose names match a glob
   // get COLOR_0 (irradiance from their texels) instead of a lightmap. Each must match a mesh.
   std::vector<std::string> vertexColorsFor;
   SolveArgs solve;
   int threads = 0;
   bool quiet = false;
+  std::string tracePath;  // --progress-trace FILE
 };
 
 int runBake(const BakeArgs& args);

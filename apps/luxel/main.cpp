@@ -44,6 +44,7 @@ struct RenderArgs {
   int threads = 0;
   bool quiet = false;
   std::string statsPath;
+  std::string tracePath;
   std::string mode = "hq";
   std::string toneCurve = "filmic";
   float exposure = 0.0f;
@@ -101,6 +102,7 @@ int runRender(const RenderArgs& a) {
   if (a.threads > 0) threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
 
   cli::ProgressBar bar(a.quiet);
+  if (!a.tracePath.empty()) bar.traceTo(a.tracePath);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = loadScene(a.scene);
   cli::addCommandLineLights(scene, a.solve);
@@ -142,6 +144,7 @@ int runRender(const RenderArgs& a) {
     for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
   for (const std::string& o : a.outputs) writeImage(image, o, tm);
   bar.finish();
+  bar.writeTrace();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const SolveStats& s = solution.stats;
@@ -190,6 +193,7 @@ int main(int argc, char** argv) {
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   render->add_flag("-q,--quiet", ra.quiet, "Print nothing but errors");
   render->add_option("--stats", ra.statsPath, "Write statistics as JSON");
+  render->add_option("--progress-trace", ra.tracePath, "Write every progress report, timed, as tab-separated lines");
   render->add_option("--mode", ra.mode, "hq (exact direct light per pixel), radiosity (the seeds' display) or lightmap (bake lightmaps and show them as an engine would)")->capture_default_str();
   render->add_option("--tonemap", ra.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
   render->add_option("--exposure", ra.exposure, "PNG exposure in stops, on top of auto exposure");
@@ -203,6 +207,7 @@ int main(int argc, char** argv) {
   cli::addLightmapOptions(*bake, ka);
   bake->add_option("--threads", ka.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   bake->add_flag("-q,--quiet", ka.quiet, "Print nothing but errors");
+  bake->add_option("--progress-trace", ka.tracePath, "Write every progress report, timed, as tab-separated lines");
 
   cli::BenchArgs ba;
   CLI::App* bench = app.add_subcommand("bench", "Run a benchmark suite: timings, throughput, memory and error");

@@ -1,5 +1,5 @@
-// Terminal progress bar and log-friendly progress lines. The ETA assumes the rest of a phase runs
-// at the average rate so far: remaining = elapsed * (1 - f) / f.
+// Terminal progress bar and log-friendly progress lines. The ETA is luxel::EtaEstimator's: a power
+// of time fitted to the phase's recent reports, and none until there are enough.
 #include "progress_bar.h"
 
 #include <sys/ioctl.h>
@@ -9,8 +9,13 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <utility>
 
 #include <fmt/format.h>
+
+#include "io/atomic_file.h"
+#include "luxel/error.h"
 
 namespace luxel::cli {
 namespace {
@@ -24,7 +29,6 @@ extern "C" void onSigint(int) { gInterrupted.store(true); }
 constexpr int kBarWidth = 20;
 constexpr double kTerminalInterval = 0.1;  // seconds between redraws: ~10 Hz, cheap and smooth
 constexpr double kLogInterval = 2.0;       // seconds between lines in a log, per phase
-constexpr double kMinEtaElapsed = 0.5;     // earlier estimates jump around too much to be useful
 
 std::string formatDuration(double seconds) {
   if (seconds < 60.0) return fmt::format("{:.1f}s", seconds);
@@ -64,6 +68,31 @@ ProgressBar::ProgressBar(bool quiet) : quiet_(quiet), terminal_(::isatty(STDERR_
 ProgressBar::~ProgressBar() {
   finish();
   ::sigaction(SIGINT, &previousSigint_, nullptr);
+  try {
+    writeTrace();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "luxel: error: %s\n", e.what());
+  }
+}
+
+void ProgressBar::traceTo(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(dir))
+    throw Error(fmt::format("--progress-trace {}: directory '{}' does not exist", path, dir.string()));
+  tracePath_ = path;
+}
+
+void ProgressBar::writeTrace() {
+  std::lock_guard lock(mutex_);
+  if (tracePath_.empty()) return;
+  const std::string path = std::exchange(tracePath_, {});
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::FILE* f = std::fopen(tmp.c_str(), "w");
+    if (!f) throw Error("cannot open for writing");
+    for (const std::string& line : trace_) std::fputs(line.c_str(), f);
+    if (std::fclose(f) != 0) throw Error("write failed");
+  });
 }
 
 bool ProgressBar::interrupted() { return gInterrupted.load(); }
@@ -74,6 +103,10 @@ luxel::ProgressCallback ProgressBar::callback() {
 
 bool ProgressBar::update(const luxel::ProgressEvent& event) {
   std::lock_guard lock(mutex_);
+  if (!tracePath_.empty())
+    trace_.push_back(fmt::format("{:.4f}\t{}\t{:.6f}\t{}\n",
+                                 std::chrono::duration<double>(Clock::now() - created_).count(), event.phase,
+                                 event.fraction, event.detail));
   if (interrupted()) {
     // End the bar so the CLI's "cancelled" message gets a line of its own.
     finishLocked();
@@ -90,11 +123,13 @@ bool ProgressBar::update(const luxel::ProgressEvent& event) {
     phaseDone_ = false;
     phaseStart_ = now;
     lastOutput_ = now;
+    eta_ = luxel::EtaEstimator();
   }
   const bool done = event.fraction >= 1.0;
   if (done && phaseDone_) return true;  // show the end of a phase once
   const double elapsed = std::chrono::duration<double>(now - phaseStart_).count();
   const double sinceOutput = std::chrono::duration<double>(now - lastOutput_).count();
+  if (isKnown(event.fraction)) eta_.add(elapsed, std::min(event.fraction, 1.0));
 
   if (terminal_) {
     if (newPhase || done || sinceOutput >= kTerminalInterval) {
@@ -128,8 +163,8 @@ void ProgressBar::drawTerminal(const luxel::ProgressEvent& event, double elapsed
     std::string time;
     if (done) {
       time = formatDuration(elapsed);
-    } else if (f > 0.0 && elapsed >= kMinEtaElapsed) {
-      time = "ETA " + formatDuration(elapsed * (1.0 - f) / f);
+    } else if (const auto left = eta_.remaining()) {
+      time = "ETA " + formatDuration(*left);
     } else {
       time = "ETA --";
     }
@@ -156,7 +191,7 @@ void ProgressBar::printLogLine(const luxel::ProgressEvent& event, double elapsed
   } else if (isKnown(event.fraction)) {
     const double f = event.fraction;
     line += fmt::format(" {}%", int(f * 100.0));
-    if (f > 0.0) line += fmt::format(" (eta {})", formatDuration(elapsed * (1.0 - f) / f));
+    if (const auto left = eta_.remaining()) line += fmt::format(" (eta {})", formatDuration(*left));
   } else {
     line += fmt::format(" ({})", formatDuration(elapsed));
   }

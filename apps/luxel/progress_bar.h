@@ -6,9 +6,12 @@
 
 #include <chrono>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "luxel/progress.h"
+#include "luxel/progress_eta.h"
 
 namespace luxel::cli {
 
@@ -22,6 +25,14 @@ class ProgressBar {
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
+
+  // Also records every report as a line "SECONDS\tPHASE\tFRACTION\tDETAIL" (seconds since the
+  // bar was made), for `--progress-trace` (tests/data/progress/ holds such traces). Throws Error
+  // when the folder of `path` does not exist.
+  void traceTo(const std::string& path);
+  // Writes the trace (atomically), once; the destructor writes it when this was not called (a
+  // cancelled or failed run). Throws Error naming the file when it cannot be written.
+  void writeTrace();
 
   // Shows `event` and returns false once Ctrl-C was pressed. Safe to call from any thread.
   bool update(const luxel::ProgressEvent& event);
@@ -48,7 +59,11 @@ class ProgressBar {
   bool phaseDone_ = false;  // the 100% state of this phase has been shown
   bool lineOpen_ = false;   // terminal: a line is drawn and not yet ended
   Clock::time_point phaseStart_;
+  luxel::EtaEstimator eta_;  // of the current phase
   Clock::time_point lastOutput_;
+  Clock::time_point created_ = Clock::now();
+  std::string tracePath_;
+  std::vector<std::string> trace_;
   struct sigaction previousSigint_ {};
 };
 

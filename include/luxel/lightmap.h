@@ -25,6 +25,11 @@ struct AtlasOptions {
   int gutter = 2;               // empty texels kept round every chart (for dilation and bilinear filtering)
   float chartAngle = 45.0f;     // degrees: neighbouring faces whose normals differ more start a new chart
   bool useMeshUvs = true;       // use Mesh::lightmapUvs where a mesh has them (checked)
+  // Pages sized to their content: the smallest power of two (16 at least, pageSize at most) at
+  // which the generated charts need no more pages than at pageSize, so a small scene does not sit
+  // in a corner of a large page. Needs texelsPerMetre > 0 (the fitted density depends on the page);
+  // ignored when a mesh brings its own UVs (their resolution is the page's).
+  bool sizePagesToContent = false;
 };
 
 struct LightmapAtlas {
@@ -115,21 +120,34 @@ struct LightmapBake {
 LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options = {},
                            const ProgressCallback& progress = {});
 
-// The recipe `luxel render --mode lightmap` and `luxel bake --lightmaps` share: an atlas at the
-// given density (or about `texelBudget` texels, since every texel is an element of the solve: a
-// whole 1024 page on the Cornell box would be half a million), then a bake whose dilation fills
-// the atlas's gutter.
+// The recipe `luxel render --mode lightmap` and `luxel bake --lightmaps` share: an atlas, then a
+// bake whose dilation fills the atlas's gutter. The density, in this order: texelsPerMetre when
+// > 0; about texelBudget texels when > 0 (every texel is an element of the solve); otherwise
+// defaultTexelsPerMetre(scene). Pages: pageSize when > 0, else sized to their content up to
+// kMaxDefaultPageSize (AtlasOptions::sizePagesToContent), as many as the charts need.
 struct LightmapRecipe {
-  float texelsPerMetre = 0.0f;  // 0: about texelBudget texels
-  size_t texelBudget = 10000;
-  int pageSize = 1024;
+  float texelsPerMetre = 0.0f;
+  size_t texelBudget = 0;
+  int pageSize = 0;
   SolveOptions solve;
 };
+constexpr int kMaxDefaultPageSize = 1024;
+// A game's density: Godot's default lightmap texel is 0.2 m (LightmapGI texel_scale 1), 5 texels
+// per metre, what it ships for a level. Luxel solves every texel as an element, so denser (Unity's
+// default 40 texels per unit, for its path tracer) costs 64x the texels of a solve.
+constexpr float kGameTexelsPerMetre = 5.0f;
+// Small scenes get more: the density of about this many texels, a short solve.
+constexpr size_t kSmallSceneTexels = 10000;
+// max(kGameTexelsPerMetre, the density of kSmallSceneTexels texels over the scene's faces).
+float defaultTexelsPerMetre(const Scene& scene);
 struct BakedLightmaps {
   LightmapAtlas atlas;
   LightmapBake bake;
 };
 BakedLightmaps bakeLightmaps(const Scene& scene, const LightmapRecipe& recipe, const ProgressCallback& progress = {});
+// The atlas options the recipe chooses for `scene` (density and pages); throws Error on a negative
+// density or page size.
+AtlasOptions lightmapAtlasOptions(const Scene& scene, const LightmapRecipe& recipe);
 
 // A page as an image, row 0 at the top (v = 1), for writeExr.
 Image lightmapPageImage(const LightmapBake& bake, int page);

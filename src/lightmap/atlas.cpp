@@ -22,6 +22,8 @@ void checkOptions(const AtlasOptions& o) {
   if (!std::isfinite(o.texelsPerMetre) || o.texelsPerMetre < 0.0f)
     throw Error(fmt::format("lightmap atlas: texels per metre {} is negative or not finite",
                             o.texelsPerMetre));
+  if (o.sizePagesToContent && !(o.texelsPerMetre > 0.0f))
+    throw Error("lightmap atlas: pages sized to their content need a density (texelsPerMetre > 0)");
   if (!(o.chartAngle > 0.0f && o.chartAngle <= 180.0f))
     throw Error(fmt::format("lightmap atlas: chart angle {} is outside (0, 180] degrees",
                             o.chartAngle));
@@ -48,21 +50,12 @@ float fitDensity(const std::vector<lightmap::Chart>& charts, double area, const 
 LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options) {
   checkOptions(options);
   scene.validate();
+  AtlasOptions o = options;  // with the page size chosen below
   LightmapAtlas atlas;
-  atlas.pageSize = options.pageSize;
   atlas.faces.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) atlas.faces[m].resize(scene.meshes[m].faces.size());
 
-  // Meshes with their own UVs: a page each, as given.
-  uint32_t page = 0;
-  for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
-    const Mesh& mesh = scene.meshes[m];
-    if (!options.useMeshUvs || mesh.lightmapUvs.empty() || mesh.faces.empty()) continue;
-    atlas.chartCount +=
-        lightmap::useExistingUvs(scene, m, options.pageSize, page++, uint32_t(atlas.chartCount), atlas);
-  }
-
-  // The others: charts, flattened, then packed together.
+  // Meshes without their own UVs: charts, flattened, then packed together (below).
   std::vector<lightmap::Chart> charts;
   double area = 0.0;
   const float maxAngle = options.chartAngle * std::numbers::pi_v<float> / 180.0f;
@@ -74,10 +67,36 @@ LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options
     auto flat = lightmap::parameterise(w, lightmap::segmentCharts(w, m, maxAngle));
     for (auto& c : flat) charts.push_back(std::move(c));
   }
+  bool givenUvs = false;
+  for (const Mesh& mesh : scene.meshes)
+    givenUvs = givenUvs || (options.useMeshUvs && !mesh.lightmapUvs.empty() && !mesh.faces.empty());
+  if (options.sizePagesToContent && !givenUvs && !charts.empty()) {
+    // The smallest power of two that needs no more pages (pagesNeeded counts a page that would
+    // scale a chart down as needing infinitely many: then the largest page stays).
+    const int most = lightmap::pagesNeeded(charts, options.texelsPerMetre, options);
+    for (int size = 16; size < options.pageSize && most != std::numeric_limits<int>::max(); size *= 2) {
+      AtlasOptions smaller = options;
+      smaller.pageSize = size;
+      if (smaller.gutter > size / 4) continue;
+      if (lightmap::pagesNeeded(charts, options.texelsPerMetre, smaller) <= most) {
+        o.pageSize = size;
+        break;
+      }
+    }
+  }
+  atlas.pageSize = o.pageSize;
+
+  // Meshes with their own UVs: a page each, as given, first.
+  uint32_t page = 0;
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    if (!options.useMeshUvs || mesh.lightmapUvs.empty() || mesh.faces.empty()) continue;
+    atlas.chartCount +=
+        lightmap::useExistingUvs(scene, m, o.pageSize, page++, uint32_t(atlas.chartCount), atlas);
+  }
   if (!charts.empty()) {
-    float density = options.texelsPerMetre > 0.0f ? options.texelsPerMetre
-                                                  : fitDensity(charts, area, options);
-    auto packed = lightmap::packCharts(charts, density, options, page, uint32_t(atlas.chartCount), &atlas);
+    float density = o.texelsPerMetre > 0.0f ? o.texelsPerMetre : fitDensity(charts, area, o);
+    auto packed = lightmap::packCharts(charts, density, o, page, uint32_t(atlas.chartCount), &atlas);
     atlas.texelsPerMetre = density;
     atlas.chartCount += charts.size();
     page += uint32_t(packed.pages);
@@ -90,9 +109,9 @@ LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options
       auto& uv = atlas.faces[m][f];
       bool hit = false;
       auto any = [&](int, int) { hit = true; };
-      lightmap::rasteriseTriangle(uv.texel[0], uv.texel[1], uv.texel[2], options.pageSize, any);
+      lightmap::rasteriseTriangle(uv.texel[0], uv.texel[1], uv.texel[2], o.pageSize, any);
       if (!scene.meshes[m].faces[f].isTriangle())
-        lightmap::rasteriseTriangle(uv.texel[0], uv.texel[2], uv.texel[3], options.pageSize, any);
+        lightmap::rasteriseTriangle(uv.texel[0], uv.texel[2], uv.texel[3], o.pageSize, any);
       uv.conservative = !hit;
     }
   return atlas;

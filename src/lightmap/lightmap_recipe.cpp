@@ -7,13 +7,21 @@
 
 namespace luxel {
 
-BakedLightmaps bakeLightmaps(const Scene& scene, const LightmapRecipe& recipe, const ProgressCallback& progress) {
+AtlasOptions lightmapAtlasOptions(const Scene& scene, const LightmapRecipe& recipe) {
   if (!(recipe.texelsPerMetre >= 0.0f)) throw Error(fmt::format("lightmap density {} must be >= 0", recipe.texelsPerMetre));
-  validateSolveOptions(recipe.solve);  // before the atlas, which can take a while
+  if (recipe.pageSize < 0) throw Error(fmt::format("lightmap page size {} must be >= 0", recipe.pageSize));
   AtlasOptions ao;
-  ao.pageSize = recipe.pageSize;
+  ao.pageSize = recipe.pageSize > 0 ? recipe.pageSize : kMaxDefaultPageSize;
+  ao.sizePagesToContent = recipe.pageSize == 0;
   ao.texelsPerMetre = recipe.texelsPerMetre > 0.0f ? recipe.texelsPerMetre
-                                                   : texelsPerMetreForBudget(scene, recipe.texelBudget > 0 ? recipe.texelBudget : 10000);
+                      : recipe.texelBudget > 0     ? texelsPerMetreForBudget(scene, recipe.texelBudget)
+                                                   : defaultTexelsPerMetre(scene);
+  return ao;
+}
+
+BakedLightmaps bakeLightmaps(const Scene& scene, const LightmapRecipe& recipe, const ProgressCallback& progress) {
+  const AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
+  validateSolveOptions(recipe.solve);  // before the atlas, which can take a while
   BakedLightmaps out{buildLightmapAtlas(scene, ao), {}};
   LightmapBakeOptions lo;
   lo.solve = recipe.solve;

@@ -1,5 +1,6 @@
 // A lightmap density from a texel budget: every texel is an element of the solve, so callers
 // that default to the element budget get about as many texels as they would get elements.
+#include <algorithm>
 #include <cmath>
 
 #include "luxel/lightmap.h"
@@ -15,6 +16,10 @@ float texelsPerMetreForBudget(const Scene& scene, size_t texels) {
       if (!f.isTriangle()) area += 0.5 * glm::length(glm::cross(p2 - p0, p3 - p0));
     }
   return area > 0.0 && texels > 0 ? float(std::sqrt(double(texels) / area)) : 0.0f;
+}
+
+float defaultTexelsPerMetre(const Scene& scene) {
+  return std::max(kGameTexelsPerMetre, texelsPerMetreForBudget(scene, kSmallSceneTexels));
 }
 
 }  // namespace luxel

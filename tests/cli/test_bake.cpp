@@ -13,6 +13,7 @@
 #include "cli/cli_runner.h"
 #include "luxel/bake.h"
 #include "luxel/error.h"
+#include "luxel/image.h"
 #include "luxel/import.h"
 #include "luxel/render.h"
 #include "luxel/solve.h"
@@ -220,6 +221,22 @@ TEST(BakeCli, LightmapsWithVertexColoursForSomeMeshes) {
 
 // A pattern that matches no mesh is an error naming it (and the meshes there are), before the solve
 // and without output; so is --vertex-colors-for without --lightmaps.
+// Default pages are sized to their content (issue 13, item 4): the Cornell box's ~10,000 texels on
+// one page of 256 at most, where it used to take a corner of a 1024 page; --lightmap-size is still
+// the page size when given.
+TEST(BakeCli, DefaultLightmapPagesFitTheScene) {
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, {"bake", "cornell", "-o", "c.glb", "--lightmaps", "-q"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const luxel::Image page = luxel::readExr(dir / "c.lightmap0.exr");
+  EXPECT_LE(page.width, 256);
+  EXPECT_EQ(page.width, page.height);
+  EXPECT_FALSE(fs::exists(dir / "c.lightmap1.exr"));
+  r = luxel(dir, {"bake", "cornell", "-o", "d.glb", "--lightmaps", "--lightmap-size", "512", "-q"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(luxel::readExr(dir / "d.lightmap0.exr").width, 512);
+}
+
 TEST(BakeCli, VertexColourPatternsMustMatch) {
   const fs::path dir = scratchDir();
   CliRun none =

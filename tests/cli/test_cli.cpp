@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -231,6 +232,38 @@ TEST(Cli, InfiniteLightIntensity) {
   } catch (const std::exception& e) {
     ADD_FAILURE() << "threw a non-luxel exception: " << e.what();
   }
+}
+
+}  // namespace
+
+namespace {
+
+// --progress-trace: every report, in time order, each phase ending at 1; a missing folder is an
+// error before any work.
+TEST(Cli, ProgressTraceRecordsEveryPhase) {
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, args({"render", "cornell", "-o", "c.exr", "--progress-trace", "t.tsv"}));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream in(readFile(dir / "t.tsv"));
+  std::string line;
+  double last = 0.0;
+  std::map<std::string, double> endOf;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string seconds, phase, fraction;
+    ASSERT_TRUE(std::getline(fields, seconds, '\t') && std::getline(fields, phase, '\t') &&
+                std::getline(fields, fraction, '\t'))
+        << line;
+    EXPECT_GE(std::stod(seconds), last) << line;
+    last = std::stod(seconds);
+    endOf[phase] = std::stod(fraction);
+  }
+  EXPECT_EQ(endOf["solve"], 1.0);
+  EXPECT_EQ(endOf["render"], 1.0);
+  r = luxel(dir, args({"render", "cornell", "-o", "d.exr", "--progress-trace", "nowhere/t.tsv"}));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("nowhere"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "d.exr"));
 }
 
 }  // namespace
