@@ -44,7 +44,8 @@ struct FaceCluster {
 };
 
 struct FaceClusterTree {
-  // Leaves first: node e (e < elementCount) is element e. Then the joined nodes; the root last.
+  // Leaves first: node e (e < elementCount) is element e. Then the joined nodes, each after its
+  // children (a pass in index order is bottom-up); the root last.
   std::vector<FaceCluster> nodes;
   std::vector<uint32_t> order;  // element indices, each cluster's a contiguous run
   uint32_t root = kNoCluster;

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 
 #include "luxel/solve.h"
 #include "scene/builtin/builtin_scenes.h"
@@ -22,24 +23,27 @@ inline SolveOptions convergedCpuGather() {
   return o;
 }
 
-// The built-in Cornell box cut for `elementBudget`, and its converged CPU solution.
+// The built-in Cornell box cut for `elementBudget`, patches of about elementsPerPatchSide^2
+// elements, and its converged CPU solution.
 struct CornellReference {
   Scene scene;
   SurfaceSet surfaces;
   Solution cpu;
 };
 
-inline const CornellReference& cornellReference(size_t elementBudget) {
-  static std::map<size_t, CornellReference> solved;
-  auto it = solved.find(elementBudget);
+inline const CornellReference& cornellReference(size_t elementBudget, int elementsPerPatchSide = 8) {
+  static std::map<std::pair<size_t, int>, CornellReference> solved;
+  const std::pair<size_t, int> key{elementBudget, elementsPerPatchSide};
+  auto it = solved.find(key);
   if (it != solved.end()) return it->second;
   CornellReference r{builtin::cornellBox(), {}, {}};
   DiscretiseOptions d;
   d.elementBudget = elementBudget;
+  d.elementsPerPatchSide = elementsPerPatchSide;
   r.surfaces = discretise(r.scene, d);
   SurfaceSet copy = r.surfaces;
   r.cpu = solve(r.scene, copy, convergedCpuGather());
-  return solved.emplace(elementBudget, std::move(r)).first->second;
+  return solved.emplace(key, std::move(r)).first->second;
 }
 
 inline std::string visibilityName(const std::string& v) {
