@@ -276,22 +276,26 @@ class HierarchicalSolver final : public Solver {
     std::vector<std::array<Vec3, 3>> transport, direct;
   };
 
-  // Point-to-point power estimates between every receiver and emitter point, with the projected
-  // areas' upper and lower bounds in place of A cos (Gobbetti et al. section 3.3.2): the spread
-  // between the largest upper and smallest lower is how far a constant transfer can be off.
-  float transferSpread(uint32_t i, uint32_t j, const Receiver& r, const std::vector<SurfacePoint>& q) const {
+  // Point-to-point estimates of the power per unit radiosity between every receiver and emitter
+  // point, with the projected areas' upper and lower bounds in place of A cos (Gobbetti et al.
+  // section 3.3.2): the largest upper bounds the transfer, and its spread from the smallest lower
+  // is how far a constant transfer can be off.
+  struct TransferBounds {
+    float upper = 0.0f, spread = 0.0f;
+  };
+  TransferBounds transferBounds(uint32_t i, uint32_t j, const Receiver& r, const std::vector<SurfacePoint>& q) const {
     const FaceCluster &a = tree_.nodes[i], &b = tree_.nodes[j];
     float hi = 0.0f, lo = std::numeric_limits<float>::max();
     for (const SurfacePoint& x : r.points)
       for (const SurfacePoint& y : q) {
         const Vec3 d = x.position - y.position;  // emitter to receiver
         const float r2 = glm::dot(d, d);
-        if (r2 <= 0.0f) return std::numeric_limits<float>::max();
+        if (r2 <= 0.0f) return {std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
         const float r4 = kPi * r2 * r2;
         hi = std::max(hi, b.maxProjectedArea(d) * a.maxProjectedArea(-d) / r4);
         lo = std::min(lo, b.minProjectedArea(d) * a.minProjectedArea(-d) / r4);
       }
-    return hi - std::min(lo, hi);
+    return {hi, hi - std::min(lo, hi)};
   }
 
   // The vector irradiance emitter j (whose points s.emitterPoints holds) sends to each receiver
@@ -432,15 +436,14 @@ class HierarchicalSolver final : public Solver {
       // lightmap is multiplied by its texture's albedo at display), so a dark receiver is no
       // excuse for a coarse link.
       const double scale = maxChannel(unshot);
-      // A cluster receives a vector only from where all its faces look: otherwise light from
-      // two sides would cancel in the sum, and a face behind would take a share it cannot see.
-      if (!c.leaf() && !whollyFaces(c.cone, c.box, b.box, kHorizonSlack)) {
-        refine();
-        continue;
-      }
       points_->points(j, s_.emitterSide, s.emitterPoints);
       if (!bothLeaves) {
-        if (scale * transferSpread(i, j, r, s.emitterPoints) > threshold) {
+        const TransferBounds bounds = transferBounds(i, j, r, s.emitterPoints);
+        // A cluster whose faces do not all look at the emitter gets a vector all the same when
+        // the light is small: a face behind takes n . E < 0 of it, so the error is at most the
+        // whole transfer. Otherwise light from two sides would cancel in the sum.
+        const bool wholly = c.leaf() || whollyFaces(c.cone, c.box, b.box, kHorizonSlack);
+        if (scale * (wholly ? bounds.spread : bounds.upper) > threshold) {
           refine();
           continue;
         }
