@@ -182,6 +182,7 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
   // Receiver quadratures depend on how near other faces come (within nearFactor times the
   // element's radius): only the moved elements and those that reach the moved faces' old or new
   // bounds can change.
+  if (!quadratureReady_.load()) return;  // made from scratch when first needed
   std::vector<uint32_t> near;
   for (uint32_t e = 0; e < surfaces_.elements.size(); ++e) {
     const Element& el = surfaces_.elements[e];
@@ -197,12 +198,21 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
 }
 
 void CpuTransport::elementsChanged() {
+  const std::lock_guard lock(quadratureMutex_);
+  quadratureReady_.store(false);
+}
+
+void CpuTransport::ensureQuadrature() {
+  if (quadratureReady_.load(std::memory_order_acquire)) return;
+  const std::lock_guard lock(quadratureMutex_);
+  if (quadratureReady_.load(std::memory_order_relaxed)) return;
   const size_t ne = surfaces_.elements.size();
   elementRadius_.resize(ne);
   elementQuadrature_.resize(ne);
   std::vector<uint32_t> all(ne);
   for (uint32_t e = 0; e < ne; ++e) all[e] = e;
   updateQuadrature(all);
+  quadratureReady_.store(true, std::memory_order_release);
 }
 
 void CpuTransport::updateQuadrature(std::span<const uint32_t> elements) {
@@ -215,11 +225,13 @@ void CpuTransport::updateQuadrature(std::span<const uint32_t> elements) {
       const Element& e = surfaces.elements[ei];
       const float radius = polygonRadius(e.polygon, e.centroid);
       elementRadius_[ei] = radius;
-      // Only faces closer than nearFactor * radius make the rule denser than one point.
+      // Only faces closer than nearFactor * radius make the rule denser than one point; the
+      // search stops once a face is near enough to give the densest rule.
+      const float floor = std::max(0.1f * radius, options_.nearFactor * radius / float(kMaxAnalyticSide));
       float gap = std::numeric_limits<float>::max();
       tracer_.forEachNear(e.centroid, options_.nearFactor * radius, [&](uint32_t face) {
         if (face != e.face) gap = std::min(gap, pointPolygonDistance(e.centroid, facePolygons_[face]));
-        return true;
+        return gap > floor;
       });
       gap = std::max(gap, 0.1f * radius);
       elementQuadrature_[ei] = uint8_t(std::clamp(int(std::ceil(options_.nearFactor * radius / gap)), 1, kMaxAnalyticSide));
@@ -405,6 +417,7 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
 }
 
 void CpuTransport::columns(std::span<const uint32_t> patches, std::span<float> out) {
+  ensureQuadrature();
   const size_t n = surfaces_.elements.size();
   for (size_t c = 0; c < patches.size(); ++c) {
     float* column = out.data() + c * n;
@@ -422,6 +435,7 @@ void CpuTransport::columns(std::span<const uint32_t> patches, std::span<float> o
 }
 
 void CpuTransport::rows(std::span<const uint32_t> elements, std::span<float> out) {
+  ensureQuadrature();
   const size_t np = surfaces_.patches.size();
   const size_t total = elements.size() * np;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, total, kPairsPerBatch), [&](const tbb::blocked_range<size_t>& r) {

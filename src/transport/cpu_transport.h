@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -67,7 +68,12 @@ class CpuTransport final : public Transport {
   // since) counts as unknown.
   std::unique_ptr<std::atomic<uint8_t>[]> pairVisibility_;
   uint32_t pairGeneration_ = 1;
+  // Receiver quadratures are made when the first factor is asked for: a solver that never asks
+  // (the hierarchical one computes its own couplings) does not pay for the near-face search.
+  void ensureQuadrature();
   void updateQuadrature(std::span<const uint32_t> elements);
+  std::mutex quadratureMutex_;
+  std::atomic<bool> quadratureReady_{false};
   std::vector<float> elementRadius_;
   std::vector<uint8_t> elementQuadrature_;  // receiver midpoint rule: k x k points
   std::vector<uint8_t> patchEmits_;
