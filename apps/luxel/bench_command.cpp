@@ -63,6 +63,8 @@ nlohmann::json caseJson(const CaseResult& r) {
       {"ms_per_gather", r.msPerGather},
       {"ms_per_shot", r.msPerShot},
   };
+  if (c.solve.method == "hierarchical")
+    j["hierarchy"] = {{"seconds", r.hierarchySeconds}, {"bytes", r.hierarchyBytes}, {"links", r.links}, {"leaves", r.leaves}};
   if (!c.seed.source.empty())
     j["seed"] = {{"source", c.seed.source}, {"milliseconds", c.seed.milliseconds}, {"error", c.seed.error}};
   return j;
@@ -87,6 +89,9 @@ void printRow(const CaseResult& r) {
                            ms(r.solve.median), r.raysPerSecond / 1e6, limit, frac,
                            double(r.peakMemoryBytes) / (1 << 20), error, seedMs, seedErr);
   if (!r.errorNote.empty()) std::cout << "    (" << r.errorNote << ")\n";
+  if (c.solve.method == "hierarchical")
+    std::cout << fmt::format("    (hierarchy {:.2f} s, {:.1f} MiB; {} leaves, {} links in the last sweep)\n", r.hierarchySeconds,
+                             double(r.hierarchyBytes) / (1 << 20), r.leaves, r.links);
   std::cout.flush();
 }
 

@@ -211,7 +211,7 @@ int main(int argc, char** argv) {
 
   cli::BenchArgs ba;
   CLI::App* bench = app.add_subcommand("bench", "Run a benchmark suite: timings, throughput, memory and error");
-  bench->add_option("suite", ba.suite, "Suite: seeds, shader, scenes, core, gl or quick (--list shows the cases)")->capture_default_str();
+  bench->add_option("suite", ba.suite, "Suite: seeds, shader, scenes, hierarchical, core, gl or quick (--list shows the cases)")->capture_default_str();
   bench->add_option("--runs", ba.runs, "Timed runs per case")->check(CLI::Range(1, 1000))->capture_default_str();
   bench->add_option("--json", ba.jsonPath, "Write the results as JSON");
   bench->add_option("--case", ba.filter, "Only cases whose name contains this");

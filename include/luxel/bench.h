@@ -33,6 +33,11 @@ struct Case {
   // Cases whose pairs (elements x patches) exceed this get no reference: a gather over them
   // would take hours. Their error column says so.
   double maxReferencePairs = 5e7;
+  // How this case's reference is solved when not the default gather (bench/reference.h): for
+  // scenes whose pairs no gather could hold, a deep progressive solve on the same elements.
+  // Named in the report; cached like the others.
+  std::optional<SolveOptions> reference;
+  std::string referenceName;  // how the report names it, e.g. "progressive to 1e-4 unshot"
 };
 
 struct Suite {
@@ -42,8 +47,9 @@ struct Suite {
 };
 
 // The named suites: "seeds" (001's four scenes), "shader" (000's boxes), "scenes" (the shared
-// real scenes, which skip when absent), "quick" (a smoke run), "gl" (the OpenGL backend on scenes
-// small enough for Mesa's llvmpipe).
+// real scenes, which skip when absent), "hierarchical" (seed 002's solver on the box and the real
+// scenes), "quick" (a smoke run), "gl" (the OpenGL backend on scenes small enough for Mesa's
+// llvmpipe).
 const std::vector<Suite>& suites();
 const Suite& findSuite(const std::string& name);  // throws Error listing the names
 
@@ -92,6 +98,12 @@ struct CaseResult {
   double hemicubesPerSecond = 0.0;
   double msPerGather = 0.0;  // gather: one element's hemicubes, once
   double msPerShot = 0.0;    // progressive: a pass's time over its shooters
+  // Hierarchical cases (0 otherwise), last run: the face-cluster tree's build time and memory,
+  // the links of the last sweep, the element tree's leaves.
+  double hierarchySeconds = 0.0;
+  size_t hierarchyBytes = 0;
+  uint64_t links = 0;
+  size_t leaves = 0;
 };
 
 CaseResult runCase(const Case& benchCase, const Options& options);

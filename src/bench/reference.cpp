@@ -36,6 +36,8 @@ struct Hasher {
 uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const SolveOptions& o, Options::ReferenceKind kind) {
   Hasher h;
   h.bytes("luxel-reference-4", 17);  // bump when the transport's numbers change (quadrature, sampling, visibility weighting)
+  h.bytes(o.method.data(), o.method.size());
+  for (const auto& [name, value] : o.settings.values()) h.bytes(name.data(), name.size()), h.bytes(value.data(), value.size());
   if (kind == Options::ReferenceKind::MonteCarlo) h.bytes("monte-carlo", 11), h.value(kMonteCarloReferenceRays);
   for (const Element& e : surfaces.elements) {
     h.value(e.polygon.count);
@@ -51,7 +53,7 @@ uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const Solv
                                   o.settings);
   const FormFactorOptions f = formFactorOptions(values);
   h.value(f.raysPerPair), h.value(f.nearRaysPerPair), h.value(f.emitterRaysPerPair), h.value(f.nearFactor);
-  h.value(f.classifyVisibility), h.value(f.lightSamples), h.value(f.seed), h.value(values.real("residual"));
+  h.value(f.classifyVisibility), h.value(f.lightSamples), h.value(f.seed);
   return h.h;
 }
 
@@ -82,9 +84,10 @@ SolveOptions referenceSolveOptions() {
 }
 
 Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces, const std::string& cacheDir,
-                                 const ProgressCallback& progress, Options::ReferenceKind kind) {
-  const SolveOptions options = referenceSolveOptions();
-  const bool monteCarlo = kind == Options::ReferenceKind::MonteCarlo;
+                                 const ProgressCallback& progress, Options::ReferenceKind kind,
+                                 const std::optional<SolveOptions>& solver) {
+  const SolveOptions options = solver ? *solver : referenceSolveOptions();
+  const bool monteCarlo = !solver && kind == Options::ReferenceKind::MonteCarlo;
   const uint64_t key = referenceKey(scene, surfaces, options, kind);
   std::filesystem::path dir(cacheDir);
   std::error_code ec;

@@ -3,6 +3,7 @@
 // so they are cached on disk under a hash of everything that determines them.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,9 +27,12 @@ SolveOptions referenceSolveOptions();
 // Rays per element of Monte Carlo references.
 inline constexpr int kMonteCarloReferenceRays = 1 << 14;
 
-// Loads the reference for `surfaces` from `cacheDir`, or solves and stores it there.
+// Loads the reference for `surfaces` from `cacheDir`, or solves and stores it there: with
+// `solver` when given (any solver on the CPU backend), else with referenceSolveOptions() over
+// the CPU's factors or Monte Carlo ones as `kind` says.
 Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces, const std::string& cacheDir,
                                  const ProgressCallback& progress,
-                                 Options::ReferenceKind kind = Options::ReferenceKind::Cpu);
+                                 Options::ReferenceKind kind = Options::ReferenceKind::Cpu,
+                                 const std::optional<SolveOptions>& solver = std::nullopt);
 
 }  // namespace luxel::bench

@@ -132,6 +132,8 @@ CaseResult runCase(const Case& c, const Options& options) {
   result.iterations = s.iterations;
   result.unshot = s.unshotFraction;
   result.raysPerSecond = result.formFactors.median > 0 ? double(s.rays) / result.formFactors.median : 0.0;
+  result.hierarchySeconds = s.secondsHierarchy, result.hierarchyBytes = s.hierarchyBytes;
+  result.links = s.links, result.leaves = s.clusterLeaves;
   if (gl) {
     result.device = s.device;
     result.hemicubes = s.hemicubes;
@@ -156,7 +158,7 @@ CaseResult runCase(const Case& c, const Options& options) {
 
   if (!options.reference) {
     result.errorNote = "reference off";
-  } else if (double(s.elements) * double(s.patches) > c.maxReferencePairs) {
+  } else if (!c.reference && double(s.elements) * double(s.patches) > c.maxReferencePairs) {
     result.errorNote = fmt::format("no reference: {:.2g} element-patch pairs", double(s.elements) * double(s.patches));
   } else {
     reportProgress(options.progress, c.name, 1.0, "reference");
@@ -164,9 +166,11 @@ CaseResult runCase(const Case& c, const Options& options) {
     if (c.solve.refine.budget > 0) {
       result.errorNote = "no reference: refinement changes the discretisation";
     } else {
-      Reference ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress, options.referenceKind);
+      Reference ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress, options.referenceKind,
+                                             c.reference);
       result.referenceSeconds = ref.seconds;
       result.error = normalisedRmsError(surfaces, last.solution.radiosity, ref.radiosity);
+      if (c.reference) result.errorNote = "error against " + c.referenceName;
     }
   }
   return result;
