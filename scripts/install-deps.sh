@@ -8,6 +8,8 @@ packages=(
   libembree-dev libtbb-dev libassimp-dev libglm-dev libopenexr-dev libstb-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libepoxy-dev libegl-dev libeigen3-dev unzip
+  # quadric-error simplification for seed 002's room (the room-* built-in scenes)
+  libmeshoptimizer-dev
   # Mesa: its EGL driver and llvmpipe give a headless OpenGL 4.5 context with no GPU (tests/gl)
   libegl-mesa0 libgl1-mesa-dri
 )

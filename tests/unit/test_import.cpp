@@ -707,8 +707,12 @@ TEST(LoadScene, DispatchesOnSpec) {
   EXPECT_EQ(luxel::loadScene(source.obj.string()).triangleCount(), source.triangles);
   std::string msg = errorOf([] { luxel::loadScene("no-such-scene.json"); });
   EXPECT_NE(msg.find("no-such-scene.json"), std::string::npos) << msg;
-  for (const std::string& name : luxel::builtinSceneNames())
+  for (const std::string& name : luxel::builtinSceneNames()) {
+    // Seed 002's rooms are made from a shared scene, up to 10M faces:
+    // test_face_cluster_room.cpp loads the small ones.
+    if (name.starts_with("room-")) continue;
     EXPECT_GT(luxel::loadScene(name).faceCount(), 0u) << name;
+  }
 }
 
 // ---- the shared test scenes ---------------------------------------------------------------------

@@ -45,6 +45,17 @@ Scene shaderBox(int k);
 // Seed 000's Plate C.10: shaderBox(10) with a sphere above the floor and a torus above the sphere.
 Scene shaderSphereTorus();
 
+// Seed 002's room (Gobbetti, Spano and Agus 2003, Sec. 4): a closed 6 x 5 x 4 m room (x, y, z
+// in metres from the origin corner, y up) with a red left and a green right wall, a 1 x 1 m
+// ceiling light of 10,925 W, and three Stanford bunnies 1 m tall on rounded-column pedestals;
+// the area-weighted average reflectance is 0.67. The bunnies are subdivided and simplified by
+// quadric error metrics so that the whole scene has `faces` faces (Scene::faceCount; the walls'
+// and pedestals' quads count as one) to within 0.01%: room-160k, -500k, -1m, -1.5m and -10m are
+// 160,000 to 10,000,000. Reads the bunny from the build tree (LUXEL_BUNNY_OBJ) once per process;
+// throws Error naming that path when it is missing, or when `faces` leaves the statues fewer than
+// 1,000 each.
+Scene faceClusterRoom(size_t faces);
+
 // Adds a planar quad (a, b, c, d counter-clockwise seen from the front) to `mesh`.
 void addQuad(Mesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d);
 // Adds the six inward-facing walls of the axis-aligned box [lo, hi] to `mesh`.

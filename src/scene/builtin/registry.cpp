@@ -11,9 +11,11 @@
 namespace luxel {
 
 std::vector<std::string> builtinSceneNames() {
-  return {"cornell",          "furnace",          "cie-5.8",          "cornell-large",
-          "cornell-small",    "cornell-low",      "indirect-light",   "shader-box-774",
-          "shader-box-2734",  "shader-box-10254", "shader-box-15814", "shader-sphere-torus"};
+  return {"cornell",         "furnace",          "cie-5.8",          "cornell-large",
+          "cornell-small",   "cornell-low",      "indirect-light",   "shader-box-774",
+          "shader-box-2734", "shader-box-10254", "shader-box-15814", "shader-sphere-torus",
+          "room-160k",       "room-500k",        "room-1m",          "room-1.5m",
+          "room-10m"};
 }
 
 bool isBuiltinScene(std::string_view name) {
@@ -35,6 +37,12 @@ Scene builtinScene(std::string_view name) {
   if (name == "shader-box-10254") return builtin::shaderBox(40);
   if (name == "shader-box-15814") return builtin::shaderBox(50);
   if (name == "shader-sphere-torus") return builtin::shaderSphereTorus();
+  // Seed 002's room, a ladder of face counts.
+  if (name == "room-160k") return builtin::faceClusterRoom(160'000);
+  if (name == "room-500k") return builtin::faceClusterRoom(500'000);
+  if (name == "room-1m") return builtin::faceClusterRoom(1'000'000);
+  if (name == "room-1.5m") return builtin::faceClusterRoom(1'500'000);
+  if (name == "room-10m") return builtin::faceClusterRoom(10'000'000);
   throw Error(fmt::format("unknown built-in scene '{}' (known: {})", name,
                           fmt::join(builtinSceneNames(), ", ")));
 }
