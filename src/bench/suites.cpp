@@ -129,20 +129,21 @@ std::vector<Suite> makeSuites() {
     cornell.discretise.elementsPerPatchSide = 1;
     hierarchical.cases.push_back(cornell);
     hierarchical.cases.push_back(finer(cornell));
+    auto against = [](Case& c, const std::string& method, SolverSettings settings, const std::string& name) {
+      c.reference = SolveOptions{};
+      c.reference->method = method;
+      c.reference->settings = std::move(settings);
+      c.referenceName = name;
+    };
     Case sibenik = faceClusters("bench/scenes/sibenik.json", "sibenik");
     sibenik.discretise.elementBudget = 100000;
-    sibenik.reference = SolveOptions{};
-    sibenik.reference->method = "progressive";
-    sibenik.reference->settings.set("unshot", 1e-4).set("seed", 7);
-    sibenik.referenceName = "progressive to 1e-4 unshot";
+    against(sibenik, "progressive", SolverSettings().set("unshot", 1e-4).set("seed", 7), "progressive to 1e-4 unshot");
     hierarchical.cases.push_back(sibenik);
     hierarchical.cases.push_back(finer(sibenik));
     Case conference = faceClusters("bench/scenes/conference.json", "conference");
     conference.discretise.elementBudget = 400000;
-    conference.reference = SolveOptions{};
-    conference.reference->method = "hierarchical";
-    conference.reference->settings.set("error", 1e-5).set("unshot", 1e-6).set("emitter-points", 4);
-    conference.referenceName = "the hierarchical solver at error 1e-5 (self-convergence)";
+    against(conference, "hierarchical", SolverSettings().set("error", 1e-5).set("unshot", 1e-6).set("emitter-points", 4),
+            "the hierarchical solver at error 1e-5 (self-convergence)");
     hierarchical.cases.push_back(conference);
     hierarchical.cases.push_back(finer(conference));
   }
