@@ -24,6 +24,13 @@ Vec2 OrientedBox::planeParameters(Vec3 p) const {
   return {u, v};
 }
 
+float OrientedBox::distance(Vec3 p) const {
+  const Vec3 d = p - centre;
+  Vec3 outside(0.0f);
+  for (int k = 0; k < 3; ++k) outside[k] = std::max(0.0f, std::abs(glm::dot(d, axis[size_t(k)])) - half[k]);
+  return glm::length(outside);
+}
+
 namespace {
 
 // Any unit vector perpendicular to unit `n`.

@@ -20,6 +20,8 @@ struct OrientedBox {
   std::array<Vec3, 8> corners() const;
   // Parameters of `p` on the box's horizontal plane: (0,0) to (1,1) over the box.
   Vec2 planeParameters(Vec3 p) const;
+  // Distance from `p` to the box; 0 inside.
+  float distance(Vec3 p) const;
 };
 
 // The smallest-volume box with z along `normal` (unit) that holds `points`: the 2-D hull of the

@@ -4,11 +4,12 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
-#include <queue>
+#include <numeric>
 #include <span>
 
 #include <fmt/format.h>
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
 #include "core/stopwatch.h"
@@ -56,9 +57,13 @@ struct Neighbour {
 
 // The cost of contracting a and b (sharing a boundary of `shared` length): how far the union is
 // from a plane (mean squared distance over area), how spread its normals are (1 - |sum A n| / A,
-// Willmott's bound on its self form factor), how much less compact it is than either part
+// Willmott's bound on its self form factor), how far apart the parts' normals are, how much less compact it is than either part
 // (perimeter^2 / (4 pi A), weighted 0.1 as Garland et al. weigh shape), and whether it joins
 // different materials or an emitter to a non-emitter.
+// Compactness decides between flat merges only: uncapped, a ragged union on a flat grid could cost
+// more than crossing a right-angled crease (bend 1).
+constexpr double kMostIrregularity = 2.0;
+
 double contractionCost(const Moments& a, const Moments& b, double shared) {
   const double area = a.area + b.area;
   if (area <= 0.0) return 0.0;
@@ -78,13 +83,19 @@ double contractionCost(const Moments& a, const Moments& b, double shared) {
   const glm::dvec3 ra = a.area > 0 ? a.reflectance / a.area : glm::dvec3(0), rb = b.area > 0 ? b.reflectance / b.area : glm::dvec3(0);
   const glm::dvec3 dr = glm::abs(ra - rb);
   const double material = std::max({dr.x, dr.y, dr.z}) + (a.emits != b.emits ? 1.0 : 0.0);
-  return fit + spread + 0.1 * shape + material;
+  // The angle between the parts' mean normals, whatever their areas: the terms above weigh by
+  // area, so one face across a crease joins a large flat cluster almost free, and a wall whose
+  // cluster has a fringe of the next wall faces no emitter wholly (the solver then refines it or
+  // takes its light as harmonics, hierarchical_solver.cpp).
+  const double la = glm::length(a.vectorArea), lb = glm::length(b.vectorArea);
+  const double bend = la > 0.0 && lb > 0.0 ? std::max(0.0, 1.0 - glm::dot(a.vectorArea, b.vectorArea) / (la * lb)) : 1.0;
+  return fit + spread + 0.1 * std::min(shape, kMostIrregularity) + material + bend;
 }
 
-struct HeapEntry {
+struct DualEdge {
   double cost;
   uint32_t a, b;
-  bool operator>(const HeapEntry& o) const {
+  bool operator>(const DualEdge& o) const {
     if (cost != o.cost) return cost > o.cost;
     return a != o.a ? a > o.a : b > o.b;  // ties broken by index: the same tree every run
   }
@@ -230,14 +241,7 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
     }
     list.resize(out);
   };
-  std::vector<HeapEntry> initial;
-  for (uint32_t e = 0; e < n; ++e) {
-    combine(adjacency[e]);
-    for (const Neighbour& nb : adjacency[e])
-      if (nb.node > e) initial.push_back({contractionCost(moments[e], moments[nb.node], nb.length), e, nb.node});
-  }
-  std::priority_queue<HeapEntry, std::vector<HeapEntry>, std::greater<HeapEntry>> heap(std::greater<HeapEntry>(),
-                                                                                       std::move(initial));
+  for (uint32_t e = 0; e < n; ++e) combine(adjacency[e]);
 
   auto link = [&](uint32_t parent, uint32_t a, uint32_t b) {
     FaceCluster& p = tree.nodes[parent];
@@ -248,34 +252,85 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
     lo[parent] = glm::min(lo[a], lo[b]), hi[parent] = glm::max(hi[a], hi[b]);
   };
 
-  // Greedy contraction, cheapest dual edge first.
+  // Contraction in rounds: in each, the dual edges in order of cost, each cluster joined at most
+  // once. Garland et al. contract one edge at a time from a single heap, and on a surface of
+  // equal faces (a wall cut into a grid) that grows one cluster a face at a time: a tree
+  // thousands of levels deep, whose splits peel single faces off and whose traversal overflows
+  // the stack. Rounds keep the tree about log n deep, and the costs of a round are computed in
+  // parallel. A cluster waits for a later round rather than take a partner much worse than its
+  // best (kWorseFactor, or kCostTie when costs are near zero, as on a flat grid), so that a crease
+  // is not crossed while a flat neighbour is still to be had.
+  constexpr double kWorseFactor = 2.0, kCostTie = 0.05;
+  std::vector<uint32_t> active(n), rep(2 * n - 1);
+  std::iota(active.begin(), active.end(), 0u);
+  std::iota(rep.begin(), rep.end(), 0u);
+  std::vector<double> best(2 * n - 1);
+  std::vector<uint8_t> matched(2 * n - 1, 0);
   uint32_t next = uint32_t(n);
-  while (!heap.empty()) {
-    const HeapEntry top = heap.top();
-    heap.pop();
-    if (!alive[top.a] || !alive[top.b]) continue;
-    const uint32_t a = top.a, b = top.b, c = next++;
-    bool sharedConvex = true;
-    for (const Neighbour& nb : adjacency[a])
-      if (nb.node == b) sharedConvex = nb.convex;
-    link(c, a, b);
-    moments[c].convex = moments[a].convex && moments[b].convex && sharedConvex;
-    alive[a] = alive[b] = 0, alive[c] = 1;
-    std::vector<Neighbour>& list = adjacency[c];
-    for (uint32_t side : {a, b})
-      for (const Neighbour& nb : adjacency[side])
-        if (nb.node != a && nb.node != b) list.push_back(nb);
-    combine(list);
-    std::vector<Neighbour>().swap(adjacency[a]);
-    std::vector<Neighbour>().swap(adjacency[b]);
-    for (const Neighbour& nb : list) {
-      // In the neighbour's list, a and b become c.
-      std::vector<Neighbour>& other = adjacency[nb.node];
-      for (Neighbour& o : other)
-        if (o.node == a || o.node == b) o.node = c;
-      combine(other);
-      heap.push({contractionCost(moments[c], moments[nb.node], nb.length), std::min(c, nb.node), std::max(c, nb.node)});
+  std::vector<DualEdge> edges;
+  struct Pair {
+    uint32_t a, b, parent;
+  };
+  std::vector<Pair> pairs;
+  while (true) {
+    edges.clear();
+    for (uint32_t a : active)
+      for (const Neighbour& nb : adjacency[a])
+        if (nb.node > a) edges.push_back({0.0, a, nb.node});
+    if (edges.empty()) break;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t k = range.begin(); k != range.end(); ++k) {
+        DualEdge& edge = edges[k];
+        double length = 0.0;
+        for (const Neighbour& nb : adjacency[edge.a])
+          if (nb.node == edge.b) length = nb.length;
+        edge.cost = contractionCost(moments[edge.a], moments[edge.b], length);
+      }
+    });
+    tbb::parallel_sort(edges.begin(), edges.end(), [](const DualEdge& x, const DualEdge& y) { return y > x; });
+    for (uint32_t a : active) best[a] = std::numeric_limits<double>::max(), matched[a] = 0;
+    for (const DualEdge& edge : edges) best[edge.a] = std::min(best[edge.a], edge.cost), best[edge.b] = std::min(best[edge.b], edge.cost);
+    pairs.clear();
+    for (const DualEdge& edge : edges) {
+      if (matched[edge.a] || matched[edge.b]) continue;
+      const double bar = std::max(kWorseFactor * std::min(best[edge.a], best[edge.b]), kCostTie);
+      if (edge.cost > bar) continue;
+      matched[edge.a] = matched[edge.b] = 1;
+      pairs.push_back({edge.a, edge.b, next});
+      rep[edge.a] = rep[edge.b] = next++;
     }
+    // The joined clusters, and the neighbour lists of every cluster of the next round, with the
+    // joined pairs renamed (lists are private to their cluster, so this is parallel too).
+    tbb::parallel_for(size_t(0), pairs.size(), [&](size_t k) {
+      const auto [a, b, c] = pairs[k];
+      bool sharedConvex = true;
+      for (const Neighbour& nb : adjacency[a])
+        if (nb.node == b) sharedConvex = nb.convex;
+      link(c, a, b);
+      moments[c].convex = moments[a].convex && moments[b].convex && sharedConvex;
+      std::vector<Neighbour>& list = adjacency[c];
+      for (uint32_t side : {a, b})
+        for (const Neighbour& nb : adjacency[side])
+          if (nb.node != a && nb.node != b) list.push_back({rep[nb.node], nb.length, nb.convex});
+      combine(list);
+    });
+    tbb::parallel_for(size_t(0), active.size(), [&](size_t k) {
+      const uint32_t a = active[k];
+      if (matched[a]) return;
+      for (Neighbour& nb : adjacency[a]) nb.node = rep[nb.node];
+      combine(adjacency[a]);
+    });
+    size_t kept = 0;
+    for (uint32_t a : active) {
+      if (matched[a]) {
+        std::vector<Neighbour>().swap(adjacency[a]);
+        alive[a] = 0;
+      } else {
+        active[kept++] = a;
+      }
+    }
+    active.resize(kept);
+    for (const Pair& pair : pairs) active.push_back(pair.parent), alive[pair.parent] = 1;
   }
 
   // The components that share no edge: joined by median splits along the widest axis of their

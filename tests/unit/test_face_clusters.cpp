@@ -5,48 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <random>
 
 #include "cluster/face_cluster_tree.h"
+#include "crumpled_ball.h"
 #include "hierarchical/legendre_basis.h"
 #include "scene/builtin/builtin_scenes.h"
 #include "transport/form_factor.h"
 
 namespace luxel {
 namespace {
-
-// A closed sphere whose radius wobbles (a crumpled ball: convex and concave parts), outward.
-Scene crumpledBall(int rings, int segments, float wobble, uint32_t seed) {
-  Scene scene;
-  scene.name = "crumpled";
-  scene.materials.push_back(Material{});
-  Mesh mesh;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-wobble, wobble);
-  mesh.positions.push_back(Vec3(0, 1 + u(rng), 0));
-  for (int r = 1; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const float theta = std::numbers::pi_v<float> * float(r) / float(rings);
-      const float phi = 2.0f * std::numbers::pi_v<float> * float(s) / float(segments);
-      const float radius = 1.0f + u(rng);
-      mesh.positions.push_back(radius * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
-    }
-  mesh.positions.push_back(Vec3(0, -1 + u(rng), 0));
-  const uint32_t bottom = uint32_t(mesh.positions.size() - 1);
-  auto ring = [&](int r, int s) { return uint32_t(1 + (r - 1) * segments + (s % segments)); };
-  auto tri = [&](uint32_t a, uint32_t b, uint32_t c) { mesh.faces.push_back(Face{{a, b, c, c}}); };
-  for (int s = 0; s < segments; ++s) {
-    tri(0, ring(1, s + 1), ring(1, s));
-    tri(bottom, ring(rings - 1, s), ring(rings - 1, s + 1));
-    for (int r = 1; r < rings - 1; ++r) {
-      tri(ring(r, s), ring(r, s + 1), ring(r + 1, s + 1));
-      tri(ring(r, s), ring(r + 1, s + 1), ring(r + 1, s));
-    }
-  }
-  scene.meshes.push_back(std::move(mesh));
-  return scene;
-}
 
 SurfaceSet oneElementPerFace(const Scene& scene) {
   DiscretiseOptions d;
@@ -116,7 +86,7 @@ TEST(OrientedBox, HoldsThePointsAndIsNoLargerThanASweepFinds) {
 class CrumpledTree : public ::testing::Test {
  protected:
   void SetUp() override {
-    scene = crumpledBall(24, 42, 0.25f, 3);
+    scene = test::crumpledBall(24, 42, 0.25f, 3);
     surfaces = oneElementPerFace(scene);
     tree = buildFaceClusterTree(surfaces);
   }
@@ -187,7 +157,7 @@ TEST_F(CrumpledTree, ProjectedAreaBoundsHold) {
 
 // A convex polyhedron is found convex at every level; the inside of a room is not.
 TEST(FaceClusterTree, ConvexityIsTrackedAcrossEdges) {
-  Scene ball = crumpledBall(12, 20, 0.0f, 1);  // a plain (convex) polyhedral sphere
+  Scene ball = test::crumpledBall(12, 20, 0.0f, 1);  // a plain (convex) polyhedral sphere
   const SurfaceSet s = oneElementPerFace(ball);
   const FaceClusterTree t = buildFaceClusterTree(s);
   EXPECT_TRUE(t.nodes[t.root].convex);
@@ -198,6 +168,49 @@ TEST(FaceClusterTree, ConvexityIsTrackedAcrossEdges) {
   const FaceClusterTree rt = buildFaceClusterTree(r);
   EXPECT_FALSE(rt.nodes[rt.root].convex);
   EXPECT_GT(rt.nodes[rt.root].selfFormFactorBound(), 0.9f);  // a closed room keeps all its light
+}
+
+// A wall cut into a grid of equal faces is where a single-heap contraction grows one cluster a
+// face at a time (the furnace at 10k elements came out 1,794 levels deep, and its traversal
+// overflowed a worker's stack). Contracted in rounds, the tree is about log2 n deep, and each
+// wall is still finished (one node holds exactly its faces) before a crease is crossed.
+TEST(FaceClusterTree, GridsMakeShallowTreesThatKeepWallsWhole) {
+  const Scene room = builtin::furnace();
+  DiscretiseOptions d;
+  d.elementBudget = 10000;
+  d.orientByLight = false;
+  const SurfaceSet s = discretise(room, d);
+  const FaceClusterTree t = buildFaceClusterTree(s);
+  std::vector<int> depth(t.nodes.size(), 0);
+  int deepest = 0;
+  for (size_t i = t.nodes.size(); i-- > 0;) {
+    const FaceCluster& c = t.nodes[i];
+    if (c.leaf()) deepest = std::max(deepest, depth[i]);
+    else for (uint32_t child : c.child) depth[child] = depth[i] + 1;
+  }
+  const int log2n = int(std::ceil(std::log2(double(s.elements.size()))));
+  EXPECT_LE(deepest, 2 * log2n) << s.elements.size() << " elements";  // measured 17 for 10,584
+
+  // The six walls are the six faces of the scene: each is some node's whole run.
+  std::map<uint32_t, size_t> wallElements;
+  for (const Element& el : s.elements) ++wallElements[el.face];
+  ASSERT_EQ(wallElements.size(), 6u);
+  for (const auto& [face, count] : wallElements) {
+    bool whole = false;
+    for (const FaceCluster& c : t.nodes) {
+      if (c.count != count) continue;
+      bool same = true;
+      for (uint32_t k = c.begin; k < c.begin + c.count && same; ++k) same = s.elements[t.order[k]].face == face;
+      whole = whole || same;
+    }
+    size_t largest = 0;
+    for (const FaceCluster& c : t.nodes) {
+      bool same = true;
+      for (uint32_t k = c.begin; k < c.begin + c.count && same; ++k) same = s.elements[t.order[k]].face == face;
+      if (same) largest = std::max(largest, size_t(c.count));
+    }
+    EXPECT_TRUE(whole) << "wall " << face << " is split between clusters that cross a crease: " << largest << " of " << count;
+  }
 }
 
 // mayFace never says no to a pair that can see each other; whollyFaces never says yes to one

@@ -151,6 +151,8 @@ void addStatue(Mesh& m, const TriangleMesh& statue, Vec3 foot, float yawDegrees)
 
 std::string roomName(size_t faces) {
   switch (faces) {
+    case 20'000:
+      return "room-20k";
     case 160'000:
       return "room-160k";
     case 500'000:
