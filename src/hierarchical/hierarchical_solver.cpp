@@ -273,7 +273,7 @@ class HierarchicalSolver final : public Solver {
   // A field given on a parent, re-expressed on child `r` (Gobbetti et al. section 3.3.4's push:
   // the parent's function at the child's points, projected on the child's basis). A channel whose
   // mean vector points behind the child's surface is dropped, as the paper does: vector
-  // irradiance is valid in one half-space only.
+  // irradiance is valid in one half-space only. The harmonics are pushed whole.
   void push(const Field& from, uint32_t parent, const Receiver& r, uint32_t child, Field& to) const {
     const int nb = s_.basis;
     const size_t np = r.points.size();
@@ -525,13 +525,12 @@ class HierarchicalSolver final : public Solver {
           continue;
         }
       }
+      // A receiver whose faces all look at the emitter takes its light as a vector; one whose
+      // faces do not is linked only when the whole transfer is below the threshold (a face that
+      // sees the emitter from behind takes none of it), and takes the light as harmonics.
+      const bool wholly = c.leaf() || whollyFaces(c.cone, c.box, b.box, kHorizonSlack);
       if (!bothLeaves) {
         const TransferBounds bounds = transferBounds(i, j, r, s.emitterPoints);
-        // A cluster whose faces do not all look at the emitter gets a vector all the same when
-        // the light is small: a face behind takes n . E < 0 of it, so the error is at most the
-        // whole transfer. Otherwise light from two sides would cancel in the sum.
-        const bool wholly = c.leaf() || whollyFaces(c.cone, c.box, b.box, kHorizonSlack);
-
         if (scale * (wholly ? bounds.spread : bounds.upper) > threshold) {
           refine();
           continue;
@@ -559,7 +558,6 @@ class HierarchicalSolver final : public Solver {
         project(r, s.sees.data(), s.projection);
         projection = &s.projection;
       }
-      const bool wholly = c.leaf() || whollyFaces(c.cone, c.box, b.box, kHorizonSlack);
       for (size_t p = 0; p < np; ++p) {
         if (wholly) {
           for (int a = 0; a < s_.basis; ++a) {
