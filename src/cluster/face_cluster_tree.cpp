@@ -55,15 +55,15 @@ struct Neighbour {
   bool convex;   // no edge of that boundary is concave
 };
 
-// The cost of contracting a and b (sharing a boundary of `shared` length): how far the union is
-// from a plane (mean squared distance over area), how spread its normals are (1 - |sum A n| / A,
-// Willmott's bound on its self form factor), how far apart the parts' normals are, how much less compact it is than either part
-// (perimeter^2 / (4 pi A), weighted 0.1 as Garland et al. weigh shape), and whether it joins
-// different materials or an emitter to a non-emitter.
 // Compactness decides between flat merges only: uncapped, a ragged union on a flat grid could cost
 // more than crossing a right-angled crease (bend 1).
 constexpr double kMostIrregularity = 2.0;
 
+// The cost of contracting a and b (sharing a boundary of `shared` length): how far the union is
+// from a plane (mean squared distance over area), how spread its normals are (1 - |sum A n| / A,
+// Willmott's bound on its self form factor), how far apart the parts' mean normals are, how much
+// less compact it is than either part (perimeter^2 / (4 pi A), weighted 0.1 as Garland et al.
+// weigh shape, capped), and whether it joins different materials or an emitter to a non-emitter.
 double contractionCost(const Moments& a, const Moments& b, double shared) {
   const double area = a.area + b.area;
   if (area <= 0.0) return 0.0;
@@ -95,6 +95,7 @@ double contractionCost(const Moments& a, const Moments& b, double shared) {
 struct DualEdge {
   double cost;
   uint32_t a, b;
+  double length;  // of the boundary a and b share
   bool operator>(const DualEdge& o) const {
     if (cost != o.cost) return cost > o.cost;
     return a != o.a ? a > o.a : b > o.b;  // ties broken by index: the same tree every run
@@ -276,15 +277,12 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
     edges.clear();
     for (uint32_t a : active)
       for (const Neighbour& nb : adjacency[a])
-        if (nb.node > a) edges.push_back({0.0, a, nb.node});
+        if (nb.node > a) edges.push_back({0.0, a, nb.node, nb.length});
     if (edges.empty()) break;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t k = range.begin(); k != range.end(); ++k) {
         DualEdge& edge = edges[k];
-        double length = 0.0;
-        for (const Neighbour& nb : adjacency[edge.a])
-          if (nb.node == edge.b) length = nb.length;
-        edge.cost = contractionCost(moments[edge.a], moments[edge.b], length);
+        edge.cost = contractionCost(moments[edge.a], moments[edge.b], edge.length);
       }
     });
     tbb::parallel_sort(edges.begin(), edges.end(), [](const DualEdge& x, const DualEdge& y) { return y > x; });

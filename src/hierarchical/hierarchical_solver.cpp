@@ -62,7 +62,7 @@ struct Field {
   // Light from links that some of the receiver's faces see from behind (not whollyFaces), as
   // radiance in spherical harmonics (core/spherical_harmonics.h): coefficient (alpha, channel, i)
   // at (alpha * 3 + channel) * 9 + i. Summed as vectors, light from around a round cluster (a
-  // statue lit by every wall) cancels: a third of the room's light was lost that way.
+  // statue lit by every wall) cancels.
   std::array<float, kMaxBasisFunctions * 3 * kShCoefficients> sh{};
 
   Field& operator+=(const Field& o) {
@@ -437,8 +437,8 @@ class HierarchicalSolver final : public Solver {
       }
       // A cluster: its points, each a square of its share of the area, with the square's exact
       // vector form factor. Wallace et al.'s disc form A cos / (pi r^2 + A), which this replaced,
-      // is 5-8% low on average at the distances a link is taken at (a cluster's size and more,
-      // with 2 x 2 points), and that bias, the same on every link, compounds with each bounce.
+      // is low on average at the distances a link is taken at, and a bias that is the same on
+      // every link compounds with each bounce (docs/algorithms.md, "Energy").
       for (size_t k = 0; k < q.size(); ++k) {
         const size_t idx = p * q.size() + k;
         if (s.rays[idx].flags || !visible[idx]) continue;
@@ -511,8 +511,7 @@ class HierarchicalSolver final : public Solver {
       points_->points(j, s_.emitterSide, s.emitterPoints);
       // A cluster's points stand for it only at receivers further from it than its size: the
       // light from a wall to the floor beside it comes mostly from the wall's bottom edge, which
-      // 2 x 2 points miss (a receiver a quarter of the wall's size away gets 80% of it, one at
-      // a twentieth 20%), and what every such link misses adds up to a loss of energy.
+      // a few points miss, and what every such link misses adds up to a loss of energy.
       if (!b.leaf()) {
         const float reach = kSeparation * glm::length(b.box.half);
         bool near = false;

@@ -5,6 +5,8 @@
 // radiosity", energy) has the history of these losses.
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <string>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -13,9 +15,24 @@
 #include "luxel/import.h"
 #include "luxel/solve.h"
 #include "scene/builtin/builtin_scenes.h"
+#include "solve/radiosity_system.h"
 
 namespace luxel {
 namespace {
+
+// Solved with every element its own patch (elementBudget 1: one element a face where faces are
+// small), as the face-cluster solver shoots from each face.
+Solution solveElementwise(const Scene& scene, size_t elementBudget, const std::string& method, const SolverSettings& settings,
+                          SurfaceSet& surfaces) {
+  DiscretiseOptions d;
+  d.elementBudget = elementBudget;
+  d.elementsPerPatchSide = 1;
+  surfaces = discretise(scene, d);
+  SolveOptions o;
+  o.method = method;
+  o.settings = settings;
+  return solve(scene, surfaces, o);
+}
 
 struct Means {
   double box = 0.0, ball = 0.0;
@@ -30,14 +47,8 @@ Means furnaceWithABall(double error) {
   for (Vec3& p : mesh.positions) p = Vec3(0.5f) + 0.25f * p;
   mesh.material = 0;
   scene.meshes.push_back(mesh);
-  DiscretiseOptions d;
-  d.elementBudget = 3000;
-  d.elementsPerPatchSide = 1;
-  SurfaceSet surfaces = discretise(scene, d);
-  SolveOptions o;
-  o.method = "hierarchical";
-  o.settings.set("error", error);
-  const Solution s = solve(scene, surfaces, o);
+  SurfaceSet surfaces;
+  const Solution s = solveElementwise(scene, 3000, "hierarchical", SolverSettings().set("error", error), surfaces);
   double sum[2] = {0, 0}, area[2] = {0, 0};
   for (size_t e = 0; e < surfaces.elements.size(); ++e) {
     const Element& el = surfaces.elements[e];
@@ -67,16 +78,35 @@ TEST(HierarchicalEnergy, AFurnaceWithABallKeepsItsLight) {
 // part of what is missing (docs/performance.md).
 TEST(HierarchicalEnergy, TheClosedRoomAbsorbsWhatItEmits) {
   const Scene scene = builtinScene("room-20k");
-  DiscretiseOptions d;
-  d.elementBudget = 1;
-  d.elementsPerPatchSide = 1;
-  SurfaceSet surfaces = discretise(scene, d);
-  SolveOptions o;
-  o.method = "hierarchical";
-  const Solution s = solve(scene, surfaces, o);
+  SurfaceSet surfaces;
+  const Solution s = solveElementwise(scene, 1, "hierarchical", {}, surfaces);
   ASSERT_GT(s.stats.emittedPower, 0.0);
   std::printf("absorbed / emitted %.4f\n", s.stats.absorbedPower / s.stats.emittedPower);
   EXPECT_NEAR(s.stats.absorbedPower / s.stats.emittedPower, 1.0, 0.06);
+}
+
+// The same room against the flat progressive solver, irradiance per material (area-weighted, all
+// channels). Measured: the walls and floor within 3.1%; the pedestals 12.5% and the statues 22%
+// low, the open shortfall of round clusters' interreflected light (docs/algorithms.md,
+// "Energy"), held here so that it cannot grow unseen.
+TEST(HierarchicalEnergy, TheRoomAgreesWithProgressivePerMaterial) {
+  const Scene scene = builtinScene("room-20k");
+  SurfaceSet surfaces;
+  const Solution p = solveElementwise(scene, 1, "progressive", SolverSettings().set("unshot", 1e-3), surfaces);
+  const Solution h = solveElementwise(scene, 1, "hierarchical", {}, surfaces);
+  std::map<std::string, std::array<double, 2>> perMaterial;  // progressive, hierarchical
+  for (size_t e = 0; e < surfaces.elements.size(); ++e) {
+    const Element& el = surfaces.elements[e];
+    auto& m = perMaterial[scene.materials[el.material].name];
+    m[0] += el.area * channelSum(p.irradiance[e]), m[1] += el.area * channelSum(h.irradiance[e]);
+  }
+  const std::map<std::string, double> tolerance = {{"white", 0.05}, {"floor", 0.05}, {"red", 0.05}, {"green", 0.05},
+                                                   {"light", 0.05}, {"pedestal", 0.2}, {"statue", 0.3}};
+  for (const auto& [name, m] : perMaterial) {
+    std::printf("%s: hierarchical / progressive %.4f\n", name.c_str(), m[1] / m[0]);
+    ASSERT_GT(m[0], 0.0) << name;
+    EXPECT_NEAR(m[1] / m[0], 1.0, tolerance.at(name)) << name;
+  }
 }
 
 }  // namespace

@@ -14,8 +14,8 @@ std::vector<std::string> builtinSceneNames() {
   return {"cornell",         "furnace",          "cie-5.8",          "cornell-large",
           "cornell-small",   "cornell-low",      "indirect-light",   "shader-box-774",
           "shader-box-2734", "shader-box-10254", "shader-box-15814", "shader-sphere-torus",
-          "room-20k",        "room-160k",       "room-500k",        "room-1m",          "room-1.5m",
-          "room-10m"};
+          "room-20k",        "room-160k",        "room-500k",        "room-1m",
+          "room-1.5m",       "room-10m"};
 }
 
 bool isBuiltinScene(std::string_view name) {
