@@ -60,10 +60,10 @@ struct HierarchicalSettings {
 struct Field {
   std::array<Vec3, kMaxBasisFunctions * 3> c{};
   // Light from links that some of the receiver's faces see from behind (not whollyFaces), as
-  // radiance in spherical harmonics (core/spherical_harmonics.h): coefficient (alpha, channel, i)
-  // at (alpha * 3 + channel) * 9 + i. Summed as vectors, light from around a round cluster (a
-  // statue lit by every wall) cancels.
-  std::array<float, kMaxBasisFunctions * 3 * kShCoefficients> sh{};
+  // radiance in spherical harmonics (core/spherical_harmonics.h), constant over the element:
+  // coefficient (channel, i) at channel * 9 + i. Summed as vectors, light from around a round
+  // cluster (a statue lit by every wall) cancels.
+  std::array<float, 3 * kShCoefficients> sh{};
 
   Field& operator+=(const Field& o) {
     for (size_t k = 0; k < c.size(); ++k) c[k] += o.c[k];
@@ -287,24 +287,15 @@ class HierarchicalSolver final : public Solver {
       return;
     }
     to = Field{};
+    to.sh = from.sh;
     for (size_t p = 0; p < np; ++p) {
       float basis[kMaxBasisFunctions];
       evaluateBasis(tree_.nodes[parent].box.planeParameters(r.points[p].position), nb, basis);
       for (int ch = 0; ch < 3; ++ch) {
+        if (!keep[size_t(ch)]) continue;
         Vec3 value(0.0f);
-        std::array<float, kShCoefficients> sh{};
-        for (int a = 0; a < nb; ++a) {
-          value += basis[a] * from.c[size_t(a * 3 + ch)];
-          const float* f = &from.sh[size_t(a * 3 + ch) * kShCoefficients];
-          for (int i = 0; i < kShCoefficients; ++i) sh[size_t(i)] += basis[a] * f[i];
-        }
-        if (!keep[size_t(ch)]) value = Vec3(0.0f);
-        for (int a = 0; a < nb; ++a) {
-          const float w = r.projection[size_t(a) * np + p];
-          to.c[size_t(a * 3 + ch)] += w * value;
-          float* t = &to.sh[size_t(a * 3 + ch) * kShCoefficients];
-          for (int i = 0; i < kShCoefficients; ++i) t[i] += w * sh[size_t(i)];
-        }
+        for (int a = 0; a < nb; ++a) value += basis[a] * from.c[size_t(a * 3 + ch)];
+        for (int a = 0; a < nb; ++a) to.c[size_t(a * 3 + ch)] += r.projection[size_t(a) * np + p] * value;
       }
     }
   }
@@ -319,14 +310,9 @@ class HierarchicalSolver final : public Solver {
     Rgb out(0.0f);
     for (int ch = 0; ch < 3; ++ch) {
       Vec3 v(0.0f);
+      for (int a = 0; a < s_.basis; ++a) v += basis[a] * f.c[size_t(a * 3 + ch)];
       float fromSh = 0.0f;
-      for (int a = 0; a < s_.basis; ++a) {
-        v += basis[a] * f.c[size_t(a * 3 + ch)];
-        const float* sh = &f.sh[size_t(a * 3 + ch) * kShCoefficients];
-        float dot = 0.0f;
-        for (int i = 0; i < kShCoefficients; ++i) dot += y[size_t(i)] * sh[i];
-        fromSh += basis[a] * dot;
-      }
+      for (int i = 0; i < kShCoefficients; ++i) fromSh += y[size_t(i)] * f.sh[size_t(ch * kShCoefficients + i)];
       out[ch] = std::max(0.0f, glm::dot(normal, v)) + std::max(0.0f, fromSh);
     }
     return out;
@@ -344,6 +330,9 @@ class HierarchicalSolver final : public Solver {
     // Per receiver point, per channel: the vector irradiance the emitter's unshot radiosity
     // brings (all light), and the part its emission brings (direct light).
     std::vector<std::array<Vec3, 3>> transport, direct;
+    // The same light as harmonics, for receivers that take it so (couple's `asHarmonics`): per
+    // receiver point, per channel, kShCoefficients numbers.
+    std::vector<float> transportSh, directSh;
   };
 
   // Point-to-point estimates of the power per unit radiosity between every receiver and emitter
@@ -374,11 +363,32 @@ class HierarchicalSolver final : public Solver {
   // leaving a cluster towards a receiver comes from the faces that face it, and those are often
   // the lit ones (a floor beside the dark sides of a block on it), so the mean would be too dark
   // one way and too bright the other.
-  float couple(uint32_t j, const Receiver& r, Scratch& s) const {
+  float couple(uint32_t j, const Receiver& r, Scratch& s, bool asHarmonics) const {
     const FaceCluster& b = tree_.nodes[j];
     const size_t np = r.points.size();
     s.transport.assign(np, {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)});
     s.direct.assign(np, {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)});
+    if (asHarmonics) {
+      s.transportSh.assign(np * 3 * kShCoefficients, 0.0f);
+      s.directSh.assign(np * 3 * kShCoefficients, 0.0f);
+    }
+    // Light from one emitter point (or face) as a delta of radiance along its irradiance vector,
+    // whose length is what it brings. Kept per emitter point rather than for their sum: the sum's
+    // length is less than what a surface facing each point in turn receives. The vector is the
+    // whole emitter's, not clipped to the receiver point's horizon: harmonics hold the light
+    // arriving near the point from every direction, and the faces they are evaluated on turn
+    // other ways than the point (clipped, a grazing point's light is short for the faces that
+    // look straight at the emitter).
+    auto addHarmonics = [&](size_t p, Vec3 m, const Rgb& unshot, const Rgb& emitted) {
+      const float e = glm::length(m);
+      if (e <= 0.0f) return;
+      const std::array<float, kShCoefficients> y = shBasis(m / e);
+      for (int ch = 0; ch < 3; ++ch) {
+        float* t = &s.transportSh[(p * 3 + size_t(ch)) * kShCoefficients];
+        float* d = &s.directSh[(p * 3 + size_t(ch)) * kShCoefficients];
+        for (int k = 0; k < kShCoefficients; ++k) t[k] += unshot[ch] * e * y[size_t(k)], d[k] += emitted[ch] * e * y[size_t(k)];
+      }
+    };
     const std::vector<SurfacePoint>& q = s.emitterPoints;
     s.rays.clear();
     s.sees.assign(np, 0);
@@ -392,7 +402,8 @@ class HierarchicalSolver final : public Solver {
         if (len <= 2.0f * rayOffset_ || !above || glm::dot(y.normal, d) >= 0.0f) {
           s.rays.push_back(makeRay(r.points[p].position, d, 1.0f, 0.0f));  // placeholder, not traced
           s.rays.back().tfar = -std::numeric_limits<float>::infinity();
-          s.rays.back().flags = 1;  // skipped
+          // Skipped; 2: only because it is below the receiver point's horizon.
+          s.rays.back().flags = len > 2.0f * rayOffset_ && glm::dot(y.normal, d) < 0.0f ? 2 : 1;
           continue;
         }
         s.rays.push_back(makeRay(r.points[p].position, d, rayOffset_ / len, 1.0f - rayOffset_ / len));
@@ -433,19 +444,43 @@ class HierarchicalSolver final : public Solver {
         }
         const Vec3 m = all > 0.0f ? (seen / all) * phi : phi;
         for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] = unshot[ch] * m, s.direct[p][size_t(ch)] = emitted[ch] * m;
+        if (asHarmonics) {
+          const Vec3 whole = polygonIrradianceVector(x.position, -el->normal, el->polygon, el->normal);
+          addHarmonics(p, all > 0.0f ? (seen / all) * whole : whole, unshot, emitted);
+        }
         continue;
       }
       // A cluster: its points, each a square of its share of the area, with the square's exact
       // vector form factor. Wallace et al.'s disc form A cos / (pi r^2 + A), which this replaced,
       // is low on average at the distances a link is taken at, and a bias that is the same on
       // every link compounds with each bounce (docs/algorithms.md, "Energy").
+      // For harmonics, emitter points below the receiver point's horizon count too, seen as
+      // often as those above it are: at a point of a convex cluster its own tangent plane hides
+      // them, but the cluster's faces that turn towards them do see them, and the harmonics are
+      // the light for all of its faces (without them a ball lit by a wall is 15% short at its
+      // few points near the terminator).
+      float seenAbove = 0.0f, tracedAbove = 0.0f;
+      if (asHarmonics)
+        for (size_t k = 0; k < q.size(); ++k) {
+          const size_t idx = p * q.size() + k;
+          if (!s.rays[idx].flags) tracedAbove += 1.0f, seenAbove += visible[idx];
+        }
       for (size_t k = 0; k < q.size(); ++k) {
         const size_t idx = p * q.size() + k;
-        if (s.rays[idx].flags || !visible[idx]) continue;
+        const bool counts = !s.rays[idx].flags && visible[idx];
+        const bool hidden = asHarmonics && s.rays[idx].flags == 2 && seenAbove > 0.0f;
+        if (!counts && !hidden) continue;
         const float a = q[k].weight * b.area;
-        const Vec3 m = polygonIrradianceVector(x.position, x.normal, squareAround(q[k], a, b.box), q[k].normal);
+        const Polygon square = squareAround(q[k], a, b.box);
         const Rgb unshot = emitterUnshot(q[k].element), emitted = emitterEmission(q[k].element);
-        for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] += unshot[ch] * m, s.direct[p][size_t(ch)] += emitted[ch] * m;
+        if (counts) {
+          const Vec3 m = polygonIrradianceVector(x.position, x.normal, square, q[k].normal);
+          for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] += unshot[ch] * m, s.direct[p][size_t(ch)] += emitted[ch] * m;
+        }
+        if (asHarmonics) {
+          const float seen = counts ? 1.0f : seenAbove / tracedAbove;
+          addHarmonics(p, seen * polygonIrradianceVector(x.position, -q[k].normal, square, q[k].normal), unshot, emitted);
+        }
       }
     }
     return traced.empty() ? 0.0f : float(blocked) / float(traced.size());
@@ -469,6 +504,17 @@ class HierarchicalSolver final : public Solver {
     }
     field_[i].store(kNever, std::memory_order_relaxed);
     split_[i] = 1;
+  }
+
+  // A link's light as harmonics, constant over the receiver: the mean of `perPoint` over the
+  // points that see the emitter, added to the constant basis function's coefficients.
+  void addHarmonicLink(const Receiver& r, const Scratch& s, double seeing, const std::vector<float>& perPoint, Field& to) const {
+    for (size_t p = 0; p < r.points.size(); ++p) {
+      if (!s.sees[p]) continue;
+      const float w = float(double(r.points[p].weight) / seeing);
+      const float* from = &perPoint[p * 3 * kShCoefficients];
+      for (int k = 0; k < 3 * kShCoefficients; ++k) to.sh[size_t(k)] += w * from[k];
+    }
   }
 
   // TRANSPORT-LIGHT of Algorithm 1: element i with the unshot irradiance its ancestors gathered
@@ -535,7 +581,7 @@ class HierarchicalSolver final : public Solver {
           continue;
         }
       }
-      const float blocked = couple(j, r, s);
+      const float blocked = couple(j, r, s, !wholly);
       ++links_;
       if (!bothLeaves && blocked > 0.0f && blocked < 1.0f) {
         // A shadow edge crosses the link: refine while the light it carries is above threshold.
@@ -552,13 +598,13 @@ class HierarchicalSolver final : public Solver {
       // nothing of the light arriving at the cluster (its rays would start into its own surface),
       // so the field is fitted to the others; counting it as dark would halve what a round
       // cluster (a statue, lit from one side) receives.
-      const std::vector<float>* projection = &r.projection;
-      if (std::find(s.sees.begin(), s.sees.end(), uint8_t(0)) != s.sees.end()) {
-        project(r, s.sees.data(), s.projection);
-        projection = &s.projection;
-      }
-      for (size_t p = 0; p < np; ++p) {
-        if (wholly) {
+      if (wholly) {
+        const std::vector<float>* projection = &r.projection;
+        if (std::find(s.sees.begin(), s.sees.end(), uint8_t(0)) != s.sees.end()) {
+          project(r, s.sees.data(), s.projection);
+          projection = &s.projection;
+        }
+        for (size_t p = 0; p < np; ++p)
           for (int a = 0; a < s_.basis; ++a) {
             const float w = (*projection)[size_t(a) * np + p];
             for (int ch = 0; ch < 3; ++ch) {
@@ -566,23 +612,18 @@ class HierarchicalSolver final : public Solver {
               direct.c[size_t(a * 3 + ch)] += w * s.direct[p][size_t(ch)];
             }
           }
-          continue;
-        }
-        // Light from a narrow cone of directions (the emitter is further than its size): a
-        // delta of radiance along the irradiance vector, whose length is what it brings.
-        for (int ch = 0; ch < 3; ++ch)
-          for (auto [from, to] : {std::pair{&s.transport, &total}, std::pair{&s.direct, &direct}}) {
-            const Vec3 m = (*from)[p][size_t(ch)];
-            const float e = glm::length(m);
-            if (e <= 0.0f) continue;
-            const std::array<float, kShCoefficients> y = shBasis(m / e);
-            for (int a = 0; a < s_.basis; ++a) {
-              const float w = (*projection)[size_t(a) * np + p] * e;
-              float* t = &to->sh[size_t(a * 3 + ch) * kShCoefficients];
-              for (int k = 0; k < kShCoefficients; ++k) t[k] += w * y[size_t(k)];
-            }
-          }
+        continue;
       }
+      // Harmonics are kept constant over the receiver (the mean over its points that see): a
+      // link to a receiver that does not wholly face its emitter carries less than the
+      // threshold, so how its light varies across the receiver is below it too, and a linear
+      // fit over the few points on one side of a round cluster, in a plane its front and back
+      // share, is noise that the clamp at zero turns into a loss.
+      double seeing = 0.0;
+      for (size_t p = 0; p < np; ++p) seeing += s.sees[p] ? double(r.points[p].weight) : 0.0;
+      if (seeing <= 0.0) continue;
+      addHarmonicLink(r, s, seeing, s.transportSh, total);
+      addHarmonicLink(r, s, seeing, s.directSh, direct);
     }
     // SELF-ORACLE: the cluster's parts light each other; link them while the light that may
     // stay within is above threshold (a convex or flat cluster keeps none).

@@ -16,6 +16,7 @@
 #include "luxel/solve.h"
 #include "scene/builtin/builtin_scenes.h"
 #include "solve/radiosity_system.h"
+#include "transport/form_factor.h"
 
 namespace luxel {
 namespace {
@@ -59,14 +60,14 @@ Means furnaceWithABall(double error) {
   return {sum[0] / area[0] / expected, sum[1] / area[1] / expected};
 }
 
-// Measured: box 0.950 and ball 0.929 of the closed form at the default threshold, 0.978 and 0.976
-// at 1e-4: what remains is a coupling about 1.5% low per bounce (the receiver's 3 x 3 points on a
-// convex irradiance), which the threshold controls. Before the fixes these tests came with, the
-// box was at 0.73 and the ball far lower still.
+// Measured: box 0.957 and ball 1.011 of the closed form at the default threshold, 0.980 and 0.996
+// at 1e-4: what remains on the box is a coupling about 1.5% low per bounce (the receiver's 3 x 3
+// points on a convex irradiance), which the threshold controls. Before the fixes these tests came
+// with, the box was at 0.73 and the ball far lower still.
 TEST(HierarchicalEnergy, AFurnaceWithABallKeepsItsLight) {
   const Means coarse = furnaceWithABall(1e-3);
-  EXPECT_NEAR(coarse.box, 1.0, 0.08);
-  EXPECT_NEAR(coarse.ball, 1.0, 0.08);
+  EXPECT_NEAR(coarse.box, 1.0, 0.06);
+  EXPECT_NEAR(coarse.ball, 1.0, 0.06);
   const Means fine = furnaceWithABall(1e-4);
   std::printf("box / closed form %.4f (1e-3), %.4f (1e-4); ball %.4f, %.4f\n", coarse.box, fine.box, coarse.ball, fine.ball);
   EXPECT_NEAR(fine.box, 1.0, 0.03);
@@ -74,21 +75,21 @@ TEST(HierarchicalEnergy, AFurnaceWithABallKeepsItsLight) {
 }
 
 // Seed 002's room at 20k faces: closed, so at 0.1% unshot what is absorbed is what was emitted.
-// Measured 97.0% at the defaults (it was 66%); the statues' interreflected light is the largest
-// part of what is missing (docs/performance.md).
+// Measured 99.0% at the defaults (it was 66%, then 97.0% before the statues' light was kept as
+// harmonics per emitter point).
 TEST(HierarchicalEnergy, TheClosedRoomAbsorbsWhatItEmits) {
   const Scene scene = builtinScene("room-20k");
   SurfaceSet surfaces;
   const Solution s = solveElementwise(scene, 1, "hierarchical", {}, surfaces);
   ASSERT_GT(s.stats.emittedPower, 0.0);
   std::printf("absorbed / emitted %.4f\n", s.stats.absorbedPower / s.stats.emittedPower);
-  EXPECT_NEAR(s.stats.absorbedPower / s.stats.emittedPower, 1.0, 0.06);
+  EXPECT_NEAR(s.stats.absorbedPower / s.stats.emittedPower, 1.0, 0.03);
 }
 
 // The same room against the flat progressive solver, irradiance per material (area-weighted, all
-// channels). Measured: the walls and floor within 3.1%; the pedestals 12.5% and the statues 22%
-// low, the open shortfall of round clusters' interreflected light (docs/algorithms.md,
-// "Energy"), held here so that it cannot grow unseen.
+// channels). Measured: the walls and floor within 2.4%; the pedestals 5.8% high and the statues
+// 11% low (they were 12.5% and 22% low), what is left of the round clusters' shortfall
+// (docs/algorithms.md, "Energy"), held here so that it cannot grow unseen.
 TEST(HierarchicalEnergy, TheRoomAgreesWithProgressivePerMaterial) {
   const Scene scene = builtinScene("room-20k");
   SurfaceSet surfaces;
@@ -101,12 +102,59 @@ TEST(HierarchicalEnergy, TheRoomAgreesWithProgressivePerMaterial) {
     m[0] += el.area * channelSum(p.irradiance[e]), m[1] += el.area * channelSum(h.irradiance[e]);
   }
   const std::map<std::string, double> tolerance = {{"white", 0.05}, {"floor", 0.05}, {"red", 0.05}, {"green", 0.05},
-                                                   {"light", 0.05}, {"pedestal", 0.2}, {"statue", 0.3}};
+                                                   {"light", 0.05}, {"pedestal", 0.1}, {"statue", 0.15}};
   for (const auto& [name, m] : perMaterial) {
     std::printf("%s: hierarchical / progressive %.4f\n", name.c_str(), m[1] / m[0]);
     ASSERT_GT(m[0], 0.0) << name;
     EXPECT_NEAR(m[1] / m[0], 1.0, tolerance.at(name)) << name;
   }
+}
+
+// A ball (reflectance 0) before a large emitting wall: every face's irradiance has a closed form,
+// pi times the point form factor to the wall (a convex ball does not shadow itself beyond each
+// face's horizon). The ball does not wholly face the wall, so its light is harmonics of band 2,
+// whose clamped cosine overshoots by up to 6.25% where a face looks straight at a narrow source
+// (Ramamoorthi and Hanrahan's 1 + 1/16): the tolerance. Measured 1.038; before the harmonics took
+// each emitter point unclipped by the receiver point's horizon and constant over the receiver,
+// a 0.01 threshold left it 15% short.
+TEST(HierarchicalEnergy, ABallBeforeAWallGetsTheClosedForm) {
+  Scene scene;
+  Material wall, ball;
+  wall.name = "wall", wall.reflectance = Rgb(0.0f), wall.emission = Rgb(1.0f);
+  ball.name = "ball", ball.reflectance = Rgb(0.0f);
+  scene.materials = {wall, ball};
+  // The wall: 4 x 4 m in z = 0, facing +z, as a grid of 16 x 16 quads.
+  Mesh w;
+  constexpr int kCells = 16;
+  constexpr float kSize = 4.0f;
+  for (int i = 0; i <= kCells; ++i)
+    for (int j = 0; j <= kCells; ++j) w.positions.push_back(Vec3(kSize * float(i) / kCells, kSize * float(j) / kCells, 0.0f));
+  for (uint32_t i = 0; i < kCells; ++i)
+    for (uint32_t j = 0; j < kCells; ++j) {
+      const uint32_t a = i * (kCells + 1) + j, b = a + kCells + 1;
+      w.faces.push_back(Face{{a, b, b + 1, a + 1}});
+    }
+  scene.meshes.push_back(w);
+  Polygon wallPolygon;
+  wallPolygon.count = 4;
+  wallPolygon.v = {Vec3(0, 0, 0), Vec3(kSize, 0, 0), Vec3(kSize, kSize, 0), Vec3(0, kSize, 0)};
+  Mesh b = test::crumpledBall(16, 32, 0.0f, 1).meshes[0];
+  for (Vec3& p : b.positions) p = Vec3(2.0f, 2.0f, 2.0f) + 0.5f * p;
+  b.material = 1;
+  scene.meshes.push_back(b);
+  SurfaceSet surfaces;
+  const Solution s = solveElementwise(scene, 1, "hierarchical", {}, surfaces);
+  double solved = 0.0, exact = 0.0;
+  for (size_t e = 0; e < surfaces.elements.size(); ++e) {
+    const Element& el = surfaces.elements[e];
+    if (el.material != 1) continue;
+    solved += el.area * s.irradiance[e].g;
+    exact += el.area * std::numbers::pi *
+             pointToPolygonFormFactor(el.centroid, el.normal, wallPolygon, Vec3(0, 0, 1), Sides::Front, Sides::Front);
+  }
+  ASSERT_GT(exact, 0.0);
+  std::printf("ball: solved / closed form %.4f\n", solved / exact);
+  EXPECT_NEAR(solved / exact, 1.0, 0.0625);
 }
 
 }  // namespace
