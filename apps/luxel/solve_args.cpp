@@ -20,7 +20,8 @@ void solverFlag(CLI::App& c, SolveArgs& a, const std::string& option, const std:
 
 void addSolveOptions(CLI::App& c, SolveArgs& a) {
   a.command = &c;
-  c.add_option("--solver", a.solver, "A registered solver: progressive or gather (luxel solvers lists them)")
+  c.add_option("--solver", a.solver, "auto (progressive up to 5,000 patches, hierarchical above), or a registered solver: progressive, gather, "
+                "hierarchical (luxel solvers lists them)")
       ->capture_default_str();
   c.add_option("--backend", a.backend, "cpu, gl (OpenGL 4.5 hemicubes, headless) or auto (gl when a context can be made)")
       ->capture_default_str();

@@ -14,7 +14,7 @@
 namespace luxel::cli {
 
 struct SolveArgs {
-  std::string solver = "progressive";
+  std::string solver = "auto";
   std::string backend = "cpu";
   size_t elements = 0;
   float elementSize = 0.0f;

@@ -29,7 +29,9 @@ struct RefineOptions {
 
 // Which solver, where, and its options.
 struct SolveOptions {
-  std::string method = "progressive";  // a registered method (luxel solvers lists them)
+  // A registered method (luxel solvers lists them), or "auto": progressive up to 5,000 patches,
+  // the face-cluster hierarchy above (solve/method_choice.h, docs/algorithms.md).
+  std::string method = "auto";
   // "cpu" (Embree + TBB), "gl" (OpenGL 4.5 through EGL, headless), or "auto": gl when a context
   // can be made and the method runs there, the CPU otherwise (with a warning in
   // SolveStats::warnings).

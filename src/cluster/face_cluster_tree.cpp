@@ -124,6 +124,9 @@ std::vector<uint32_t> weldCorners(const SurfaceSet& s, std::vector<uint32_t>& fi
     const Element& el = s.elements[e];
     const SurfaceFace& face = s.faces[el.face];
     const Polygon& p = el.polygon;
+    // Elements made without face parameters (lightmap texels) have them all zero: their corners
+    // are taken as they are, or every corner would become the face's first.
+    const bool hasParameters = el.param[1] != el.param[0] || el.param[2] != el.param[0];
     for (int c = 0; c < p.count; ++c) {
       Corner k;
       // A corner at one of its face's corners takes the face's own position: the one computed
@@ -131,7 +134,7 @@ std::vector<uint32_t> weldCorners(const SurfaceSet& s, std::vector<uint32_t>& fi
       // share a mesh vertex would not be found adjacent.
       Vec3 v = p.v[size_t(c)];
       const Vec2 st = el.param[size_t(c)];
-      const int corner = faceCornerAt(face, st);
+      const int corner = hasParameters ? faceCornerAt(face, st) : -1;
       if (corner >= 0) v = face.corners[size_t(corner)];
       v += Vec3(0.0f);  // -0 and +0 alike
       std::memcpy(k.bits.data(), &v, sizeof(v));

@@ -4,14 +4,25 @@
 
 #include "gl/gl_context.h"
 #include "luxel/error.h"
+#include "solve/method_choice.h"
 #include "solve/refinement.h"
 #include "transport/cpu_transport.h"
 #include "transport/form_factor_options.h"
 
 namespace luxel {
 
-SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options, BorrowedResources borrowed)
-    : scene_(scene), surfaces_(surfaces), options_(options) {
+namespace {
+
+SolveOptions withMethodChosen(SolveOptions options, const SurfaceSet& surfaces) {
+  options.method = chooseMethod(options.method, options.backend, surfaces.patches.size());
+  return options;
+}
+
+}  // namespace
+
+SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& requested, BorrowedResources borrowed)
+    : scene_(scene), surfaces_(surfaces), options_(withMethodChosen(requested, surfaces)) {
+  const SolveOptions& options = options_;
   const Stopwatch watch;
   if (!scene.hasLight())
     warnings_.push_back(fmt::format(
@@ -21,7 +32,7 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
   const SolverRegistry& registry = SolverRegistry::builtin();
   const std::string& method = options.method;
   const std::string& backend = options.backend;
-  validateSolveOptions(options);  // method, backend and option names; values when the backend is fixed
+  validateSolveOptions(requested);  // method, backend and option names; values when both are fixed
   if (!(options.refine.threshold > 0.0f)) throw Error("refine threshold must be > 0");
 
   // The backend: GL where asked (or where auto finds a context and the method runs there).
@@ -45,9 +56,10 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
   const std::string name = fmt::format("solver {} on {}", method, chosen);
 
   // Options: each one must be read by the chosen solver. When auto fell back to the CPU, options
-  // only the GL solver reads are dropped with a warning instead.
+  // only the GL solver reads are dropped with a warning instead, and so are those only the
+  // method `auto` did not choose reads.
   SolverSettings settings = options.settings;
-  if (backend == "auto" && chosen == "cpu") {
+  if ((backend == "auto" && chosen == "cpu") || requested.method == "auto") {
     for (const auto& [key, value] : options.settings.values()) {
       bool read = false;
       for (const SolverOption& o : entry_->description.options) read = read || o.name == key;

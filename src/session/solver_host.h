@@ -30,7 +30,8 @@ struct BorrowedResources {
 
 class SolverHost {
  public:
-  // Chooses the backend ("auto" tries GL and falls back to the CPU with a warning), checks the
+  // Chooses the method ("auto": solve/method_choice.h, by the surfaces' patches) and the backend
+  // ("auto" tries GL and falls back to the CPU with a warning), checks the
   // options against the chosen solver, builds what it needs and makes the solver. Throws Error
   // on an unknown method, backend or option. `scene` and `surfaces` must outlive the host;
   // `surfaces` is refined in place when options.refine.budget > 0.

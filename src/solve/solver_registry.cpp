@@ -8,6 +8,7 @@
 
 #include "luxel/error.h"
 #include "luxel/solve.h"
+#include "solve/method_choice.h"
 
 namespace luxel {
 
@@ -71,6 +72,20 @@ void validateSolveOptions(const SolveOptions& options) {
   const SolverRegistry& registry = SolverRegistry::builtin();
   if (options.backend != "cpu" && options.backend != "gl" && options.backend != "auto")
     throw Error(fmt::format("unknown backend '{}' (expected cpu, gl or auto)", options.backend));
+  if (options.method == "auto") {
+    // The method is chosen once the scene's patches are known (solve/method_choice.h): each
+    // option must be read by one of the methods it may choose; their values are checked then.
+    for (const auto& [name, value] : options.settings.values()) {
+      bool read = false;
+      for (const SolverEntry& e : registry.entries())
+        for (const char* m : kAutoMethods)
+          if (e.description.name == m && (options.backend == "auto" || e.description.backend == options.backend))
+            for (const SolverOption& o : e.description.options) read = read || o.name == name;
+      if (!read)
+        throw Error(fmt::format("solver auto (progressive or hierarchical) on {} has no option '{}'", options.backend, name));
+    }
+    return;
+  }
   if (options.backend != "auto") {
     const SolverEntry& e = registry.get(options.method, options.backend);
     SolverOptionValues(fmt::format("solver {} on {}", options.method, options.backend), e.description.options,
