@@ -10,6 +10,8 @@ packages=(
   libepoxy-dev libegl-dev libeigen3-dev unzip
   # quadric-error simplification for seed 002's room (the room-* built-in scenes)
   libmeshoptimizer-dev
+  # content hashes: the keys of the face-cluster hierarchy's disk cache and the bench's references
+  libxxhash-dev
   # Mesa: its EGL driver and llvmpipe give a headless OpenGL 4.5 context with no GPU (tests/gl)
   libegl-mesa0 libgl1-mesa-dri
 )

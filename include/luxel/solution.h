@@ -26,6 +26,7 @@ struct SolveStats {
   size_t clusterLeaves = 0;    // hierarchical: its leaves, which hold the irradiance
   double secondsHierarchy = 0.0;  // hierarchical: building the face-cluster tree
   size_t hierarchyBytes = 0;      // hierarchical: the face-cluster tree's memory
+  bool hierarchyCached = false;   // hierarchical: the tree was read from the disk cache
   double residual = 0.0;       // gather: last relative change; progressive: unshot fraction
   double unshotFraction = 0.0;
   double secondsSetup = 0.0;        // BVH build, GL context, analytic lights, solver setup

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "core/content_hash.h"
 #include "io/atomic_file.h"
 #include "luxel/error.h"
 #include "session/solver_host.h"
@@ -18,24 +19,13 @@ namespace {
 
 constexpr char kMagic[8] = {'L', 'X', 'R', 'E', 'F', '0', '0', '1'};
 
-// FNV-1a, 64 bits: enough to tell discretisations apart, and stable across runs and machines.
-struct Hasher {
-  uint64_t h = 1469598103934665603ull;
-  void bytes(const void* p, size_t n) {
-    const auto* b = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-  }
-  template <class T>
-  void value(const T& v) {
-    bytes(&v, sizeof v);
-  }
-};
-
 // Everything the reference solution depends on: the elements (geometry, patch, reflectance,
 // emission), the analytic lights and the solver settings.
 uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const SolveOptions& o, Options::ReferenceKind kind) {
-  Hasher h;
-  h.bytes("luxel-reference-4", 17);  // bump when the transport's numbers change (quadrature, sampling, visibility weighting)
+  ContentHash h;
+  // Bump when the transport's numbers change (quadrature, sampling, visibility weighting), and
+  // when the hierarchical solver does: its self-convergence references are its own solutions.
+  h.text("luxel-reference-5");
   h.bytes(o.method.data(), o.method.size());
   for (const auto& [name, value] : o.settings.values()) h.bytes(name.data(), name.size()), h.bytes(value.data(), value.size());
   if (kind == Options::ReferenceKind::MonteCarlo) h.bytes("monte-carlo", 11), h.value(kMonteCarloReferenceRays);
@@ -54,7 +44,7 @@ uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const Solv
   const FormFactorOptions f = formFactorOptions(values);
   h.value(f.raysPerPair), h.value(f.nearRaysPerPair), h.value(f.emitterRaysPerPair), h.value(f.nearFactor);
   h.value(f.classifyVisibility), h.value(f.lightSamples), h.value(f.seed);
-  return h.h;
+  return h.digest();
 }
 
 bool readCache(const std::filesystem::path& path, uint64_t key, size_t n, std::vector<Rgb>& out) {

@@ -19,6 +19,7 @@
 #include <tbb/concurrent_vector.h>
 #include <tbb/parallel_invoke.h>
 
+#include "cluster/face_cluster_cache.h"
 #include "cluster/face_cluster_tree.h"
 #include "core/spherical_harmonics.h"
 #include "core/stopwatch.h"
@@ -53,6 +54,7 @@ struct HierarchicalSettings {
   int maxIterations;
   int receiverSide;        // receiver points: about side^2
   int emitterSide;         // emitter points
+  bool cache;              // keep the hierarchy on disk (cluster/face_cluster_cache.h)
 };
 
 // Vector irradiance of one element: per basis function, per channel, a vector (Gobbetti et al.
@@ -95,7 +97,11 @@ class HierarchicalSolver final : public Solver {
     tracer_ = transport.rayTracer();
     if (!tracer_) throw Error("the hierarchical solver needs a transport that traces rays (the CPU transport)");
     const Stopwatch watch;
-    tree_ = buildFaceClusterTree(sys.surfaces);
+    CachedFaceClusterTree cached =
+        cachedFaceClusterTree(sys.surfaces, s.cache ? defaultFaceClusterCacheDirectory() : std::filesystem::path());
+    tree_ = std::move(cached.tree);
+    treeLoaded_ = cached.loaded;
+    if (!cached.warning.empty()) warnings_.push_back(cached.warning);
     points_ = std::make_unique<ClusterPoints>(tree_, sys.surfaces);
     rayOffset_ = rayOffsetFor(sys.surfaces.sceneExtent);
     const size_t nodes = tree_.nodes.size(), ne = sys.elementCount();
@@ -177,6 +183,8 @@ class HierarchicalSolver final : public Solver {
     s.clusterLeaves = leaves_;
     s.clusterElements = elements_;
     s.secondsHierarchy = tree_.seconds;
+    s.hierarchyCached = treeLoaded_;
+    s.warnings = warnings_;
     s.hierarchyBytes = tree_.bytes();
     s.secondsFormFactors = seconds_;
     s.secondsSolve = setupSeconds_;  // the tree and the clusters' sources
@@ -686,6 +694,8 @@ class HierarchicalSolver final : public Solver {
   HierarchicalSettings s_;
   RayTracer* tracer_ = nullptr;
   FaceClusterTree tree_;
+  bool treeLoaded_ = false;             // read from the disk cache
+  std::vector<std::string> warnings_;
   std::unique_ptr<ClusterPoints> points_;
   float rayOffset_ = 0.0f;
   std::vector<Rgb> source_, emission_;  // per cluster: area means of what it first sends
@@ -720,10 +730,13 @@ void registerCpuHierarchical(SolverRegistry& registry) {
   o.push_back(integerOption("iterations", 100, 1, 100000, "at most this many iterations (bounces)"));
   o.push_back(integerOption("receiver-points", 3, 1, 8, "points on a receiver cluster: about this squared"));
   o.push_back(integerOption("emitter-points", 2, 1, 8, "points on an emitter cluster: about this squared"));
+  o.push_back(flagOption("cache", true,
+                         "keep the face-cluster hierarchy on disk, keyed by the surfaces' content ($LUXEL_CACHE_DIR, "
+                         "else ~/.cache/luxel)"));
   for (SolverOption& a : analyticLightOptions()) o.push_back(std::move(a));
   e.make = [](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
     HierarchicalSettings s{basisSize(v.choice("basis")), v.real("error"), v.real("unshot"), v.integer("iterations"),
-                           v.integer("receiver-points"), v.integer("emitter-points")};
+                           v.integer("receiver-points"), v.integer("emitter-points"), v.flag("cache")};
     return std::make_unique<HierarchicalSolver>(r.system, r.transport, s);
   };
   e.converged.set("error", 1e-5).set("unshot", 1e-6).set("receiver-points", 3).set("emitter-points", 8);

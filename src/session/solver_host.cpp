@@ -158,7 +158,7 @@ SolveStats SolverHost::stats() const {
   s.secondsSolve += finished_.secondsSolve;
   s.secondsSetup = setupSeconds_;
   s.secondsTotal = lifetime_.seconds();
-  s.warnings = warnings_;
+  s.warnings.insert(s.warnings.begin(), warnings_.begin(), warnings_.end());  // the host's, then the solver's
   s.elements = surfaces_.elements.size();
   s.patches = surfaces_.patches.size();
   s.rays = transport_->raysTraced();

@@ -35,6 +35,7 @@ std::string statsJson(const RunRecord& r) {
   };
   if (s.method == "hierarchical")
     j["hierarchy"] = {{"seconds", s.secondsHierarchy},
+                      {"cached", s.hierarchyCached},
                       {"bytes", s.hierarchyBytes},
                       {"links", s.links},
                       {"elements", s.clusterElements},

@@ -1,0 +1,147 @@
+#include "cluster/face_cluster_cache.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "core/content_hash.h"
+#include "core/stopwatch.h"
+#include "io/atomic_file.h"
+#include "luxel/error.h"
+
+namespace luxel {
+namespace {
+
+// Bump when buildFaceClusterTree would build a different tree from the same surfaces.
+constexpr char kFormat[] = "luxel-face-clusters-1";
+constexpr char kMagic[8] = {'L', 'X', 'F', 'C', 'T', '0', '0', '1'};
+
+static_assert(std::is_trivially_copyable_v<FaceCluster>, "clusters are written as bytes");
+
+struct Header {
+  char magic[8];
+  uint64_t key;
+  uint64_t nodes, order;
+  uint32_t root, components;
+  uint64_t clusterSize;  // sizeof(FaceCluster): another layout is another format
+  uint64_t checksum;     // of the nodes' and order's bytes
+};
+
+std::filesystem::path fileFor(const std::filesystem::path& directory, uint64_t key) {
+  return directory / fmt::format("{:016x}.fct", key);
+}
+
+uint64_t checksum(const FaceClusterTree& tree) {
+  ContentHash h;
+  h.bytes(tree.nodes.data(), tree.nodes.size() * sizeof(FaceCluster));
+  h.bytes(tree.order.data(), tree.order.size() * sizeof(uint32_t));
+  return h.digest();
+}
+
+// Indices that a corrupt file with a good checksum (a collision, or a bug that wrote it) could
+// still get wrong would send the solver out of bounds: checked once more.
+bool consistent(const FaceClusterTree& t, size_t n) {
+  if (t.order.size() != n || t.nodes.size() < n || t.nodes.size() > 2 * n - 1 || t.root >= t.nodes.size()) return false;
+  for (uint32_t e : t.order)
+    if (e >= n) return false;
+  for (const FaceCluster& c : t.nodes) {
+    if (size_t(c.begin) + c.count > n) return false;
+    if (c.parent != kNoCluster && c.parent >= t.nodes.size()) return false;
+    for (uint32_t k : c.child)
+      if (k != kNoCluster && k >= t.nodes.size()) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::filesystem::path defaultFaceClusterCacheDirectory() {
+  if (const char* d = std::getenv("LUXEL_CACHE_DIR"); d && *d) return std::filesystem::path(d) / "face-clusters";
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return std::filesystem::path(d) / "luxel" / "face-clusters";
+  if (const char* d = std::getenv("HOME"); d && *d) return std::filesystem::path(d) / ".cache" / "luxel" / "face-clusters";
+  return {};
+}
+
+uint64_t faceClusterKey(const SurfaceSet& surfaces) {
+  ContentHash h;
+  h.text(kFormat);
+  h.value(uint64_t(surfaces.elements.size()));
+  for (const Element& e : surfaces.elements) {
+    h.value(e.polygon.count);
+    h.bytes(e.polygon.v.data(), sizeof(Vec3) * size_t(e.polygon.count));
+    h.bytes(e.param.data(), sizeof(e.param));
+    h.value(e.face), h.value(e.centroid), h.value(e.normal), h.value(e.area), h.value(e.reflectance), h.value(e.exitance);
+  }
+  h.value(uint64_t(surfaces.faces.size()));
+  for (const SurfaceFace& f : surfaces.faces) h.value(f.corners), h.value(f.triangle);
+  return h.digest();
+}
+
+std::optional<FaceClusterTree> loadFaceClusterTree(const std::filesystem::path& directory, uint64_t key,
+                                                   size_t elementCount) {
+  std::ifstream in(fileFor(directory, key), std::ios::binary);
+  if (!in || elementCount == 0) return std::nullopt;
+  Header h{};
+  in.read(reinterpret_cast<char*>(&h), sizeof h);
+  if (!in || std::memcmp(h.magic, kMagic, sizeof kMagic) != 0 || h.key != key || h.clusterSize != sizeof(FaceCluster) ||
+      h.order != elementCount || h.nodes < elementCount || h.nodes > 2 * elementCount - 1)
+    return std::nullopt;
+  FaceClusterTree t;
+  t.nodes.resize(h.nodes);
+  t.order.resize(h.order);
+  t.root = h.root, t.components = h.components;
+  in.read(reinterpret_cast<char*>(t.nodes.data()), std::streamsize(t.nodes.size() * sizeof(FaceCluster)));
+  in.read(reinterpret_cast<char*>(t.order.data()), std::streamsize(t.order.size() * sizeof(uint32_t)));
+  if (!in || in.peek() != std::char_traits<char>::eof() || checksum(t) != h.checksum || !consistent(t, elementCount))
+    return std::nullopt;
+  return t;
+}
+
+void saveFaceClusterTree(const std::filesystem::path& directory, uint64_t key, const FaceClusterTree& tree) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec) throw Error(fmt::format("{}: cannot create the face-cluster cache: {}", directory.string(), ec.message()));
+  Header h{};
+  std::memcpy(h.magic, kMagic, sizeof kMagic);
+  h.key = key;
+  h.nodes = tree.nodes.size(), h.order = tree.order.size();
+  h.root = tree.root, h.components = tree.components;
+  h.clusterSize = sizeof(FaceCluster);
+  h.checksum = checksum(tree);
+  writeFileAtomically(fileFor(directory, key), [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(&h), sizeof h);
+    out.write(reinterpret_cast<const char*>(tree.nodes.data()), std::streamsize(tree.nodes.size() * sizeof(FaceCluster)));
+    out.write(reinterpret_cast<const char*>(tree.order.data()), std::streamsize(tree.order.size() * sizeof(uint32_t)));
+    out.close();
+    if (!out) throw Error("writing failed (disk full?)");
+  });
+}
+
+CachedFaceClusterTree cachedFaceClusterTree(const SurfaceSet& surfaces, const std::filesystem::path& directory) {
+  const Stopwatch watch;
+  CachedFaceClusterTree out;
+  if (directory.empty()) {
+    out.tree = buildFaceClusterTree(surfaces);
+    return out;
+  }
+  const uint64_t key = faceClusterKey(surfaces);
+  if (std::optional<FaceClusterTree> t = loadFaceClusterTree(directory, key, surfaces.elements.size())) {
+    out.tree = std::move(*t);
+    out.loaded = true;
+  } else {
+    out.tree = buildFaceClusterTree(surfaces);
+    try {
+      saveFaceClusterTree(directory, key, out.tree);
+    } catch (const Error& e) {
+      out.warning = fmt::format("the face-cluster hierarchy was not cached: {}", e.what());
+    }
+  }
+  out.tree.seconds = watch.seconds();
+  return out;
+}
+
+}  // namespace luxel
