@@ -17,6 +17,7 @@
 
 #include <fmt/format.h>
 #include <tbb/concurrent_vector.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include "cluster/face_cluster_cache.h"
@@ -155,7 +156,7 @@ class HierarchicalSolver final : public Solver {
     const SurfaceSet& surfaces = sys_.surfaces;
     const size_t ne = sys_.elementCount();
     out.radiosity.resize(ne), out.irradiance.resize(ne), out.directIrradiance.resize(ne);
-    for (uint32_t e = 0; e < ne; ++e) {
+    tbb::parallel_for(uint32_t(0), uint32_t(ne), [&](uint32_t e) {
       uint32_t m = e;
       while (since_[m].load(std::memory_order_relaxed) == kNever) m = tree_.nodes[m].parent;
       const Element& el = surfaces.elements[e];
@@ -168,7 +169,7 @@ class HierarchicalSolver final : public Solver {
       out.irradiance[e] = h + sys_.analytic[e];
       out.directIrradiance[e] = hd + sys_.analytic[e];
       out.radiosity[e] = sys_.emission[e] + sys_.reflectance[e] * out.irradiance[e];
-    }
+    });
     out.stats = stats();
     return out;
   }
