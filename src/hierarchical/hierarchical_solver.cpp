@@ -466,8 +466,8 @@ class HierarchicalSolver final : public Solver {
       // For harmonics, emitter points below the receiver point's horizon count too, seen as
       // often as those above it are: at a point of a convex cluster its own tangent plane hides
       // them, but the cluster's faces that turn towards them do see them, and the harmonics are
-      // the light for all of its faces (without them a ball lit by a wall is 15% short at its
-      // few points near the terminator).
+      // the light for all of its faces (without them a ball lit by a wall comes out short when
+      // its few points lie near the terminator: tests/unit/test_hierarchical_energy.cpp).
       float seenAbove = 0.0f, tracedAbove = 0.0f;
       if (asHarmonics)
         for (size_t k = 0; k < q.size(); ++k) {

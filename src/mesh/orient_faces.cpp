@@ -95,7 +95,7 @@ size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces, f
         const Vec3 x = points[size_t(k)], xo = x + n * offset;
         // One shadow ray to one emitting face, picked in proportion to what it brings: the same
         // expected light as a ray to each, for a sixteenth of the rays on a light cut into 16
-        // cells (a million-face scene spent most of its load here).
+        // cells, on every face of a million-face scene.
         float total = 0.0f;
         for (size_t e = 0; e < emitters.size(); ++e) total += weight[e * kPointsPerFace + size_t(k)];
         if (total > 0.0f) {
