@@ -90,7 +90,7 @@ void printRow(const CaseResult& r) {
                            double(r.peakMemoryBytes) / (1 << 20), error, seedMs, seedErr);
   if (!r.errorNote.empty()) std::cout << "    (" << r.errorNote << ")\n";
   if (c.solve.method == "hierarchical")
-    std::cout << fmt::format("    (hierarchy {:.2f} s, {:.1f} MiB; {} leaves, {} links in the last sweep)\n", r.hierarchySeconds,
+    std::cout << fmt::format("    (hierarchy {:.2f} s, {:.1f} MiB; {} leaves, {} links over the sweeps)\n", r.hierarchySeconds,
                              double(r.hierarchyBytes) / (1 << 20), r.leaves, r.links);
   std::cout.flush();
 }

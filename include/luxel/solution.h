@@ -2,6 +2,7 @@
 // statistics of how it got there. Radiosity B is exitance (W/m^2); radiance is B / pi.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ struct SolveStats {
   uint64_t rays = 0;           // visibility rays traced
   uint64_t hemicubes = 0;      // GL backend: hemicubes rendered
   uint64_t links = 0;          // hierarchical: transfers computed (links are not stored)
+  // hierarchical: link refinements over the solve, by rule: near cluster emitter, transfer
+  // bound, shadow edge, self-oracle.
+  std::array<uint64_t, 4> refinements{};
   size_t clusterElements = 0;  // hierarchical: clusters in the element tree
   size_t clusterLeaves = 0;    // hierarchical: its leaves, which hold the irradiance
   double secondsHierarchy = 0.0;  // hierarchical: building the face-cluster tree

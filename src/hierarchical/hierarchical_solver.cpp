@@ -181,6 +181,7 @@ class HierarchicalSolver final : public Solver {
     s.iterations = iterations_;
     s.residual = s.unshotFraction = unshotFraction_;
     s.links = links_.load();
+    s.refinements = {refinedNear_.load(), refinedTransfer_.load(), refinedShadow_.load(), refinedSelf_.load()};
     s.clusterLeaves = leaves_;
     s.clusterElements = elements_;
     s.secondsHierarchy = tree_.seconds;
@@ -575,6 +576,7 @@ class HierarchicalSolver final : public Solver {
         // (A_i F_ij = A_j F_ji with F at most 1).
         const double most = maxChannel(unshot) * std::min(c.area, b.area);
         if (near && most > threshold) {
+          ++refinedNear_;
           refine();
           continue;
         }
@@ -586,6 +588,7 @@ class HierarchicalSolver final : public Solver {
       if (!bothLeaves) {
         const TransferBounds bounds = transferBounds(i, j, r, s.emitterPoints);
         if (scale * (wholly ? bounds.spread : bounds.upper) > threshold) {
+          ++refinedTransfer_;
           refine();
           continue;
         }
@@ -599,6 +602,7 @@ class HierarchicalSolver final : public Solver {
           for (int ch = 0; ch < 3; ++ch)
             carried[ch] += r.points[p].weight * std::max(0.0f, glm::dot(r.points[p].normal, s.transport[p][size_t(ch)]));
         if (double(maxChannel(carried)) * c.area > threshold) {
+          ++refinedShadow_;
           refine();
           continue;
         }
@@ -639,6 +643,7 @@ class HierarchicalSolver final : public Solver {
     if (!c.leaf()) {
       const double self = maxChannel(emitterUnshot(i)) * c.area * c.selfFormFactorBound();
       if (self > threshold) {
+        ++refinedSelf_;
         splitReceiver(i);
         const uint32_t a = c.child[0], b = c.child[1];
         if (facing(a, b) && maxChannel(emitterUnshot(b)) > 0.0f) childShooters[0].push_back(b);
@@ -710,6 +715,9 @@ class HierarchicalSolver final : public Solver {
   double unshotFraction_ = 0.0;
   uint32_t iterations_ = 0;
   std::atomic<uint64_t> links_{0};
+  // Refinements over the solve, by the rule that asked for them: a near cluster emitter, the
+  // transfer bound, a shadow edge across a link, the self-oracle.
+  std::atomic<uint64_t> refinedNear_{0}, refinedTransfer_{0}, refinedShadow_{0}, refinedSelf_{0};
   size_t leaves_ = 1, elements_ = 1;
   bool done_ = false;
   double seconds_ = 0.0, setupSeconds_ = 0.0;

@@ -38,6 +38,9 @@ std::string statsJson(const RunRecord& r) {
                       {"cached", s.hierarchyCached},
                       {"bytes", s.hierarchyBytes},
                       {"links", s.links},
+                      {"refinements",
+                       {{"near", s.refinements[0]}, {"transfer", s.refinements[1]}, {"shadow", s.refinements[2]},
+                        {"self", s.refinements[3]}}},
                       {"elements", s.clusterElements},
                       {"leaves", s.clusterLeaves}};
   if (r.image)

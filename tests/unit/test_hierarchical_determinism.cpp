@@ -42,7 +42,10 @@ TEST(HierarchicalDeterminism, ResultsAreBitIdenticalRunToRunAndAcrossThreadCount
     EXPECT_EQ(first.stats.iterations, s->stats.iterations);
     EXPECT_EQ(first.stats.clusterLeaves, s->stats.clusterLeaves);
     EXPECT_EQ(first.stats.absorbedPower, s->stats.absorbedPower);
+    EXPECT_EQ(first.stats.refinements, s->stats.refinements);
   }
+  // Every rule refined something in the Cornell box (the counts the stats report, by rule).
+  for (uint64_t n : first.stats.refinements) EXPECT_GT(n, 0u);
 }
 
 }  // namespace
