@@ -31,6 +31,8 @@ struct SolveStats {
   double secondsHierarchy = 0.0;  // hierarchical: building the face-cluster tree
   size_t hierarchyBytes = 0;      // hierarchical: the face-cluster tree's memory
   bool hierarchyCached = false;   // hierarchical: the tree was read from the disk cache
+  uint32_t hierarchyDepth = 0;    // hierarchical: the tree's deepest leaf
+  double hierarchyMeanLeafDepth = 0.0;
   double residual = 0.0;       // gather: last relative change; progressive: unshot fraction
   double unshotFraction = 0.0;
   double secondsSetup = 0.0;        // BVH build, GL context, analytic lights, solver setup

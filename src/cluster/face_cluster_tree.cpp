@@ -158,6 +158,22 @@ std::vector<uint32_t> weldCorners(const SurfaceSet& s, std::vector<uint32_t>& fi
 
 }  // namespace
 
+FaceClusterTree::Depth FaceClusterTree::depth() const {
+  Depth d;
+  if (nodes.empty()) return d;
+  std::vector<uint32_t> at(nodes.size(), 0);
+  double sum = 0.0;
+  // Parents come after their children: a pass from the root down, in reverse index order.
+  for (size_t i = nodes.size(); i-- > 0;) {
+    const FaceCluster& c = nodes[i];
+    if (c.parent != kNoCluster) at[i] = at[c.parent] + 1;
+    d.max = std::max(d.max, at[i]);
+    if (c.leaf()) sum += at[i];
+  }
+  d.meanLeaf = order.empty() ? 0.0 : sum / double(order.size());
+  return d;
+}
+
 FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
   const Stopwatch watch;
   const size_t n = surfaces.elements.size();

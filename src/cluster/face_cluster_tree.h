@@ -53,6 +53,13 @@ struct FaceClusterTree {
   double seconds = 0.0;         // build time
 
   size_t elementCount() const { return order.size(); }
+  // The deepest leaf's depth (the root's is 0) and the leaves' mean depth: about log2 n for a
+  // balanced tree; far more where big clusters grew by a face at a time.
+  struct Depth {
+    uint32_t max = 0;
+    double meanLeaf = 0.0;
+  };
+  Depth depth() const;
   size_t bytes() const { return nodes.capacity() * sizeof(FaceCluster) + order.capacity() * sizeof(uint32_t); }
 };
 

@@ -102,6 +102,7 @@ class HierarchicalSolver final : public Solver {
         cachedFaceClusterTree(sys.surfaces, s.cache ? defaultFaceClusterCacheDirectory() : std::filesystem::path());
     tree_ = std::move(cached.tree);
     treeLoaded_ = cached.loaded;
+    treeDepth_ = tree_.depth();
     if (!cached.warning.empty()) warnings_.push_back(cached.warning);
     points_ = std::make_unique<ClusterPoints>(tree_, sys.surfaces);
     rayOffset_ = rayOffsetFor(sys.surfaces.sceneExtent);
@@ -186,6 +187,7 @@ class HierarchicalSolver final : public Solver {
     s.clusterElements = elements_;
     s.secondsHierarchy = tree_.seconds;
     s.hierarchyCached = treeLoaded_;
+    s.hierarchyDepth = treeDepth_.max, s.hierarchyMeanLeafDepth = treeDepth_.meanLeaf;
     s.warnings = warnings_;
     s.hierarchyBytes = tree_.bytes();
     s.secondsFormFactors = seconds_;
@@ -701,6 +703,7 @@ class HierarchicalSolver final : public Solver {
   RayTracer* tracer_ = nullptr;
   FaceClusterTree tree_;
   bool treeLoaded_ = false;             // read from the disk cache
+  FaceClusterTree::Depth treeDepth_;
   std::vector<std::string> warnings_;
   std::unique_ptr<ClusterPoints> points_;
   float rayOffset_ = 0.0f;

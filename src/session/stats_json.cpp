@@ -36,6 +36,8 @@ std::string statsJson(const RunRecord& r) {
   if (s.method == "hierarchical")
     j["hierarchy"] = {{"seconds", s.secondsHierarchy},
                       {"cached", s.hierarchyCached},
+                      {"depth", s.hierarchyDepth},
+                      {"mean_leaf_depth", s.hierarchyMeanLeafDepth},
                       {"bytes", s.hierarchyBytes},
                       {"links", s.links},
                       {"refinements",

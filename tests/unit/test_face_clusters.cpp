@@ -181,15 +181,11 @@ TEST(FaceClusterTree, GridsMakeShallowTreesThatKeepWallsWhole) {
   d.orientByLight = false;
   const SurfaceSet s = discretise(room, d);
   const FaceClusterTree t = buildFaceClusterTree(s);
-  std::vector<int> depth(t.nodes.size(), 0);
-  int deepest = 0;
-  for (size_t i = t.nodes.size(); i-- > 0;) {
-    const FaceCluster& c = t.nodes[i];
-    if (c.leaf()) deepest = std::max(deepest, depth[i]);
-    else for (uint32_t child : c.child) depth[child] = depth[i] + 1;
-  }
+  const FaceClusterTree::Depth depth = t.depth();
   const int log2n = int(std::ceil(std::log2(double(s.elements.size()))));
-  EXPECT_LE(deepest, 2 * log2n) << s.elements.size() << " elements";  // measured 17 for 10,584
+  EXPECT_LE(int(depth.max), 2 * log2n) << s.elements.size() << " elements";  // measured 17 for 10,584
+  EXPECT_GE(depth.meanLeaf, double(log2n) - 1.0);  // a binary tree's leaves can be no shallower
+  EXPECT_LE(depth.meanLeaf, double(depth.max));
 
   // The six walls are the six faces of the scene: each is some node's whole run.
   std::map<uint32_t, size_t> wallElements;
