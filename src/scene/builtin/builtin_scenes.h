@@ -56,6 +56,15 @@ Scene shaderSphereTorus();
 // 1,000 each.
 Scene faceClusterRoom(size_t faces);
 
+// The room's built-in ladder, by name: the one list the scene registry and the room's own name read.
+struct RoomRung {
+  const char* name;
+  size_t faces;
+};
+inline constexpr RoomRung kRoomLadder[] = {{"room-20k", 20'000},       {"room-160k", 160'000}, {"room-500k", 500'000},
+                                           {"room-1m", 1'000'000},     {"room-1.5m", 1'500'000},
+                                           {"room-10m", 10'000'000}};
+
 // Adds a planar quad (a, b, c, d counter-clockwise seen from the front) to `mesh`.
 void addQuad(Mesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d);
 // Adds the six inward-facing walls of the axis-aligned box [lo, hi] to `mesh`.

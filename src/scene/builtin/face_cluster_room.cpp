@@ -150,22 +150,9 @@ void addStatue(Mesh& m, const TriangleMesh& statue, Vec3 foot, float yawDegrees)
 }
 
 std::string roomName(size_t faces) {
-  switch (faces) {
-    case 20'000:
-      return "room-20k";
-    case 160'000:
-      return "room-160k";
-    case 500'000:
-      return "room-500k";
-    case 1'000'000:
-      return "room-1m";
-    case 1'500'000:
-      return "room-1.5m";
-    case 10'000'000:
-      return "room-10m";
-    default:
-      return fmt::format("room-{}", faces);
-  }
+  for (const RoomRung& r : kRoomLadder)
+    if (r.faces == faces) return r.name;
+  return fmt::format("room-{}", faces);
 }
 
 }  // namespace

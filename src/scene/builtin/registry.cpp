@@ -11,11 +11,12 @@
 namespace luxel {
 
 std::vector<std::string> builtinSceneNames() {
-  return {"cornell",         "furnace",          "cie-5.8",          "cornell-large",
-          "cornell-small",   "cornell-low",      "indirect-light",   "shader-box-774",
-          "shader-box-2734", "shader-box-10254", "shader-box-15814", "shader-sphere-torus",
-          "room-20k",        "room-160k",        "room-500k",        "room-1m",
-          "room-1.5m",       "room-10m"};
+  std::vector<std::string> names = {"cornell",          "furnace",          "cie-5.8",
+                                    "cornell-large",    "cornell-small",    "cornell-low",
+                                    "indirect-light",   "shader-box-774",   "shader-box-2734",
+                                    "shader-box-10254", "shader-box-15814", "shader-sphere-torus"};
+  for (const builtin::RoomRung& r : builtin::kRoomLadder) names.push_back(r.name);
+  return names;
 }
 
 bool isBuiltinScene(std::string_view name) {
@@ -38,12 +39,8 @@ Scene builtinScene(std::string_view name) {
   if (name == "shader-box-15814") return builtin::shaderBox(50);
   if (name == "shader-sphere-torus") return builtin::shaderSphereTorus();
   // Seed 002's room, a ladder of face counts.
-  if (name == "room-20k") return builtin::faceClusterRoom(20'000);
-  if (name == "room-160k") return builtin::faceClusterRoom(160'000);
-  if (name == "room-500k") return builtin::faceClusterRoom(500'000);
-  if (name == "room-1m") return builtin::faceClusterRoom(1'000'000);
-  if (name == "room-1.5m") return builtin::faceClusterRoom(1'500'000);
-  if (name == "room-10m") return builtin::faceClusterRoom(10'000'000);
+  for (const builtin::RoomRung& r : builtin::kRoomLadder)
+    if (name == r.name) return builtin::faceClusterRoom(r.faces);
   throw Error(fmt::format("unknown built-in scene '{}' (known: {})", name,
                           fmt::join(builtinSceneNames(), ", ")));
 }
