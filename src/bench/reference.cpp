@@ -25,7 +25,7 @@ uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const Solv
   ContentHash h;
   // Bump when the transport's numbers change (quadrature, sampling, visibility weighting), and
   // when the hierarchical solver does: its self-convergence references are its own solutions.
-  h.text("luxel-reference-5");
+  h.text("luxel-reference-6");
   h.bytes(o.method.data(), o.method.size());
   for (const auto& [name, value] : o.settings.values()) h.bytes(name.data(), name.size()), h.bytes(value.data(), value.size());
   if (kind == Options::ReferenceKind::MonteCarlo) h.bytes("monte-carlo", 11), h.value(kMonteCarloReferenceRays);

@@ -16,7 +16,7 @@ namespace luxel {
 namespace {
 
 // Bump when buildFaceClusterTree would build a different tree from the same surfaces.
-constexpr char kFormat[] = "luxel-face-clusters-1";
+constexpr char kFormat[] = "luxel-face-clusters-2";
 constexpr char kMagic[8] = {'L', 'X', 'F', 'C', 'T', '0', '0', '1'};
 
 static_assert(std::is_trivially_copyable_v<FaceCluster>, "clusters are written as bytes");

@@ -272,90 +272,10 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
     lo[parent] = glm::min(lo[a], lo[b]), hi[parent] = glm::max(hi[a], hi[b]);
   };
 
-  // Contraction in rounds: in each, the dual edges in order of cost, each cluster joined at most
-  // once. Garland et al. contract one edge at a time from a single heap, and on a surface of
-  // equal faces (a wall cut into a grid) that grows one cluster a face at a time: a tree
-  // thousands of levels deep, whose splits peel single faces off and whose traversal overflows
-  // the stack. Rounds keep the tree about log n deep, and the costs of a round are computed in
-  // parallel. A cluster waits for a later round rather than take a partner much worse than its
-  // best (kWorseFactor, or kCostTie when costs are near zero, as on a flat grid), so that a crease
-  // is not crossed while a flat neighbour is still to be had.
-  constexpr double kWorseFactor = 2.0, kCostTie = 0.05;
-  std::vector<uint32_t> active(n), rep(2 * n - 1);
-  std::iota(active.begin(), active.end(), 0u);
-  std::iota(rep.begin(), rep.end(), 0u);
-  std::vector<double> best(2 * n - 1);
-  std::vector<uint8_t> matched(2 * n - 1, 0);
-  uint32_t next = uint32_t(n);
-  std::vector<DualEdge> edges;
-  struct Pair {
-    uint32_t a, b, parent;
-  };
-  std::vector<Pair> pairs;
-  while (true) {
-    edges.clear();
-    for (uint32_t a : active)
-      for (const Neighbour& nb : adjacency[a])
-        if (nb.node > a) edges.push_back({0.0, a, nb.node, nb.length});
-    if (edges.empty()) break;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t k = range.begin(); k != range.end(); ++k) {
-        DualEdge& edge = edges[k];
-        edge.cost = contractionCost(moments[edge.a], moments[edge.b], edge.length);
-      }
-    });
-    tbb::parallel_sort(edges.begin(), edges.end(), [](const DualEdge& x, const DualEdge& y) { return y > x; });
-    for (uint32_t a : active) best[a] = std::numeric_limits<double>::max(), matched[a] = 0;
-    for (const DualEdge& edge : edges) best[edge.a] = std::min(best[edge.a], edge.cost), best[edge.b] = std::min(best[edge.b], edge.cost);
-    pairs.clear();
-    for (const DualEdge& edge : edges) {
-      if (matched[edge.a] || matched[edge.b]) continue;
-      const double bar = std::max(kWorseFactor * std::min(best[edge.a], best[edge.b]), kCostTie);
-      if (edge.cost > bar) continue;
-      matched[edge.a] = matched[edge.b] = 1;
-      pairs.push_back({edge.a, edge.b, next});
-      rep[edge.a] = rep[edge.b] = next++;
-    }
-    // The joined clusters, and the neighbour lists of every cluster of the next round, with the
-    // joined pairs renamed (lists are private to their cluster, so this is parallel too).
-    tbb::parallel_for(size_t(0), pairs.size(), [&](size_t k) {
-      const auto [a, b, c] = pairs[k];
-      bool sharedConvex = true;
-      for (const Neighbour& nb : adjacency[a])
-        if (nb.node == b) sharedConvex = nb.convex;
-      link(c, a, b);
-      moments[c].convex = moments[a].convex && moments[b].convex && sharedConvex;
-      std::vector<Neighbour>& list = adjacency[c];
-      for (uint32_t side : {a, b})
-        for (const Neighbour& nb : adjacency[side])
-          if (nb.node != a && nb.node != b) list.push_back({rep[nb.node], nb.length, nb.convex});
-      combine(list);
-    });
-    tbb::parallel_for(size_t(0), active.size(), [&](size_t k) {
-      const uint32_t a = active[k];
-      if (matched[a]) return;
-      for (Neighbour& nb : adjacency[a]) nb.node = rep[nb.node];
-      combine(adjacency[a]);
-    });
-    size_t kept = 0;
-    for (uint32_t a : active) {
-      if (matched[a]) {
-        std::vector<Neighbour>().swap(adjacency[a]);
-        alive[a] = 0;
-      } else {
-        active[kept++] = a;
-      }
-    }
-    active.resize(kept);
-    for (const Pair& pair : pairs) active.push_back(pair.parent), alive[pair.parent] = 1;
-  }
+  uint32_t next = uint32_t(n);  // the next node made
 
-  // The components that share no edge: joined by median splits along the widest axis of their
-  // boxes' centres, so that the root holds everything.
-  std::vector<uint32_t> roots;
-  for (uint32_t i = 0; i < next; ++i)
-    if (alive[i]) roots.push_back(i);
-  tree.components = uint32_t(roots.size());
+  // Separate pieces (components that share no edge, or a merge's satellites below) are joined by
+  // median splits along the widest axis of their boxes' centres: a balanced subtree over them.
   auto join = [&](auto& self, std::span<uint32_t> part) -> uint32_t {
     if (part.size() == 1) return part[0];
     Vec3 clo(std::numeric_limits<float>::max()), chi(-std::numeric_limits<float>::max());
@@ -378,6 +298,135 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
     tree.nodes[c].connected = false;
     return c;
   };
+
+  // Contraction in rounds: in each, the dual edges in order of cost, each cluster paired at most
+  // once. Garland et al. contract one edge at a time from a single heap, and on a surface of
+  // equal faces (a wall cut into a grid) that grows one cluster a face at a time: a tree
+  // thousands of levels deep, whose splits peel single faces off and whose traversal overflows
+  // the stack. Rounds keep the tree about log n deep, and the costs of a round are computed in
+  // parallel. A cluster waits for a later round rather than take a partner much worse than its
+  // best (kWorseFactor, or kCostTie when costs are near zero, as on a flat grid), so that a crease
+  // is not crossed while a flat neighbour is still to be had.
+  //
+  // Waiting alone makes chains on curved scans: a thin or nearly degenerate face whose normal
+  // disagrees with its neighbours' waits until they have all become one large cluster, and then
+  // that cluster has dozens of such faces on its border and took one per round (a statue of 1M
+  // faces grew trees 570 levels deep, and the solver's links and sweeps grew with them). So a
+  // cluster left unpaired in a round joins a neighbour that was paired, when their edge passes the
+  // same bar, as a satellite: a pair's satellites are joined into a balanced subtree (by `join`)
+  // and that subtree to the pair, so a round adds about log k levels for k satellites, not k.
+  constexpr double kWorseFactor = 2.0, kCostTie = 0.05, kSatelliteShare = 0.125;
+  std::vector<uint32_t> active(n), rep(2 * n - 1);
+  std::iota(active.begin(), active.end(), 0u);
+  std::iota(rep.begin(), rep.end(), 0u);
+  std::vector<double> best(2 * n - 1);
+  std::vector<uint32_t> mergeOf(2 * n - 1, kNoCluster);  // this round's merge a cluster is in
+  std::vector<DualEdge> edges;
+  struct Merge {
+    uint32_t a, b;
+    std::vector<uint32_t> satellites;
+    uint32_t pair = kNoCluster;  // the union of a and b
+    uint32_t node = kNoCluster;  // of a, b and the satellites (the pair when there are none)
+  };
+  std::vector<Merge> merges;
+  auto bar = [&](const DualEdge& edge) {
+    return std::max(kWorseFactor * std::min(best[edge.a], best[edge.b]), kCostTie);
+  };
+  while (true) {
+    edges.clear();
+    for (uint32_t a : active)
+      for (const Neighbour& nb : adjacency[a])
+        if (nb.node > a) edges.push_back({0.0, a, nb.node, nb.length});
+    if (edges.empty()) break;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t k = range.begin(); k != range.end(); ++k) {
+        DualEdge& edge = edges[k];
+        edge.cost = contractionCost(moments[edge.a], moments[edge.b], edge.length);
+      }
+    });
+    tbb::parallel_sort(edges.begin(), edges.end(), [](const DualEdge& x, const DualEdge& y) { return y > x; });
+    for (uint32_t a : active) best[a] = std::numeric_limits<double>::max(), mergeOf[a] = kNoCluster;
+    for (const DualEdge& edge : edges) best[edge.a] = std::min(best[edge.a], edge.cost), best[edge.b] = std::min(best[edge.b], edge.cost);
+    merges.clear();
+    for (const DualEdge& edge : edges) {
+      if (mergeOf[edge.a] != kNoCluster || mergeOf[edge.b] != kNoCluster || edge.cost > bar(edge)) continue;
+      mergeOf[edge.a] = mergeOf[edge.b] = uint32_t(merges.size());
+      merges.push_back({edge.a, edge.b, {}});
+    }
+    // Satellites attach to a paired cluster (a or b of a merge), never to another satellite, so
+    // a round cannot sweep a whole region into one cluster.
+    for (const DualEdge& edge : edges) {
+      const uint32_t ma = mergeOf[edge.a], mb = mergeOf[edge.b];
+      if ((ma == kNoCluster) == (mb == kNoCluster) || edge.cost > bar(edge)) continue;
+      const uint32_t host = ma != kNoCluster ? edge.a : edge.b, satellite = ma != kNoCluster ? edge.b : edge.a;
+      Merge& merge = merges[mergeOf[host]];
+      if ((host != merge.a && host != merge.b) || moments[satellite].area > kSatelliteShare * moments[host].area) continue;
+      mergeOf[satellite] = mergeOf[host];
+      merge.satellites.push_back(satellite);
+    }
+    // The new nodes, in order (each after its children); cheap, so sequential.
+    for (Merge& merge : merges) {
+      merge.pair = merge.node = next++;
+      link(merge.pair, merge.a, merge.b);
+      if (!merge.satellites.empty()) {
+        const uint32_t group = join(join, merge.satellites);
+        merge.node = next++;
+        link(merge.node, merge.pair, group);
+      }
+      rep[merge.a] = rep[merge.b] = merge.node;
+      for (uint32_t s : merge.satellites) rep[s] = merge.node;
+    }
+    // Each union's convexity, and the neighbour lists of every cluster of the next round, with the
+    // merged clusters renamed (lists are private to their cluster, so this is parallel too).
+    tbb::parallel_for(size_t(0), merges.size(), [&](size_t k) {
+      const Merge& merge = merges[k];
+      const uint32_t c = merge.node;
+      bool convex = true;
+      std::vector<Neighbour>& list = adjacency[c];
+      auto gather = [&](uint32_t member) {
+        convex = convex && moments[member].convex;
+        for (const Neighbour& nb : adjacency[member]) {
+          if (rep[nb.node] == c)
+            convex = convex && nb.convex;
+          else
+            list.push_back({rep[nb.node], nb.length, nb.convex});
+        }
+      };
+      gather(merge.a), gather(merge.b);
+      if (merge.pair != c) {
+        bool pairConvex = moments[merge.a].convex && moments[merge.b].convex;
+        for (const Neighbour& nb : adjacency[merge.a])
+          if (nb.node == merge.b) pairConvex = pairConvex && nb.convex;
+        moments[merge.pair].convex = pairConvex;
+      }
+      for (uint32_t s : merge.satellites) gather(s);
+      moments[c].convex = convex;
+      combine(list);
+    });
+    tbb::parallel_for(size_t(0), active.size(), [&](size_t k) {
+      const uint32_t a = active[k];
+      if (mergeOf[a] != kNoCluster) return;
+      for (Neighbour& nb : adjacency[a]) nb.node = rep[nb.node];
+      combine(adjacency[a]);
+    });
+    size_t kept = 0;
+    for (uint32_t a : active) {
+      if (mergeOf[a] != kNoCluster) {
+        std::vector<Neighbour>().swap(adjacency[a]);
+        alive[a] = 0;
+      } else {
+        active[kept++] = a;
+      }
+    }
+    active.resize(kept);
+    for (const Merge& merge : merges) active.push_back(merge.node), alive[merge.node] = 1;
+  }
+
+  // The components that share no edge, joined so that the root holds everything.
+  std::vector<uint32_t> roots;
+  for (uint32_t i = 0; i < next; ++i)
+    if (alive[i]) roots.push_back(i);
+  tree.components = uint32_t(roots.size());
   tree.root = join(join, roots);
   tree.nodes.resize(next);
 
