@@ -124,8 +124,27 @@ class HierarchicalSolver final : public Solver {
       }
     }
     for (size_t e = 0; e < ne; ++e) emittedPower_ += double(sys.area[e]) * maxChannel(source_[e]);
+    std::vector<uint32_t> height(nodes, 0);
+    for (uint32_t i = uint32_t(ne); i < nodes; ++i)
+      height[i] = std::max(height[tree_.nodes[i].child[0]], height[tree_.nodes[i].child[1]]) + 1;
+    const uint32_t levels = nodes > ne ? height[tree_.root] : 0;
+    levelStart_.assign(size_t(levels) + 1, 0);
+    for (uint32_t i = uint32_t(ne); i < nodes; ++i) ++levelStart_[height[i]];  // counts, shifted by one below
+    for (uint32_t h = 1; h <= levels; ++h) levelStart_[h] += levelStart_[h - 1];
+    mix_.resize(nodes - ne);
+    std::vector<size_t> fill(levelStart_.begin(), levelStart_.end() - 1);
+    for (uint32_t i = uint32_t(ne); i < nodes; ++i) {
+      const FaceCluster& c = tree_.nodes[i];
+      const float w = c.area > 0.0f ? 1.0f / c.area : 0.0f;
+      mix_[fill[height[i] - 1]++] = {i, c.child[0], c.child[1], tree_.nodes[c.child[0]].area * w, tree_.nodes[c.child[1]].area * w};
+    }
     unshot_.assign(nodes, Rgb(0.0f));
     next_.assign(ne, Rgb(0.0f));
+    faces_.resize(ne);
+    for (size_t k = 0; k < ne; ++k) {
+      const Element& el = sys.surfaces.elements[tree_.order[k]];
+      faces_[k] = {el.centroid, el.normal, el.reflectance, sys.area[tree_.order[k]]};
+    }
     split_.assign(nodes, 0);
     field_ = std::make_unique<std::atomic<uint32_t>[]>(nodes);
     since_ = std::make_unique<std::atomic<uint32_t>[]>(nodes);
@@ -183,8 +202,8 @@ class HierarchicalSolver final : public Solver {
     s.residual = s.unshotFraction = unshotFraction_;
     s.links = links_.load();
     s.refinements = {refinedNear_.load(), refinedTransfer_.load(), refinedShadow_.load(), refinedSelf_.load()};
-    s.clusterLeaves = leaves_;
-    s.clusterElements = elements_;
+    s.clusterLeaves = leaves_.load();
+    s.clusterElements = elements_.load();
     s.secondsHierarchy = tree_.seconds;
     s.hierarchyCached = treeLoaded_;
     s.hierarchyDepth = treeDepth_.max, s.hierarchyMeanLeafDepth = treeDepth_.meanLeaf;
@@ -516,6 +535,7 @@ class HierarchicalSolver final : public Solver {
     }
     field_[i].store(kNever, std::memory_order_relaxed);
     split_[i] = 1;
+    elements_ += 2, leaves_ += 1;
   }
 
   // A link's light as harmonics, constant over the receiver: the mean of `perPoint` over the
@@ -661,9 +681,8 @@ class HierarchicalSolver final : public Solver {
       Field& keepDirect = fields_[f + 1];
       keep += total, keepDirect += direct;
       for (uint32_t k = c.begin; k < c.begin + c.count; ++k) {
-        const uint32_t e = tree_.order[k];
-        const Element& el = sys_.surfaces.elements[e];
-        next_[e] = el.reflectance * irradiance(total, i, el.centroid, el.normal);
+        const FaceSample& face = faces_[k];
+        next_[k] = face.reflectance * irradiance(total, i, face.centroid, face.normal);
       }
       return;
     }
@@ -675,23 +694,33 @@ class HierarchicalSolver final : public Solver {
   void iterate() {
     const Stopwatch watch;
     transportLight(tree_.root, kNoCluster, nullptr, nullptr, {});
-    // The Jacobi swap: what the faces gathered is shot next, and every cluster's mean (children
-    // come before their parent) is what it shoots as a whole.
-    double unshotPower = 0.0;
-    leaves_ = elements_ = 0;
+    // The Jacobi swap: what the faces gathered is shot next, and every cluster's mean is what it
+    // shoots as a whole. In parallel, streaming through compact arrays (this pass touches every
+    // face and cluster each sweep); the power is summed in fixed chunks so that the stop comes at
+    // the same iteration for any thread count.
     const size_t ne = sys_.elementCount();
-    for (uint32_t i = 0; i < tree_.nodes.size(); ++i) {
-      const FaceCluster& c = tree_.nodes[i];
-      if (i < ne) {
-        unshot_[i] = next_[i];
+    constexpr size_t kChunk = 16384;
+    std::vector<double> chunkPower((ne + kChunk - 1) / kChunk, 0.0);
+    tbb::parallel_for(size_t(0), chunkPower.size(), [&](size_t k) {
+      double power = 0.0;
+      for (size_t i = k * kChunk; i < std::min(ne, (k + 1) * kChunk); ++i) {
+        const uint32_t e = tree_.order[i];
+        unshot_[e] = next_[i];
         next_[i] = Rgb(0.0f);
-        unshotPower += double(c.area) * maxChannel(unshot_[i]);
-      } else {
-        const FaceCluster &a = tree_.nodes[c.child[0]], &b = tree_.nodes[c.child[1]];
-        unshot_[i] = c.area > 0.0f ? (a.area * unshot_[c.child[0]] + b.area * unshot_[c.child[1]]) / c.area : Rgb(0.0f);
+        power += double(faces_[i].area) * maxChannel(unshot_[e]);
       }
-      if (isElement(i)) ++elements_, leaves_ += !split_[i];
-    }
+      chunkPower[k] = power;
+    });
+    double unshotPower = 0.0;
+    for (double power : chunkPower) unshotPower += power;
+    for (size_t level = 0; level + 1 < levelStart_.size(); ++level)
+      tbb::parallel_for(tbb::blocked_range<size_t>(levelStart_[level], levelStart_[level + 1], 4096),
+                        [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t k = range.begin(); k != range.end(); ++k) {
+                            const Mix& m = mix_[k];
+                            unshot_[m.node] = m.wa * unshot_[m.a] + m.wb * unshot_[m.b];
+                          }
+                        });
     ++iterations_;
     unshotFraction_ = emittedPower_ > 0.0 ? unshotPower / emittedPower_ : 0.0;
     done_ = unshotFraction_ < s_.unshot || int(iterations_) >= s_.maxIterations;
@@ -709,7 +738,15 @@ class HierarchicalSolver final : public Solver {
   float rayOffset_ = 0.0f;
   std::vector<Rgb> source_, emission_;  // per cluster: area means of what it first sends
   std::vector<Rgb> unshot_;             // per cluster: mean radiosity shot this iteration
-  std::vector<Rgb> next_;               // per face: gathered this iteration, shot in the next
+  // Per face in the tree's order (each leaf's faces one run, streamed every sweep): what the
+  // sweep reads of it, and what it gathered this iteration, shot in the next.
+  struct FaceSample {
+    Vec3 centroid, normal;
+    Rgb reflectance;
+    float area;
+  };
+  std::vector<FaceSample> faces_;
+  std::vector<Rgb> next_;
   std::vector<uint8_t> split_;          // per element: its children are elements
   std::unique_ptr<std::atomic<uint32_t>[]> field_;  // per element leaf: its fields in the pool
   std::unique_ptr<std::atomic<uint32_t>[]> since_;  // the iteration a cluster became an element
@@ -721,7 +758,15 @@ class HierarchicalSolver final : public Solver {
   // Refinements over the solve, by the rule that asked for them: a near cluster emitter, the
   // transfer bound, a shadow edge across a link, the self-oracle.
   std::atomic<uint64_t> refinedNear_{0}, refinedTransfer_{0}, refinedShadow_{0}, refinedSelf_{0};
-  size_t leaves_ = 1, elements_ = 1;
+  std::atomic<size_t> leaves_{1}, elements_{1};  // the element tree: its nodes, its leaves
+  // The clusters bottom-up for the swap: each as the area shares of its two children, ordered by
+  // height (a level's clusters depend only on lower levels, so each level is one parallel pass).
+  struct Mix {
+    uint32_t node, a, b;
+    float wa, wb;
+  };
+  std::vector<Mix> mix_;
+  std::vector<size_t> levelStart_;
   bool done_ = false;
   double seconds_ = 0.0, setupSeconds_ = 0.0;
 };
