@@ -33,7 +33,7 @@ struct FaceCluster {
   // Made by contracting dual edges none of which is concave: the surface is locally convex
   // everywhere, so no part of it sees another (its self form factor is 0).
   bool convex = true;
-  bool connected = true;                // false for the nodes that join separate components
+  bool connected = true;                // false for nodes that join pieces sharing no edge (components, satellites)
 
   bool leaf() const { return child[0] == kNoCluster; }
   float minProjectedArea(Vec3 r) const { return luxel::minProjectedArea(vectorArea, r); }

@@ -227,8 +227,6 @@ class HierarchicalSolver final : public Solver {
     return uint32_t(it - fields_.begin());
   }
 
-  bool isElement(uint32_t i) const { return since_[i].load(std::memory_order_relaxed) != kNever; }
-
   // The mean unshot radiosity cluster j sends in this iteration: in the first, its emission plus
   // the reflected analytic light; later, what its elements gathered in the previous one.
   Rgb emitterUnshot(uint32_t j) const { return iterations_ == 0 ? source_[j] : unshot_[j]; }
