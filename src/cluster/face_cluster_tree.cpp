@@ -310,8 +310,8 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
   //
   // Waiting alone makes chains on curved scans: a thin or nearly degenerate face whose normal
   // disagrees with its neighbours' waits until they have all become one large cluster, and then
-  // that cluster has dozens of such faces on its border and took one per round (a statue of 1M
-  // faces grew trees 570 levels deep, and the solver's links and sweeps grew with them). So a
+  // that cluster has dozens of such faces on its border and took one per round (the scanned
+  // statues' trees were hundreds of levels deep, docs/algorithms.md "The hierarchy"). So a
   // cluster left unpaired in a round joins a neighbour that was paired, when their edge passes the
   // same bar, as a satellite: a pair's satellites are joined into a balanced subtree (by `join`)
   // and that subtree to the pair, so a round adds about log k levels for k satellites, not k.

@@ -16,6 +16,4 @@ void ContentHash::bytes(const void* data, size_t size) { XXH3_64bits_update(stat
 
 uint64_t ContentHash::digest() const { return XXH3_64bits_digest(state_->s); }
 
-uint64_t ContentHash::of(const void* data, size_t size) { return XXH3_64bits(data, size); }
-
 }  // namespace luxel

@@ -26,9 +26,6 @@ class ContentHash {
   }
   uint64_t digest() const;
 
-  // The hash of one buffer.
-  static uint64_t of(const void* data, size_t size);
-
  private:
   struct State;
   std::unique_ptr<State> state_;

@@ -537,7 +537,7 @@ class HierarchicalSolver final : public Solver {
   }
 
   // A link's light as harmonics, constant over the receiver: the mean of `perPoint` over the
-  // points that see the emitter, added to the constant basis function's coefficients.
+  // points that see the emitter, added to the field's harmonics.
   void addHarmonicLink(const Receiver& r, const Scratch& s, double seeing, const std::vector<float>& perPoint, Field& to) const {
     for (size_t p = 0; p < r.points.size(); ++p) {
       if (!s.sees[p]) continue;
