@@ -403,10 +403,8 @@ class GlProgressiveSolver final : public Solver {
       }
       const double shown =
           std::clamp(std::log(std::max(unshotFraction_, 1e-30)) / std::log(o_.unshotThreshold), 0.0, 1.0);
-      if (shown - lastReported_ >= 0.01) {
+      if (throttle_.due(shown))
         reportProgress(progress, "solve", shown, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
-        lastReported_ = shown;
-      }
     }
     glFinish();  // the step's GPU work belongs to its time
     seconds_ += watch.seconds();
@@ -490,7 +488,8 @@ class GlProgressiveSolver final : public Solver {
   int samples_ = 0, batch_ = 0, emitterSide_ = 0, emitterSamples_ = 0, emitterBatch_ = 0;
   size_t emitters_ = 0;
   bool emittersApart_ = false, emittersShot_ = false, done_ = false;
-  double sourcePower_ = 0.0, unshotFraction_ = 1.0, lastReported_ = -1.0;
+  double sourcePower_ = 0.0, unshotFraction_ = 1.0;
+  ProgressThrottle throttle_;
   double setupSeconds_ = 0.0, seconds_ = 0.0;
   uint64_t shots_ = 0;
   uint32_t emitterShots_ = 0;

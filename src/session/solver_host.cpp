@@ -1,5 +1,8 @@
 #include "session/solver_host.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "gl/gl_context.h"
@@ -17,6 +20,20 @@ SolveOptions withMethodChosen(SolveOptions options, const SurfaceSet& surfaces) 
   options.method = chooseMethod(options.method, options.backend, surfaces.patches.size());
   return options;
 }
+
+// In a physical scene the light not yet shot only falls: each shot removes a patch's unshot power
+// and returns at most its reflectance times it (form factors from a patch sum to at most 1, a little
+// more with sampling noise). Several times the emitted power means the transport is not physical.
+constexpr double kMaxUnshotFraction = 2.0;
+// Nor can surfaces absorb more than enters the scene: a solution that claims to is wrong.
+constexpr double kMaxAbsorbedShare = 1.5;
+// A solve asked to run to the end is still cut into slices of at most this long, to check it.
+constexpr double kHealthCheckSeconds = 0.25;
+
+const char* const kLikelyCauses =
+    "likely causes: coincident faces (a mesh loaded twice in one place, which the importers remove but "
+    "a caller's own scene may still have), emission or light intensities near the float range, or "
+    "reflectance of 1 in a closed scene";
 
 }  // namespace
 
@@ -138,12 +155,32 @@ bool SolverHost::refine(const ProgressCallback& progress) {
   return true;
 }
 
+void SolverHost::checkHealth() const {
+  const SolveStats s = solver_->stats();
+  if (!std::isfinite(s.unshotFraction) || !std::isfinite(s.residual))
+    throw Error(fmt::format("scene '{}': the {} solve diverged: its {} is not finite ({})", scene_.name, s.method,
+                            std::isfinite(s.unshotFraction) ? "residual" : "unshot light", kLikelyCauses));
+  if (s.unshotFraction > kMaxUnshotFraction)
+    throw Error(fmt::format(
+        "scene '{}': the {} solve diverged: the light not yet shot grew to {:.3g} times what the scene emits, "
+        "where every bounce should shrink it ({})",
+        scene_.name, s.method, s.unshotFraction, kLikelyCauses));
+}
+
 bool SolverHost::step(const StepLimit& limit, const ProgressCallback& progress) {
   const Stopwatch watch;
   while (true) {
     StepLimit left = limit;
     if (limit.seconds > 0) left.seconds = std::max(1e-9, limit.seconds - watch.seconds());
-    if (solver_->step(left, progress)) return true;  // the slice ended first
+    // A caller counting units gets its units; one running to the end or for a while gets slices,
+    // so that a diverging solve is caught while it runs instead of looping for ever.
+    if (!limit.units) left.seconds = left.seconds > 0 ? std::min(left.seconds, kHealthCheckSeconds) : kHealthCheckSeconds;
+    const bool more = solver_->step(left, progress);
+    checkHealth();
+    if (more) {
+      if (limit.units || (limit.seconds > 0 && watch.seconds() >= limit.seconds)) return true;  // the caller's slice ended
+      continue;
+    }
     if (!refine(progress)) return false;
     if (limit.seconds > 0 && watch.seconds() >= limit.seconds) return true;
   }
@@ -180,6 +217,11 @@ Solution SolverHost::solution() {
   }
   sol.stats.emittedPower = emitted / 3.0;
   sol.stats.absorbedPower = absorbed / 3.0;
+  if (!std::isfinite(absorbed) || !std::isfinite(emitted))
+    throw Error(fmt::format("scene '{}': the {} solution is not finite ({})", scene_.name, sol.stats.method, kLikelyCauses));
+  if (absorbed > kMaxAbsorbedShare * emitted && absorbed > 0.0)
+    throw Error(fmt::format("scene '{}': the {} solution absorbs {:.3g} times the power the scene emits ({})",
+                            scene_.name, sol.stats.method, absorbed / emitted, kLikelyCauses));
   return sol;
 }
 

@@ -57,6 +57,8 @@ class SolverHost {
   const SurfaceSet& surfaces() const { return surfaces_; }
 
  private:
+  // Throws Error when the solve diverges (non-finite, or the unshot light growing).
+  void checkHealth() const;
   // Analytic irradiance (unless current), system and solver for the current surfaces.
   void makeSolver(bool analyticIsCurrent = false);
   void computeAnalytic();

@@ -143,10 +143,8 @@ class ProgressiveSolver final : public Solver {
     }
     // Progress is logarithmic in the unshot fraction: each decade takes about as long.
     const double fraction = std::clamp(std::log(unshotFraction_) / std::log(s_.unshotThreshold), 0.0, 1.0);
-    if (fraction - lastReported_ >= 0.01) {
+    if (throttle_.due(fraction))
       reportProgress(progress, "solve", fraction, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
-      lastReported_ = fraction;
-    }
 
     size_t batch = std::min(s_.shootersPerPass, np);
     if (s_.shotBudget) batch = std::min<size_t>(batch, s_.shotBudget - shots_);
@@ -198,7 +196,8 @@ class ProgressiveSolver final : public Solver {
   size_t cachedBytes_ = 0;
   std::vector<std::pair<double, uint32_t>> ranked_;
   std::vector<uint8_t> directAdded_;
-  double sourcePower_ = 0.0, unshotFraction_ = 1.0, lastReported_ = -1.0;
+  double sourcePower_ = 0.0, unshotFraction_ = 1.0;
+  ProgressThrottle throttle_;
   double seconds_ = 0.0, formFactorSeconds_ = 0.0;
   uint64_t shots_ = 0;
   bool done_ = false;

@@ -15,6 +15,23 @@ inline bool sliceSpent(const StepLimit& limit, uint64_t units, const Stopwatch& 
   return (limit.units && units >= limit.units) || (limit.seconds > 0 && watch.seconds() >= limit.seconds);
 }
 
+// When a solver that takes many small passes should report progress: after every 1% of the way,
+// and at least every 0.1 s whatever the fraction does, because a report is also where a cancel
+// request is read (a solve whose fraction stalls or falls must still stop on Ctrl-C).
+class ProgressThrottle {
+ public:
+  bool due(double fraction) {
+    const double now = watch_.seconds();
+    if (fraction - lastFraction_ < 0.01 && now - lastSeconds_ < 0.1) return false;
+    lastFraction_ = fraction, lastSeconds_ = now;
+    return true;
+  }
+
+ private:
+  Stopwatch watch_;
+  double lastFraction_ = -1.0, lastSeconds_ = 0.0;
+};
+
 // Float rounding bounds how small a gathering residual can get: stop once it has not fallen by
 // 1% for 8 sweeps.
 class StagnationStop {

@@ -16,6 +16,7 @@
 
 #include "luxel/error.h"
 #include "luxel/import.h"
+#include "scene/coincident_faces.h"
 #include "scene/import/transform.h"
 
 namespace luxel {
@@ -537,7 +538,9 @@ Scene loadSceneJson(std::string_view text, const fs::path& baseFolder, std::stri
     if (size_t close = what.find("] "); close != std::string::npos) what = what.substr(close + 2);
     throw Error(fmt::format("{}: invalid JSON: {}", file, what));
   }
-  return SceneFileLoader(baseFolder, file).load(doc);
+  Scene scene = SceneFileLoader(baseFolder, file).load(doc);
+  removeCoincidentFaces(scene);  // across files: each file's own copies went at its import
+  return scene;
 }
 
 Scene loadSceneFile(const fs::path& path) {
