@@ -18,6 +18,7 @@
 #include "luxel/lightmap.h"
 #include "luxel/session.h"
 #include "luxel/solve.h"
+#include "output_paths.h"
 #include "progress_bar.h"
 
 namespace fs = std::filesystem;
@@ -53,11 +54,9 @@ std::vector<uint8_t> meshesMatching(const Scene& scene, const std::vector<std::s
 int runBake(const BakeArgs& a) {
   // Check the output before the (possibly long) solve.
   const fs::path out(a.output);
-  std::string ext = out.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  if (ext != ".glb") throw Error(fmt::format("{}: output must end in .glb", a.output));
-  const fs::path dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir)) throw Error(fmt::format("{}: directory '{}' does not exist", a.output, dir.string()));
+  std::vector<OutputPath> paths{{"-o", a.output, {".glb"}}};
+  if (!a.tracePath.empty()) paths.push_back({"--progress-trace", a.tracePath, {}});
+  checkOutputPaths(paths);
   if (a.lightmaps && a.vertexColors)
     throw Error("--lightmaps and --vertex-colors exclude each other (--vertex-colors-for PATTERN picks meshes for "
                 "vertex colours beside lightmaps)");
@@ -82,7 +81,7 @@ int runBake(const BakeArgs& a) {
     const std::vector<uint8_t> vertexColored = meshesMatching(scene, a.vertexColorsFor);  // before the solve
     LightmapRecipe recipe;
     recipe.texelsPerMetre = a.texelsPerMetre;
-    recipe.texelBudget = a.solve.elements;
+    recipe.texelBudget = size_t(a.solve.elements);
     recipe.pageSize = a.lightmapSize;
     recipe.solve = so;
     const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
@@ -168,7 +167,7 @@ void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
   bake.add_option("--texels-per-metre", a.texelsPerMetre,
                   "Lightmap density (default: about --elements texels when given, else 5 texels per metre, Godot's "
                   "0.2 m texel, or more on a small scene: about 10,000 texels)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteRange(0.0, 1e6));
   bake.add_option("--lightmap-size", a.lightmapSize,
                   "Lightmap page size in texels (default: each bake's pages sized to their content, up to 1024)")
       ->check(CLI::Range(16, 16384));

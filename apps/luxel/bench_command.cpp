@@ -12,6 +12,7 @@
 #include <tbb/info.h>
 
 #include "io/atomic_file.h"
+#include "output_paths.h"
 #include "luxel/bench.h"
 #include "luxel/error.h"
 
@@ -106,12 +107,7 @@ int runBench(const BenchArgs& a) {
     return 0;
   }
   const Suite& suite = findSuite(a.suite);
-  if (!a.jsonPath.empty()) {
-    std::filesystem::path p(a.jsonPath);
-    std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-    if (!std::filesystem::is_directory(dir))
-      throw Error(fmt::format("{}: directory '{}' does not exist", a.jsonPath, dir.string()));
-  }
+  if (!a.jsonPath.empty()) checkOutputPaths({{"--json", a.jsonPath, {}}});
   std::unique_ptr<tbb::global_control> limit;
   if (a.threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
@@ -133,7 +129,7 @@ int runBench(const BenchArgs& a) {
     printHeader();
   }
   nlohmann::json cases = nlohmann::json::array();
-  int ran = 0;
+  int ran = 0, skipped = 0;
   for (const Case& c : suite.cases) {
     if (!a.filter.empty() && c.name.find(a.filter) == std::string::npos) continue;
     ++ran;
@@ -146,12 +142,14 @@ int runBench(const BenchArgs& a) {
       // A scene that is not there (the shared scenes) is reported and skipped, not fatal.
       std::cout << fmt::format("{:<34} skipped: {}\n", c.name, e.what());
       cases.push_back({{"name", c.name}, {"skipped", e.what()}});
+      ++skipped;
       continue;
     }
     if (!a.quiet) printRow(r);
     cases.push_back(caseJson(r));
   }
   if (ran == 0) throw Error(fmt::format("no case of suite '{}' matches '{}'", suite.name, a.filter));
+  if (skipped == ran) throw Error(fmt::format("every case of suite '{}' that ran ({}) was skipped; nothing measured", suite.name, ran));
 
   if (!a.jsonPath.empty()) {
     nlohmann::json j = {
@@ -165,11 +163,7 @@ int runBench(const BenchArgs& a) {
         {"date", m.date},
         {"cases", cases},
     };
-    writeFileAtomically(a.jsonPath, [&](const std::filesystem::path& tmp) {
-      std::ofstream out(tmp);
-      out << j.dump(2) << "\n";
-      if (!out) throw Error("cannot write");
-    });
+    writeTextAtomically(a.jsonPath, j.dump(2) + "\n");
     if (!a.quiet) std::cout << "luxel: wrote " << a.jsonPath << "\n";
   }
   return 0;

@@ -25,6 +25,7 @@
 #include "solve_args.h"
 #include "bench_command.h"
 #include "solvers_command.h"
+#include "output_paths.h"
 #include "progress_bar.h"
 
 namespace fs = std::filesystem;
@@ -78,17 +79,6 @@ Camera cameraFor(const Scene& scene, const RenderArgs& a) {
   return cam;
 }
 
-void checkOutputs(const std::vector<std::string>& outputs) {
-  for (const std::string& o : outputs) {
-    fs::path p(o);
-    std::string ext = p.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    if (ext != ".exr" && ext != ".png") throw Error(fmt::format("{}: output must end in .exr or .png", o));
-    fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir)) throw Error(fmt::format("{}: directory '{}' does not exist", o, dir.string()));
-  }
-}
-
 double meanLuminance(const Image& img) {
   double sum = 0.0;
   for (const Rgb& c : img.pixels) sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
@@ -96,7 +86,11 @@ double meanLuminance(const Image& img) {
 }
 
 int runRender(const RenderArgs& a) {
-  checkOutputs(a.outputs);
+  std::vector<cli::OutputPath> paths;
+  for (const std::string& o : a.outputs) paths.push_back({"-o", o, {".exr", ".png"}});
+  if (!a.statsPath.empty()) paths.push_back({"--stats", a.statsPath, {}});
+  if (!a.tracePath.empty()) paths.push_back({"--progress-trace", a.tracePath, {}});
+  cli::checkOutputPaths(paths);
   auto [width, height] = parseSize(a.size);
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0) threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
@@ -117,6 +111,7 @@ int runRender(const RenderArgs& a) {
   // "lightmap": bake lightmaps and show them as an engine would (luxel::renderLightmapped).
   const bool lightmapped = a.mode == "lightmap";
   ro.mode = lightmapped ? RenderOptions::Mode::Radiosity : parseRenderMode(a.mode);
+  validateRenderOptions(ro);  // before the solve, which can take a while
   ToneMap tm;
   tm.curve = parseToneCurve(a.toneCurve);
   tm.exposure = a.exposure;
@@ -130,7 +125,7 @@ int runRender(const RenderArgs& a) {
   if (lightmapped) {
     LightmapRecipe recipe;
     recipe.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize : 0.0f;
-    recipe.texelBudget = a.solve.elements;
+    recipe.texelBudget = size_t(a.solve.elements);
     recipe.solve = so;
     const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
     solution = baked.bake.solution;
@@ -142,7 +137,10 @@ int runRender(const RenderArgs& a) {
   }
   if (!a.quiet)
     for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
-  for (const std::string& o : a.outputs) writeImage(image, o, tm);
+  for (const std::string& o : a.outputs) {
+    if (cli::ProgressBar::interrupted()) throw Cancelled();  // between outputs, each written whole or not at all
+    writeImage(image, o, tm);
+  }
   bar.finish();
   bar.writeTrace();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -186,7 +184,7 @@ int main(int argc, char** argv) {
   render->add_option("--eye", ra.eye, "Camera position X,Y,Z");
   render->add_option("--target", ra.target, "Point the camera looks at X,Y,Z");
   render->add_option("--up", ra.up, "Camera up vector X,Y,Z");
-  render->add_option("--fov", ra.fov, "Vertical field of view in degrees")->check(CLI::Range(0.01f, 179.0f));
+  render->add_option("--fov", ra.fov, "Vertical field of view in degrees")->check(cli::finiteRange(0.01, 179.0));
   render->add_option("--size", ra.size, "Image size WxH")->capture_default_str();
   render->add_option("--spp", ra.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
   cli::addSolveOptions(*render, ra.solve);
@@ -196,7 +194,7 @@ int main(int argc, char** argv) {
   render->add_option("--progress-trace", ra.tracePath, "Write every progress report, timed, as tab-separated lines");
   render->add_option("--mode", ra.mode, "hq (exact direct light per pixel), radiosity (the seeds' display) or lightmap (bake lightmaps and show them as an engine would)")->capture_default_str();
   render->add_option("--tonemap", ra.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
-  render->add_option("--exposure", ra.exposure, "PNG exposure in stops, on top of auto exposure");
+  render->add_option("--exposure", ra.exposure, "PNG exposure in stops, on top of auto exposure")->check(cli::finiteRange(-64.0, 64.0));
 
   cli::BakeArgs ka;
   CLI::App* bake = app.add_subcommand("bake", "Solve a scene and write it as glTF binary with the lighting baked in");

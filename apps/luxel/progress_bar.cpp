@@ -24,7 +24,21 @@ namespace {
 std::atomic<bool> gInterrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free);
 
-extern "C" void onSigint(int) { gInterrupted.store(true); }
+// The first Ctrl-C asks the library to stop at its next progress report. A second one, or SIGTERM,
+// ends the process at once, as the user expects, after removing the temporary file an output was
+// being written to (the outputs themselves are only ever renamed into place complete).
+extern "C" void onSigint(int signal) {
+  if (!gInterrupted.exchange(true)) return;
+  removeTemporaryFilesNow();
+  ::signal(signal, SIG_DFL);
+  ::raise(signal);
+}
+
+extern "C" void onSigterm(int signal) {
+  removeTemporaryFilesNow();
+  ::signal(signal, SIG_DFL);
+  ::raise(signal);
+}
 
 constexpr int kBarWidth = 20;
 constexpr double kTerminalInterval = 0.1;  // seconds between redraws: ~10 Hz, cheap and smooth
@@ -60,14 +74,16 @@ ProgressBar::ProgressBar(bool quiet) : quiet_(quiet), terminal_(::isatty(STDERR_
   struct sigaction action {};
   action.sa_handler = onSigint;
   sigemptyset(&action.sa_mask);
-  // SA_RESETHAND: a second Ctrl-C gets the default action, for when cancelling takes too long.
-  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  action.sa_flags = SA_RESTART;
   ::sigaction(SIGINT, &action, &previousSigint_);
+  action.sa_handler = onSigterm;
+  ::sigaction(SIGTERM, &action, &previousSigterm_);
 }
 
 ProgressBar::~ProgressBar() {
   finish();
   ::sigaction(SIGINT, &previousSigint_, nullptr);
+  ::sigaction(SIGTERM, &previousSigterm_, nullptr);
   try {
     writeTrace();
   } catch (const std::exception& e) {
@@ -88,10 +104,9 @@ void ProgressBar::writeTrace() {
   if (tracePath_.empty()) return;
   const std::string path = std::exchange(tracePath_, {});
   writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    std::FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) throw Error("cannot open for writing");
-    for (const std::string& line : trace_) std::fputs(line.c_str(), f);
-    if (std::fclose(f) != 0) throw Error("write failed");
+    OutputFile out(tmp);
+    for (const std::string& line : trace_) out.write(line);
+    out.close();
   });
 }
 

@@ -18,9 +18,9 @@ namespace luxel::cli {
 class ProgressBar {
  public:
   // Installs a SIGINT handler (even when quiet) that makes update() return false, so the library
-  // stops at its next progress report and throws Cancelled. The handler resets itself after the
-  // first Ctrl-C, so a second one ends the process the usual way. The destructor restores the
-  // previous handler.
+  // stops at its next progress report and throws Cancelled. A second Ctrl-C, or a SIGTERM, ends the
+  // process the usual way after removing any output's temporary file. The destructor restores the
+  // previous handlers.
   explicit ProgressBar(bool quiet);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
@@ -65,6 +65,7 @@ class ProgressBar {
   std::string tracePath_;
   std::vector<std::string> trace_;
   struct sigaction previousSigint_ {};
+  struct sigaction previousSigterm_ {};
 };
 
 }  // namespace luxel::cli

@@ -18,6 +18,23 @@ void solverFlag(CLI::App& c, SolveArgs& a, const std::string& option, const std:
 
 }  // namespace
 
+CLI::Validator finiteRange(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0.0;
+        size_t used = 0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          return fmt::format("'{}' is not a number", text);
+        }
+        if (used != text.size()) return fmt::format("'{}' is not a number", text);
+        if (!std::isfinite(v) || v < lo || v > hi) return fmt::format("{} is not a finite number from {:g} to {:g}", text, lo, hi);
+        return {};
+      },
+      fmt::format("FINITE in [{:g}, {:g}]", lo, hi));
+}
+
 void addSolveOptions(CLI::App& c, SolveArgs& a) {
   a.command = &c;
   c.add_option("--solver", a.solver, "auto (progressive up to 5,000 patches, hierarchical above), or a registered solver: progressive, gather, "
@@ -25,11 +42,15 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
       ->capture_default_str();
   c.add_option("--backend", a.backend, "cpu, gl (OpenGL 4.5 hemicubes, headless) or auto (gl when a context can be made)")
       ->capture_default_str();
-  auto* elements = c.add_option("--elements", a.elements, "Element budget (default 10000)");
-  c.add_option("--element-size", a.elementSize, "Element edge length in scene units")->excludes(elements);
-  c.add_option("--refine", a.refine, "Adaptive refinement: extra elements allowed (0: off)");
+  auto* elements = c.add_option("--elements", a.elements, "Element budget (default 10000)")
+                       ->check(CLI::Range(int64_t(1), kMaxElementsOption));
+  c.add_option("--element-size", a.elementSize, "Element edge length in scene units")
+      ->check(finiteRange(1e-9, double(kMaxCoordinate)))
+      ->excludes(elements);
+  c.add_option("--refine", a.refine, "Adaptive refinement: extra elements allowed (0: off)")
+      ->check(CLI::Range(int64_t(0), kMaxElementsOption));
   c.add_option("--sky", a.sky, "Add a uniform sky of this radiance (W/(m2 sr), or cd/m2: 5000 is a bright overcast day)")
-      ->check(CLI::PositiveNumber);
+      ->check(finiteRange(0.0, double(kMaxRadiance)));
   c.add_option("--sun", a.sun, "Add a sun shining along X,Y,Z (the direction light travels), 100,000 lux, 0.53 degrees wide");
   c.add_option("--set", a.set, "A solver option NAME=VALUE (repeatable; luxel solvers lists each solver's)");
   solverFlag(c, a, "unshot", "progressive: stop below this unshot fraction (default 0.001)");
@@ -44,7 +65,7 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
 DiscretiseOptions discretiseOptions(const SolveArgs& a) {
   DiscretiseOptions d;
   if (a.elementSize > 0.0f) d.elementSize = a.elementSize;
-  if (a.elements > 0) d.elementBudget = a.elements;
+  if (a.elements > 0) d.elementBudget = size_t(a.elements);
   return d;
 }
 
@@ -70,7 +91,7 @@ SolveOptions solveOptions(const SolveArgs& a) {
   SolveOptions o;
   o.method = a.solver;
   o.backend = a.backend;
-  o.refine.budget = a.refine;
+  o.refine.budget = size_t(a.refine);
   for (const auto& [name, value] : a.flagged) o.settings.set(name, value);
   for (const std::string& s : a.set) o.settings.parse(s);
   return o;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,9 @@ namespace luxel::cli {
 struct SolveArgs {
   std::string solver = "auto";
   std::string backend = "cpu";
-  size_t elements = 0;
+  int64_t elements = 0;  // signed, so that "-1" is out of range rather than 2^64 - 1
   float elementSize = 0.0f;
-  size_t refine = 0;
+  int64_t refine = 0;
   std::vector<std::string> set;  // --set NAME=VALUE, any option of the chosen solver
   float sky = 0.0f;              // --sky RADIANCE: a uniform sky added to the scene
   std::string sun;               // --sun X,Y,Z: a sun travelling along this direction
@@ -28,6 +29,14 @@ struct SolveArgs {
   std::vector<std::pair<std::string, std::string>> flagged;
   CLI::App* command = nullptr;
 };
+
+// Most elements (or texels) a command line may ask for: a hundred million, about 30 GB of
+// surfaces and solution; a bigger scene needs a machine and a plan of its own.
+inline constexpr int64_t kMaxElementsOption = 100'000'000;
+
+// A check that a number is finite (CLI11's Range and PositiveNumber let NaN through: every
+// comparison with NaN is false) and within [lo, hi].
+CLI::Validator finiteRange(double lo, double hi);
 
 // Adds --solver, --backend, --elements / --element-size, --refine, --set NAME=VALUE, and the
 // flags kept for solver options: --unshot, --rays-per-pair, --shooters-per-pass,

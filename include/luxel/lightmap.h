@@ -132,6 +132,10 @@ struct LightmapRecipe {
   SolveOptions solve;
 };
 constexpr int kMaxDefaultPageSize = 1024;
+// Most texels a recipe may ask for (every texel is an element of the solve, ~300 bytes with its
+// solution): a hundred million is ~30 GB. The recipe checks the density against the scene's area
+// before building anything.
+constexpr double kMaxLightmapTexels = 1e8;
 // A game's density: Godot's default lightmap texel is 0.2 m (LightmapGI texel_scale 1), 5 texels
 // per metre, what it ships for a level. Luxel solves every texel as an element, so denser (Unity's
 // default 40 texels per unit, for its path tracer) costs 64x the texels of a solve.
@@ -146,7 +150,8 @@ struct BakedLightmaps {
 };
 BakedLightmaps bakeLightmaps(const Scene& scene, const LightmapRecipe& recipe, const ProgressCallback& progress = {});
 // The atlas options the recipe chooses for `scene` (density and pages); throws Error on a negative
-// density or page size.
+// or non-finite density or page size, and on a density that would give more than
+// kMaxLightmapTexels texels over the scene's faces.
 AtlasOptions lightmapAtlasOptions(const Scene& scene, const LightmapRecipe& recipe);
 
 // A page as an image, row 0 at the top (v = 1), for writeExr.
@@ -158,6 +163,8 @@ std::vector<uint8_t> encodeRgbmPng(const Image& image, float range);
 
 // The density that gives about `texels` texels over the scene's faces (0 for an empty scene).
 float texelsPerMetreForBudget(const Scene& scene, size_t texels);
+// The area of the scene's faces (one side), in square scene units.
+double sceneFaceArea(const Scene& scene);
 
 // Renders the scene as a real-time engine shows the bake: primary rays against the scene's faces,
 // L = Le + rho / pi * H with H sampled bilinearly from the lightmap pages (src/render/lightmap_renderer.cpp).

@@ -26,13 +26,23 @@ struct RenderOptions {
   uint32_t seed = 7;
 };
 
+inline constexpr int kMaxImageSide = 32768;
+// 16384 x 16384: the float image alone is 3 GiB, and a bigger poster is rendered in tiles.
+inline constexpr uint64_t kMaxImagePixels = uint64_t(16384) * 16384;
+
+// Throws Error when the options are absurd: a side outside [1, kMaxImageSide], more than
+// kMaxImagePixels pixels, samples outside [1, 65536], a field of view outside (0, 180) degrees, a
+// camera whose eye, target and up do not span a frame or lie beyond kMaxCoordinate. render() calls
+// it; a caller can call it before the solve, to fail early.
+void validateRenderOptions(const RenderOptions& options);
+
 struct RenderStats {
   double seconds = 0.0;
   uint64_t rays = 0;  // primary and shadow rays
 };
 
 // Renders `solution` of `surfaces` (discretised from `scene`). Throws Error on absurd options
-// (non-positive or over 32768 pixels a side, zero samples) and Cancelled on request.
+// (validateRenderOptions) and Cancelled on request.
 Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& solution,
              const RenderOptions& options, const ProgressCallback& progress = {},
              RenderStats* stats = nullptr);

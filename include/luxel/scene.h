@@ -121,6 +121,17 @@ struct Camera {
   float fovY = 45.0f;  // vertical field of view, degrees
 };
 
+// Limits every scene value obeys (Scene::validate), so that what is computed from them stays finite
+// in float: a face's area is a squared length, form factors divide by squared distances, and
+// energies are sums over millions of elements.
+//  - Coordinates (vertices, lights, cameras): |x| <= 1e9 scene units, a million km in metres. A
+//    cross product of two edges is then at most ~1e18 and its squared length ~1e37 < FLT_MAX.
+//    (Embree also rejects ray origins beyond ~1.8e18.)
+//  - Emitted radiance and light intensity times colour: at most 1e15 per channel, about a million
+//    times the sun's luminance (1.6e9 cd/m^2), so a million elements' summed power stays ~1e30.
+inline constexpr float kMaxCoordinate = 1e9f;
+inline constexpr float kMaxRadiance = 1e15f;
+
 struct Scene {
   std::string name;
   std::vector<Object> objects;

@@ -105,12 +105,12 @@ Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces,
   ref.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const uint64_t n = ref.radiosity.size();
   writeFileAtomically(ref.path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
+    OutputFile out(tmp);
     out.write(kMagic, 8);
-    out.write(reinterpret_cast<const char*>(&key), 8);
-    out.write(reinterpret_cast<const char*>(&n), 8);
-    out.write(reinterpret_cast<const char*>(ref.radiosity.data()), std::streamsize(n * sizeof(Rgb)));
-    if (!out) throw Error("cannot write");
+    out.write(&key, 8);
+    out.write(&n, 8);
+    out.write(ref.radiosity.data(), n * sizeof(Rgb));
+    out.close();
   });
   return ref;
 }

@@ -112,12 +112,11 @@ void saveFaceClusterTree(const std::filesystem::path& directory, uint64_t key, c
   h.clusterSize = sizeof(FaceCluster);
   h.checksum = checksum(tree);
   writeFileAtomically(fileFor(directory, key), [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(&h), sizeof h);
-    out.write(reinterpret_cast<const char*>(tree.nodes.data()), std::streamsize(tree.nodes.size() * sizeof(FaceCluster)));
-    out.write(reinterpret_cast<const char*>(tree.order.data()), std::streamsize(tree.order.size() * sizeof(uint32_t)));
+    OutputFile out(tmp);
+    out.write(&h, sizeof h);
+    out.write(tree.nodes.data(), tree.nodes.size() * sizeof(FaceCluster));
+    out.write(tree.order.data(), tree.order.size() * sizeof(uint32_t));
     out.close();
-    if (!out) throw Error("writing failed (disk full?)");
   });
 }
 

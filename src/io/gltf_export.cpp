@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <sstream>
 #include <limits>
 #include <map>
 #include <unordered_map>
@@ -504,14 +504,10 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
   }
   if (model.samplers.size() == 1 && model.textures.empty()) model.samplers.clear();
 
-  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw Error("cannot open for writing");
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, out, false, true)) throw Error("cannot write the glb");
-    out.close();
-    if (!out) throw Error("write failed (disk full?)");
-  });
+  std::ostringstream glb(std::ios::binary);
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, glb, false, true)) throw Error(fmt::format("{}: cannot encode the glb", path.string()));
+  writeTextAtomically(path, glb.view());
 }
 
 }  // namespace luxel

@@ -50,20 +50,31 @@ void writePng(const Image& image, const fs::path& path, const ToneMap& options) 
     bytes[3 * i + 1] = toByte(display[i].y);
     bytes[3 * i + 2] = toByte(display[i].z);
   }
+  // Encoded in memory and written through OutputFile: stb's own file writer ignores write errors.
+  std::vector<unsigned char> png;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+  };
+  // Row 0 is the top row in both Image and PNG, so no flip is needed.
+  if (!stbi_write_png_to_func(append, &png, image.width, image.height, 3, bytes.data(), image.width * 3))
+    throw Error(fmt::format("{}: cannot encode the PNG", path.string()));
   writeFileAtomically(path, [&](const fs::path& tmp) {
-    // Row 0 is the top row in both Image and PNG, so no flip is needed.
-    // stb reports only success or failure; errno from its fopen/fwrite says why.
-    errno = 0;
-    if (!stbi_write_png(tmp.c_str(), image.width, image.height, 3, bytes.data(),
-                        image.width * 3)) {
-      const int reason = errno;
-      throw Error(reason ? fmt::format("cannot write PNG: {}", std::strerror(reason))
-                         : std::string("cannot write PNG"));
-    }
+    OutputFile out(tmp);
+    out.write(png.data(), png.size());
+    out.close();
   });
 }
 
 void writeImage(const Image& image, const fs::path& path, const ToneMap& options) {
+  // The last line of defence: the solvers and renderers stop on non-finite values, and an image
+  // that still holds one is a defect to report, not a file to write.
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const Rgb& c = image.pixels[i];
+    if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b))
+      throw Error(fmt::format("{}: not written: pixel ({}, {}) is not finite", path.string(),
+                              image.width > 0 ? i % size_t(image.width) : 0, image.width > 0 ? i / size_t(image.width) : 0));
+  }
   const std::string ext = lowerExtension(path);
   if (ext == ".exr") {
     writeExr(image, path);

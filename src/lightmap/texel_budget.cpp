@@ -7,7 +7,7 @@
 
 namespace luxel {
 
-float texelsPerMetreForBudget(const Scene& scene, size_t texels) {
+double sceneFaceArea(const Scene& scene) {
   double area = 0.0;
   for (const Mesh& m : scene.meshes)
     for (const Face& f : m.faces) {
@@ -15,6 +15,11 @@ float texelsPerMetreForBudget(const Scene& scene, size_t texels) {
       area += 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
       if (!f.isTriangle()) area += 0.5 * glm::length(glm::cross(p2 - p0, p3 - p0));
     }
+  return area;
+}
+
+float texelsPerMetreForBudget(const Scene& scene, size_t texels) {
+  const double area = sceneFaceArea(scene);
   return area > 0.0 && texels > 0 ? float(std::sqrt(double(texels) / area)) : 0.0f;
 }
 

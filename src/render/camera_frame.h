@@ -10,8 +10,6 @@
 
 namespace luxel {
 
-constexpr int kMaxImageSide = 32768;
-
 struct CameraFrame {
   Vec3 eye, forward, right, up;
   float tanHalfY, aspect;
@@ -30,18 +28,5 @@ struct CameraFrame {
                           up * ((1.0f - 2.0f * sy) * tanHalfY));
   }
 };
-
-inline void validateRenderOptions(const RenderOptions& o) {
-  if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
-    throw Error(fmt::format("image size {}x{} must be between 1 and {} a side", o.width, o.height, kMaxImageSide));
-  if (o.samplesPerPixel < 1 || o.samplesPerPixel > 65536)
-    throw Error(fmt::format("samples per pixel {} must be between 1 and 65536", o.samplesPerPixel));
-  const Camera& c = o.camera;
-  if (!(c.fovY > 0.0f && c.fovY < 180.0f))
-    throw Error(fmt::format("camera '{}': field of view {} must be in (0, 180) degrees", c.name, c.fovY));
-  Vec3 f = c.target - c.eye;
-  if (!(glm::length(f) > 0.0f) || !(glm::length(glm::cross(f, c.up)) > 0.0f))
-    throw Error(fmt::format("camera '{}': eye, target and up must span a frame", c.name));
-}
 
 }  // namespace luxel

@@ -34,6 +34,30 @@ T interpolate(const T* c, int count, float u, float v) {
 
 }  // namespace
 
+void validateRenderOptions(const RenderOptions& o) {
+  if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide)
+    throw Error(fmt::format("image size {}x{} must be between 1 and {} a side", o.width, o.height, kMaxImageSide));
+  if (uint64_t(o.width) * uint64_t(o.height) > kMaxImagePixels)
+    throw Error(fmt::format("image size {}x{} is {:.0f} megapixels, over the limit of {:.0f} ({:.1f} GiB of radiance "
+                            "before any sampling)",
+                            o.width, o.height, double(o.width) * o.height / 1e6, double(kMaxImagePixels) / 1e6,
+                            double(o.width) * o.height * sizeof(Rgb) / double(1u << 30)));
+  if (o.samplesPerPixel < 1 || o.samplesPerPixel > 65536)
+    throw Error(fmt::format("samples per pixel {} must be between 1 and 65536", o.samplesPerPixel));
+  const Camera& c = o.camera;
+  if (!(c.fovY > 0.0f && c.fovY < 180.0f))
+    throw Error(fmt::format("camera '{}': field of view {} must be in (0, 180) degrees", c.name, c.fovY));
+  for (const Vec3& p : {c.eye, c.target, c.up})
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || std::abs(p.x) > kMaxCoordinate ||
+        std::abs(p.y) > kMaxCoordinate || std::abs(p.z) > kMaxCoordinate)
+      throw Error(fmt::format("camera '{}': eye ({:g}, {:g}, {:g}) and target ({:g}, {:g}, {:g}) must be finite and "
+                              "within {:g} scene units of the origin",
+                              c.name, c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, kMaxCoordinate));
+  const Vec3 f = c.target - c.eye;
+  if (!(glm::length(f) > 0.0f) || !(glm::length(glm::cross(f, c.up)) > 0.0f))
+    throw Error(fmt::format("camera '{}': eye, target and up must span a frame", c.name));
+}
+
 RenderOptions::Mode parseRenderMode(const std::string& name) {
   if (name == "radiosity") return RenderOptions::Mode::Radiosity;
   if (name == "hq" || name == "high-quality") return RenderOptions::Mode::HighQuality;

@@ -1,5 +1,6 @@
 #include "luxel/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@ namespace luxel {
 namespace {
 
 bool finite(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool inRange(Vec3 v) { return finite(v) && glm::all(glm::lessThanEqual(glm::abs(v), Vec3(kMaxCoordinate))); }
 
 }  // namespace
 
@@ -56,6 +58,10 @@ void Scene::validate() const {
       if (!std::isfinite(m.emission[c]) || m.emission[c] < 0.0f)
         throw Error(fmt::format("scene '{}': material '{}': emission {} is negative or not finite",
                                 name, m.name, m.emission[c]));
+      if (m.emission[c] > kMaxRadiance)
+        throw Error(fmt::format("scene '{}': material '{}': emission {:g} is over the limit of {:g} (a million "
+                                "times the sun's radiance; the light would overflow in float)",
+                                name, m.name, m.emission[c], kMaxRadiance));
     }
     for (int t : {m.reflectanceTexture, m.emissionTexture})
       if (t >= int(textures.size()))
@@ -76,9 +82,15 @@ void Scene::validate() const {
       if (!std::isfinite(mesh.lightmapUvs[i].x) || !std::isfinite(mesh.lightmapUvs[i].y))
         throw Error(fmt::format("scene '{}': mesh '{}': lightmap uv {} is not finite", name,
                                 mesh.name, i));
-    for (size_t i = 0; i < mesh.positions.size(); ++i)
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
       if (!finite(mesh.positions[i]))
         throw Error(fmt::format("scene '{}': mesh '{}': vertex {} is not finite", name, mesh.name, i));
+      if (!inRange(mesh.positions[i]))
+        throw Error(fmt::format("scene '{}': mesh '{}': vertex {} at ({:g}, {:g}, {:g}) is beyond {:g} scene units "
+                                "from the origin, where areas overflow in float",
+                                name, mesh.name, i, mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z,
+                                kMaxCoordinate));
+    }
     for (size_t f = 0; f < mesh.faces.size(); ++f)
       for (uint32_t v : mesh.faces[f].v)
         if (v >= mesh.positions.size())
@@ -104,10 +116,21 @@ void Scene::validate() const {
     if (!finite(l.position) || !finite(l.direction))
       throw Error(fmt::format("scene '{}': light '{}': position or direction is not finite", name,
                               l.name));
+    if (!inRange(l.position))
+      throw Error(fmt::format("scene '{}': light '{}': position is beyond {:g} scene units from the origin", name,
+                              l.name, kMaxCoordinate));
+    if (l.intensity * std::max({l.color.r, l.color.g, l.color.b}) > kMaxRadiance)
+      throw Error(fmt::format("scene '{}': light '{}': intensity {:g} times colour is over the limit of {:g} "
+                              "(the light would overflow in float)",
+                              name, l.name, l.intensity, kMaxRadiance));
     bool directed = l.type == Light::Type::Spot || l.type == Light::Type::Directional;
     if (directed && glm::length(l.direction) < 1e-12f)
       throw Error(fmt::format("scene '{}': light '{}': direction is zero", name, l.name));
   }
+  for (const Camera& c : cameras)
+    if (!inRange(c.eye) || !inRange(c.target) || !finite(c.up))
+      throw Error(fmt::format("scene '{}': camera '{}': eye, target or up is not finite or beyond {:g} scene units "
+                              "from the origin", name, c.name, kMaxCoordinate));
   if (glm::length(up) < 1e-12f || !finite(up))
     throw Error(fmt::format("scene '{}': up vector is zero or not finite", name));
   for (const Mesh& mesh : meshes)

@@ -94,12 +94,22 @@ Rgb Texture::mean() const {
   return Rgb(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
 }
 
+void checkTextureSize(const std::string& path, long long width, long long height) {
+  if (width <= 0 || height <= 0 || width * height > kMaxTexturePixels)
+    throw Error(fmt::format("texture '{}': {} x {} texels is {:.0f} megapixels, over the limit of {:.0f} (8192 x 8192; "
+                            "{:.1f} GiB as linear float); scale it down",
+                            path, width, height, double(width) * double(height) / 1e6, double(kMaxTexturePixels) / 1e6,
+                            double(width) * double(height) * sizeof(Rgb) / double(1u << 30)));
+}
+
 Texture decodeTexture(const unsigned char* data, size_t size, bool srgb, const std::string& path) {
   if (size == 0) throw Error(fmt::format("texture '{}': file is empty", path));
   if (size > size_t(std::numeric_limits<int>::max()))
     throw Error(fmt::format("texture '{}': file is too large ({} bytes)", path, size));
   int len = int(size);
   int w = 0, h = 0, channels = 0;
+  // The header's size first: a few hundred kilobytes of PNG can claim 16000 x 16000 (6 GiB decoded).
+  if (stbi_info_from_memory(data, len, &w, &h, &channels)) checkTextureSize(path, w, h);
   Texture tex;
   tex.path = path;
   std::vector<Rgb> rows;  // top row first, as stb_image returns it
@@ -109,8 +119,12 @@ Texture decodeTexture(const unsigned char* data, size_t size, bool srgb, const s
     std::unique_ptr<float, StbFree> px(stbi_loadf_from_memory(data, len, &w, &h, &channels, 3));
     if (!px) throw Error(failure(path));
     rows.resize(size_t(w) * size_t(h));
-    for (size_t i = 0; i < rows.size(); ++i)
+    for (size_t i = 0; i < rows.size(); ++i) {
       rows[i] = Rgb(px.get()[3 * i], px.get()[3 * i + 1], px.get()[3 * i + 2]);
+      if (!(std::max({rows[i].r, rows[i].g, rows[i].b}) <= kMaxRadiance))  // also NaN
+        throw Error(fmt::format("texture '{}': texel ({}, {}) is {:g}, over the limit of {:g} for light in float", path,
+                                i % size_t(w), i / size_t(w), std::max({rows[i].r, rows[i].g, rows[i].b}), kMaxRadiance));
+    }
   } else if (stbi_is_16_bit_from_memory(data, len)) {
     std::unique_ptr<stbi_us, StbFree> px(stbi_load_16_from_memory(data, len, &w, &h, &channels, 3));
     if (!px) throw Error(failure(path));

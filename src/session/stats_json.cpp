@@ -54,12 +54,7 @@ std::string statsJson(const RunRecord& r) {
 
 void writeStatsJson(const RunRecord& record, const std::filesystem::path& path) {
   const std::string text = statsJson(record);
-  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.flush();
-    if (!out) throw Error("cannot write statistics");
-  });
+  writeTextAtomically(path, text);
 }
 
 }  // namespace luxel

@@ -3,7 +3,9 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <initializer_list>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -49,8 +51,9 @@ struct CliRun {
 };
 
 // Runs `luxel ARGS` in `dir` (the working directory), capturing stdout, stderr and the exit code.
-CliRun luxel(const fs::path& dir, const std::vector<std::string>& args) {
-  std::string cmd = "cd " + quote(dir.string()) + " && " + quote(LUXEL_CLI);
+// `shellSetup` runs first in the same shell (limits: "ulimit -f 8; "), and luxel is exec'd.
+CliRun luxel(const fs::path& dir, const std::vector<std::string>& args, const std::string& shellSetup = "") {
+  std::string cmd = "cd " + quote(dir.string()) + " && " + shellSetup + "exec " + quote(LUXEL_CLI);
   for (const std::string& a : args) cmd += " " + quote(a);
   const fs::path outFile = dir.parent_path() / (dir.filename().string() + ".stdout");
   const fs::path errFile = dir.parent_path() / (dir.filename().string() + ".stderr");
@@ -61,6 +64,42 @@ CliRun luxel(const fs::path& dir, const std::vector<std::string>& args) {
   r.out = readFile(outFile);
   r.err = readFile(errFile);
   return r;
+}
+
+inline std::vector<std::string> listDir(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) names.push_back(fs::relative(entry.path(), dir).string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+inline std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& x : v) s += x + " ";
+  return s;
+}
+
+inline void expectNoTemporaries(const fs::path& dir) {
+  for (const std::string& name : listDir(dir)) EXPECT_EQ(name.find(".tmp"), std::string::npos) << "left behind: " << name;
+}
+
+// A failed run: exit code 1, an error on stderr containing every one of `parts`, and `dir` still
+// holding exactly `before`.
+inline void expectFailure(const CliRun& r, const fs::path& dir, const std::vector<std::string>& before,
+                   std::initializer_list<std::string> parts, int code = 1) {
+  EXPECT_EQ(r.code, code) << r.err;
+  EXPECT_NE(r.err.find(code == 2 ? "" : "luxel: error:"), std::string::npos) << r.err;
+  for (const std::string& p : parts) EXPECT_NE(r.err.find(p), std::string::npos) << "'" << p << "' not in: " << r.err;
+  EXPECT_EQ(listDir(dir), before) << "now: " << joined(listDir(dir));
+  expectNoTemporaries(dir);
+}
+
+const std::vector<std::string> kQuick = {"--size", "8x8", "--elements", "200", "-q"};
+
+inline std::vector<std::string> args(std::initializer_list<std::string> first, const std::vector<std::string>& rest = kQuick) {
+  std::vector<std::string> a(first);
+  a.insert(a.end(), rest.begin(), rest.end());
+  return a;
 }
 
 }  // namespace

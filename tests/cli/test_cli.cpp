@@ -32,42 +32,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> listDir(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) names.push_back(fs::relative(entry.path(), dir).string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-std::string joined(const std::vector<std::string>& v) {
-  std::string s;
-  for (const std::string& x : v) s += x + " ";
-  return s;
-}
-
-void expectNoTemporaries(const fs::path& dir) {
-  for (const std::string& name : listDir(dir)) EXPECT_EQ(name.find(".tmp"), std::string::npos) << "left behind: " << name;
-}
-
-// A failed run: exit code 1, an error on stderr containing every one of `parts`, and `dir` still
-// holding exactly `before`.
-void expectFailure(const CliRun& r, const fs::path& dir, const std::vector<std::string>& before,
-                   std::initializer_list<std::string> parts, int code = 1) {
-  EXPECT_EQ(r.code, code) << r.err;
-  EXPECT_NE(r.err.find(code == 2 ? "" : "luxel: error:"), std::string::npos) << r.err;
-  for (const std::string& p : parts) EXPECT_NE(r.err.find(p), std::string::npos) << "'" << p << "' not in: " << r.err;
-  EXPECT_EQ(listDir(dir), before) << "now: " << joined(listDir(dir));
-  expectNoTemporaries(dir);
-}
-
-const std::vector<std::string> kQuick = {"--size", "8x8", "--elements", "200", "-q"};
-
-std::vector<std::string> args(std::initializer_list<std::string> first, const std::vector<std::string>& rest = kQuick) {
-  std::vector<std::string> a(first);
-  a.insert(a.end(), rest.begin(), rest.end());
-  return a;
-}
-
 TEST(Cli, RenderWritesImagesAndStatsThatAgreeWithTheLibrary) {
   fs::path dir = scratchDir();
   CliRun r = luxel(dir, {"render", "cornell", "-o", "out.exr", "-o", "out.png", "--size", "64x64", "--elements", "1500",

@@ -469,6 +469,44 @@ TEST(AtomicFile, ReplacesExistingFileWithTemporaryBesideIt) {
   EXPECT_EQ(content, "new");
 }
 
+// What a SIGTERM handler calls before the process ends: the temporary file being written goes.
+TEST(AtomicFile, ASignalHandlerCanRemoveTheTemporaryBeingWritten) {
+  const fs::path dir = scratchDir();
+  const fs::path path = dir / "big.exr";
+  bool existed = false, removed = false;
+  luxel::writeFileAtomically(path, [&](const fs::path& tmp) {
+    luxel::OutputFile out(tmp);
+    out.write("partial");
+    out.close();
+    existed = fs::exists(tmp);
+    luxel::removeTemporaryFilesNow();
+    removed = !fs::exists(tmp);
+    std::ofstream(tmp) << "whole";  // the handler would end the process here; this run goes on
+  });
+  EXPECT_TRUE(existed);
+  EXPECT_TRUE(removed);
+  // Once installed, the output is no longer a temporary: a later signal leaves it.
+  luxel::removeTemporaryFilesNow();
+  EXPECT_EQ(listDir(dir), std::vector<std::string>{"big.exr"});
+}
+
+// A write the file system refuses (the file size limit here, as a full disk would) is an error,
+// where a stream or stb's writer would report success with a short file.
+TEST(AtomicFile, OutputFileReportsAShortWrite) {
+  const fs::path dir = scratchDir();
+  luxel::OutputFile out(dir / "f");
+  std::string big(1 << 20, 'x');
+  out.write(big);
+  EXPECT_NO_THROW(out.close());
+  luxel::OutputFile full("/dev/full");
+  EXPECT_THROW(
+      {
+        full.write(big);
+        full.close();
+      },
+      luxel::Error);
+}
+
 TEST(AtomicFile, FailedRenameRemovesTemporary) {
   const fs::path dir = scratchDir();
   const fs::path path = dir / "taken.png";

@@ -26,8 +26,11 @@
 #include "luxel/error.h"
 #include "luxel/import.h"
 #include "luxel/resources.h"
+#include "core/large_stack.h"
+#include "scene/coincident_faces.h"
 #include "scene/import/assimp_io.h"
 #include "scene/import/gltf_extras.h"
+#include "scene/import/ply_header.h"
 #include "scene/import/quads.h"
 #include "scene/import/resource_path.h"
 #include "scene/import/transform.h"
@@ -303,6 +306,7 @@ class AssimpImport {
       return decodeTexture(reinterpret_cast<const unsigned char*>(t.pcData), t.mWidth, srgb, name);
     }
     // Raw BGRA8 texels, top row first like every image format.
+    checkTextureSize(name, t.mWidth, t.mHeight);
     Texture tex;
     tex.path = name;
     tex.width = int(t.mWidth);
@@ -319,24 +323,31 @@ class AssimpImport {
     return tex;
   }
 
-  void importNode(const aiNode* node, const glm::mat4& parent, std::vector<int>& uses) {
-    if (!node) return;
-    glm::mat4 global = parent * toGlm(node->mTransformation);
-    // A node with meshes is an object: its meshes are placed by its global transform.
-    const size_t firstMesh = scene_.meshes.size();
-    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
-      unsigned index = node->mMeshes[k];
-      if (index >= ai_.mNumMeshes) continue;
-      importMesh(index, global, uses[index]++);
+  // Depth first, parents before children, children in order; with an explicit stack, because a
+  // file can nest nodes deeper than the call stack goes.
+  void importNode(const aiNode* root, const glm::mat4& rootParent, std::vector<int>& uses) {
+    std::vector<std::pair<const aiNode*, glm::mat4>> pending{{root, rootParent}};
+    while (!pending.empty()) {
+      const auto [node, parent] = pending.back();
+      pending.pop_back();
+      if (!node) continue;
+      const glm::mat4 global = parent * toGlm(node->mTransformation);
+      // A node with meshes is an object: its meshes are placed by its global transform.
+      const size_t firstMesh = scene_.meshes.size();
+      for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+        unsigned index = node->mMeshes[k];
+        if (index >= ai_.mNumMeshes) continue;
+        importMesh(index, global, uses[index]++);
+      }
+      if (scene_.meshes.size() > firstMesh) {
+        const uint32_t object = uint32_t(scene_.objects.size());
+        std::string name = node->mName.length > 0 ? std::string(node->mName.C_Str())
+                                                  : fmt::format("{}#node{}", path_.filename().string(), object);
+        scene_.objects.push_back(Object{.name = std::move(name), .transform = global});
+        for (size_t m = firstMesh; m < scene_.meshes.size(); ++m) scene_.meshes[m].object = object;
+      }
+      for (unsigned c = node->mNumChildren; c-- > 0;) pending.emplace_back(node->mChildren[c], global);
     }
-    if (scene_.meshes.size() > firstMesh) {
-      const uint32_t object = uint32_t(scene_.objects.size());
-      std::string name = node->mName.length > 0 ? std::string(node->mName.C_Str())
-                                                : fmt::format("{}#node{}", path_.filename().string(), object);
-      scene_.objects.push_back(Object{.name = std::move(name), .transform = global});
-      for (size_t m = firstMesh; m < scene_.meshes.size(); ++m) scene_.meshes[m].object = object;
-    }
-    for (unsigned c = 0; c < node->mNumChildren; ++c) importNode(node->mChildren[c], global, uses);
   }
 
   void importMesh(unsigned index, const glm::mat4& transform, int instance) {
@@ -553,17 +564,38 @@ std::string assimpMainPath(const std::string& name, std::string hint) {
 
 }  // namespace
 
+namespace {
+Scene importMeshOnThisStack(std::span<const std::byte> bytes, std::string_view formatHint,
+                            const ResourceReader& resources, std::string_view name);
+}  // namespace
+
 Scene importMesh(std::span<const std::byte> bytes, std::string_view formatHint,
                  const ResourceReader& resources, std::string_view name) {
+  Scene scene;
+  // Assimp recurses as deep as the file's nodes nest (and so does freeing them).
+  runOnLargeStack([&] { scene = importMeshOnThisStack(bytes, formatHint, resources, name); });
+  return scene;
+}
+
+namespace {
+
+Scene importMeshOnThisStack(std::span<const std::byte> bytes, std::string_view formatHint,
+                            const ResourceReader& resources, std::string_view name) {
   const std::string file(name);
   const std::string assimpPath = assimpMainPath(file, std::string(formatHint));
+  checkPlyCounts(bytes, file);
 
   Assimp::Importer importer;
   importer.SetIOHandler(new ResourceIOSystem(assimpPath, bytes, resources));  // owned by importer
   // Read without post-processing first: validation would reject a file without faces as
   // "Mesh contains no faces", and "contains no triangles" says what is wrong.
   const aiScene* ai = importer.ReadFile(assimpPath, 0);
-  if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
+  if (!ai) {
+    const std::string hint = lower(std::string(formatHint));
+    if (hint == "gltf" || hint == ".gltf" || hint == "glb" || hint == ".glb")
+      if (const std::optional<std::string> why = gltfJsonError(bytes)) throw Error(fmt::format("{}: {}", file, *why));
+    throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
+  }
   if (!ai->mRootNode || !hasPolygons(*ai))
     throw Error(fmt::format("{}: contains no triangles", file));
   // Points and lines carry no area: drop them rather than get meshes of them. Validation runs
@@ -574,8 +606,12 @@ Scene importMesh(std::span<const std::byte> bytes, std::string_view formatHint,
                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
   if (ai->mNumMeshes == 0) throw Error(fmt::format("{}: contains no triangles", file));
-  return AssimpImport(file, assimpPath, bytes, resources, *ai).run();
+  Scene scene = AssimpImport(file, assimpPath, bytes, resources, *ai).run();
+  removeCoincidentFaces(scene);
+  return scene;
 }
+
+}  // namespace
 
 Scene importMeshFile(const fs::path& path) {
   const std::string file = path.string();

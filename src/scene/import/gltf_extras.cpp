@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 namespace luxel {
@@ -41,6 +42,31 @@ bool near(Rgb a, Rgb b) {
 }
 
 }  // namespace
+
+std::optional<std::string> gltfJsonError(std::span<const std::byte> bytes) {
+  const char* text = reinterpret_cast<const char*>(bytes.data());
+  const char* begin = text;
+  const char* end = text + bytes.size();
+  size_t offset = 0;
+  if (bytes.size() >= 20 && readU32(bytes, 0) == kGlbMagic) {
+    const uint32_t chunkLength = readU32(bytes, 12);
+    if (readU32(bytes, 16) != kGlbJsonChunk) return "the GLB's first chunk is not JSON";
+    if (size_t(chunkLength) > bytes.size() - 20)
+      return fmt::format("the GLB's JSON chunk claims {} bytes, but {} follow", chunkLength, bytes.size() - 20);
+    offset = 20, begin = text + 20, end = begin + chunkLength;
+  }
+  try {
+    const json parsed = json::parse(begin, end);
+    (void)parsed;
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    if (const size_t close = what.find("] "); close != std::string::npos) what = what.substr(close + 2);
+    return fmt::format("invalid JSON at byte {}: {}", e.byte + offset, what);
+  } catch (const json::exception& e) {
+    return fmt::format("invalid JSON: {}", e.what());
+  }
+  return std::nullopt;
+}
 
 std::optional<GltfExtras> readGltfExtras(std::span<const std::byte> bytes) {
   if (bytes.empty()) return std::nullopt;

@@ -39,6 +39,11 @@ struct GltfExtras {
 // is nothing extra to read.
 std::optional<GltfExtras> readGltfExtras(std::span<const std::byte> bytes);
 
+// Why the JSON of a .gltf file, or of a .glb's JSON chunk, does not parse ("invalid JSON at byte
+// 1234: ..."); nullopt when it parses. For the message when Assimp rejects a glTF file: its own is
+// "No suitable reader found", which does not say where the file breaks.
+std::optional<std::string> gltfJsonError(std::span<const std::byte> bytes);
+
 // The emissive strength of the glTF material that Assimp turned into a material with this name and
 // these factors; 1 when none matches. `ambiguous` is set when several match with different
 // strengths (the first is returned).
