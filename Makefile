@@ -1,10 +1,12 @@
 # Thin wrapper over CMake. `make demo` and `make test` work on a fresh Debian 12 machine.
 BUILD      ?= build
 BUILD_ASAN ?= build-asan
+BUILD_FUZZ ?= build-fuzz
+FUZZ_SECONDS ?= 60
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: deps configure build demo test asan bench bench-suite bench-peer clean
+.PHONY: deps configure build demo test asan fuzz bench bench-suite bench-peer clean
 
 deps:
 	./scripts/install-deps.sh
@@ -33,6 +35,14 @@ asan: deps
 	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow -R '^Gl'
 
+# libFuzzer harnesses (fuzz/) built with clang, ASan and UBSan, each run FUZZ_SECONDS (docs/fuzzing.md).
+fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(BUILD_FUZZ) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLUXEL_FUZZ=ON \
+	  -DLUXEL_BUILD_TESTS=OFF -DLUXEL_BUILD_BENCH=OFF $(CMAKE_ARGS)
+	cmake --build $(BUILD_FUZZ) -j $(JOBS) --target fuzz-mesh-obj fuzz-mesh-gltf fuzz-mesh-glb fuzz-mesh-ply \
+	  fuzz-mesh-dae fuzz-mesh-fbx fuzz-scene-json fuzz-texture
+	./fuzz/run.sh $(BUILD_FUZZ) $(FUZZ_SECONDS)
+
 bench: build
 	./$(BUILD)/luxel-bench --benchmark_min_time=0.5
 
@@ -47,4 +57,4 @@ bench-peer: build
 	./bench/peers/run_cornell.sh
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN) out
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ) out

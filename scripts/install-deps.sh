@@ -12,6 +12,8 @@ packages=(
   libmeshoptimizer-dev
   # content hashes: the keys of the face-cluster hierarchy's disk cache and the bench's references
   libxxhash-dev
+  # `make fuzz`: clang with libFuzzer and the sanitizer runtimes (fuzz/, docs/fuzzing.md)
+  clang libclang-rt-14-dev
   # Mesa: its EGL driver and llvmpipe give a headless OpenGL 4.5 context with no GPU (tests/gl)
   libegl-mesa0 libgl1-mesa-dri
 )

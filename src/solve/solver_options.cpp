@@ -50,7 +50,8 @@ std::string optionNames(const std::vector<SolverOption>& declared) {
 SolverOptionValues::SolverOptionValues(std::string solver, const std::vector<SolverOption>& declared,
                                        const SolverSettings& settings)
     : solver_(std::move(solver)) {
-  for (const auto& [name, text] : settings.values()) {
+  for (const auto& entry : settings.values()) {
+    const std::string& name = entry.first;  // a structured binding cannot be captured before clang 16 (make fuzz)
     auto it = std::find_if(declared.begin(), declared.end(), [&](const SolverOption& o) { return o.name == name; });
     if (it == declared.end())
       throw Error(fmt::format("{} has no option '{}' (its options: {})", solver_, name, optionNames(declared)));

@@ -88,6 +88,25 @@ TEST(HostileLoaders, APlyHeaderClaimingMoreThanTheFileHoldsIsRefusedAtOnce) {
             std::string::npos);
 }
 
+// Inputs fuzz-mesh-ply and fuzz-mesh-glb found crashing or exhausting Assimp 5.2: a binary PLY whose
+// header breaks off before end_header, and a GLB whose JSON chunk claims 1.7 GB.
+TEST(HostileLoaders, FuzzFindingsAreErrorsBeforeAssimpSeesThem) {
+  const MemoryResourceReader none;
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\npr";
+  ply += std::string("\x80?\0\0\x80?\0\x80?\0\0\0\0\0\0\0\0\0\0\x80?\0\0\x80?\0\0\x01\0\0\0\x02\0\0\0", 36);
+  EXPECT_NE(errorOf([&] { importMesh(bytesOf(ply), "ply", none, "cut.ply"); }).find("no end_header"), std::string::npos);
+  std::string glb("glTF\x02\0\0\0", 8);
+  const auto u32 = [&](uint32_t v) {
+    for (int s = 0; s < 32; s += 8) glb += char((v >> s) & 0xFF);
+  };
+  u32(40);
+  u32(0x6500217C);  // the JSON chunk's claimed length
+  glb += "JSON{\"asset\":{\"version\":\"2.0\"}}";
+  const std::string message = errorOf([&] { importMesh(bytesOf(glb), "glb", none, "claims.glb"); });
+  EXPECT_NE(message.find("claims.glb: a GLB chunk at byte 12 claims 1694507388 bytes"), std::string::npos) << message;
+}
+
 TEST(HostileLoaders, GltfThatIsNotJsonSaysWhereItBreaks) {
   const std::string broken = R"({"asset": {"version": "2.0"}, "nodes": [ {"mesh": 0}, ])";
   const MemoryResourceReader none;

@@ -584,6 +584,7 @@ Scene importMeshOnThisStack(std::span<const std::byte> bytes, std::string_view f
   const std::string file(name);
   const std::string assimpPath = assimpMainPath(file, std::string(formatHint));
   checkPlyCounts(bytes, file);
+  checkGlbLayout(bytes, file);
 
   Assimp::Importer importer;
   importer.SetIOHandler(new ResourceIOSystem(assimpPath, bytes, resources));  // owned by importer

@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "luxel/error.h"
+
 namespace luxel {
 namespace {
 
@@ -42,6 +44,22 @@ bool near(Rgb a, Rgb b) {
 }
 
 }  // namespace
+
+void checkGlbLayout(std::span<const std::byte> bytes, const std::string& file) {
+  if (bytes.size() < 4 || readU32(bytes, 0) != kGlbMagic) return;
+  if (bytes.size() < 20) throw Error(fmt::format("{}: a GLB of {} bytes is shorter than its 20-byte header", file, bytes.size()));
+  if (readU32(bytes, 4) != 2) throw Error(fmt::format("{}: GLB version {} (luxel reads glTF 2.0)", file, readU32(bytes, 4)));
+  const uint64_t length = readU32(bytes, 8);
+  if (length > bytes.size() || length < 20)
+    throw Error(fmt::format("{}: the GLB header declares {} bytes, but the file holds {}", file, length, bytes.size()));
+  if (readU32(bytes, 16) != kGlbJsonChunk) throw Error(fmt::format("{}: the GLB's first chunk is not JSON", file));
+  for (uint64_t at = 12; at + 8 <= length;) {
+    const uint64_t chunk = readU32(bytes, size_t(at));
+    if (at + 8 + chunk > length)
+      throw Error(fmt::format("{}: a GLB chunk at byte {} claims {} bytes, past the file's {}", file, at, chunk, length));
+    at += 8 + chunk;
+  }
+}
 
 std::optional<std::string> gltfJsonError(std::span<const std::byte> bytes) {
   const char* text = reinterpret_cast<const char*>(bytes.data());

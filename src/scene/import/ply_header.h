@@ -8,10 +8,10 @@
 
 namespace luxel {
 
-// When `bytes` start as a PLY file ("ply" and a header up to "end_header"), throws Error naming
-// `file` if the elements the header declares need more bytes than follow it: at least each scalar
-// property's size (binary) or two characters a value (ASCII), and a list's count. Anything else
-// (not PLY, a header Assimp will reject anyway) is left to Assimp.
+// When `bytes` start as a PLY file ("ply" on its own line), throws Error naming `file` if the
+// header is malformed (no end_header, no format, an unknown keyword, format or type) or the
+// elements it declares need more bytes than follow it: at least each scalar property's size
+// (binary) or two characters a value (ASCII), and a list's count. Anything not PLY is left alone.
 void checkPlyCounts(std::span<const std::byte> bytes, const std::string& file);
 
 }  // namespace luxel
