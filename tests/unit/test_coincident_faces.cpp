@@ -58,12 +58,18 @@ TEST(CoincidentFaces, AnUndoubledSceneIsLeftAlone) {
   EXPECT_TRUE(scene.warnings.empty());
 }
 
-TEST(CoincidentFaces, OppositeFacingPairsAndNearbyFacesStay) {
+// A scene of one white unit square, a b c d, in the plane z = 0 (its first mesh, `first`).
+const Vec3 a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0);
+Scene wall(const std::string& first) {
   Scene scene;
   scene.name = "wall";
   scene.materials.push_back(Material{.name = "white"});
-  const Vec3 a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0);
-  scene.meshes.push_back(quad(a, b, c, d, 0, "front"));
+  scene.meshes.push_back(quad(a, b, c, d, 0, first));
+  return scene;
+}
+
+TEST(CoincidentFaces, OppositeFacingPairsAndNearbyFacesStay) {
+  Scene scene = wall("front");
   scene.meshes.push_back(quad(a, d, c, b, 0, "back"));  // the other side of a thin wall
   const Vec3 off(0, 0, 1e-3f);  // a millimetre in front: a separate face (1e-3 of the extent)
   scene.meshes.push_back(quad(a + off, b + off, c + off, d + off, 0, "offset"));
@@ -72,11 +78,7 @@ TEST(CoincidentFaces, OppositeFacingPairsAndNearbyFacesStay) {
 }
 
 TEST(CoincidentFaces, NearlyCoincidentCopiesInAnyStartingCornerGo) {
-  Scene scene;
-  scene.name = "wall";
-  scene.materials.push_back(Material{.name = "white"});
-  const Vec3 a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0);
-  scene.meshes.push_back(quad(a, b, c, d, 0, "first"));
+  Scene scene = wall("first");
   const Vec3 e(2e-7f, -1e-7f, 1e-7f);  // float rounding of a copy placed by another transform
   scene.meshes.push_back(quad(c + e, d + e, a + e, b + e, 0, "copy"));  // same winding, other first corner
   EXPECT_EQ(removeCoincidentFaces(scene), 1u);
@@ -89,9 +91,9 @@ TEST(CoincidentFaces, TheEmittingCopyStays) {
   scene.name = "lamp";
   scene.materials.push_back(Material{.name = "ceiling"});
   scene.materials.push_back(Material{.name = "light", .reflectance = Rgb(0.0f), .emission = Rgb(10.0f)});
-  const Vec3 a(0, 1, 0), b(0, 1, 1), c(1, 1, 1), d(1, 1, 0);
-  scene.meshes.push_back(quad(a, b, c, d, 0, "ceiling"));
-  scene.meshes.push_back(quad(b, c, d, a, 1, "light"));
+  const Vec3 p0(0, 1, 0), p1(0, 1, 1), p2(1, 1, 1), p3(1, 1, 0);
+  scene.meshes.push_back(quad(p0, p1, p2, p3, 0, "ceiling"));
+  scene.meshes.push_back(quad(p1, p2, p3, p0, 1, "light"));
   EXPECT_EQ(removeCoincidentFaces(scene), 1u);
   ASSERT_EQ(scene.meshes.size(), 1u);
   EXPECT_EQ(scene.meshes[0].name, "light");
