@@ -56,6 +56,7 @@ int runBake(const BakeArgs& a) {
   const fs::path out(a.output);
   std::vector<OutputPath> paths{{"-o", a.output, {".glb"}}};
   if (!a.tracePath.empty()) paths.push_back({"--progress-trace", a.tracePath, {}});
+  for (OutputPath& p : checkpointOutputs(a.solve)) paths.push_back(std::move(p));
   checkOutputPaths(paths);
   if (a.lightmaps && a.vertexColors)
     throw Error("--lightmaps and --vertex-colors exclude each other (--vertex-colors-for PATTERN picks meshes for "

@@ -90,6 +90,7 @@ int runRender(const RenderArgs& a) {
   for (const std::string& o : a.outputs) paths.push_back({"-o", o, {".exr", ".png"}});
   if (!a.statsPath.empty()) paths.push_back({"--stats", a.statsPath, {}});
   if (!a.tracePath.empty()) paths.push_back({"--progress-trace", a.tracePath, {}});
+  for (cli::OutputPath& p : cli::checkpointOutputs(a.solve)) paths.push_back(std::move(p));
   cli::checkOutputPaths(paths);
   auto [width, height] = parseSize(a.size);
   std::unique_ptr<tbb::global_control> threads;

@@ -1,6 +1,7 @@
 #include "solve_args.h"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -59,6 +60,15 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
   solverFlag(c, a, "hemicube-resolution", "gl: hemicube top-face pixels a side (default 64 shooting, 256 gathering)");
   solverFlag(c, a, "hemicubes-per-side", "gl: k x k hemicubes per shooting patch (default 3) or per gathering element (default 2)");
   solverFlag(c, a, "emitter-hemicubes-per-side", "gl progressive: k x k hemicubes for an emitting patch's first shot (default 6; 0: as other shooters)");
+  c.add_option("--checkpoint", a.checkpoint,
+               "Write the solve's state to this file at intervals, on Ctrl-C and at the end, for --resume "
+               "(CPU progressive, gather and hierarchical)");
+  c.add_option("--resume", a.resume,
+               "Continue the solve from this checkpoint, written by an earlier run with the same scene and options "
+               "(and go on checkpointing to it)");
+  c.add_option("--checkpoint-interval", a.checkpointInterval, "Seconds of solving between checkpoints")
+      ->check(finiteRange(0.001, 1e9))
+      ->capture_default_str();
   solverFlag(c, a, "hemicube-visibility", "gl progressive: item (ID hemicubes, seed 001) or distance (depth hemicubes, seed 003)");
 }
 
@@ -87,8 +97,22 @@ void addCommandLineLights(Scene& scene, const SolveArgs& a) {
   }
 }
 
+std::vector<OutputPath> checkpointOutputs(const SolveArgs& a) {
+  std::error_code ec;
+  if (!a.resume.empty() && !std::filesystem::is_regular_file(a.resume, ec))
+    throw Error(fmt::format("--resume {}: {}", a.resume,
+                            std::filesystem::exists(a.resume, ec) ? "not a regular file" : "no such file"));
+  if (!a.checkpoint.empty()) return {{"--checkpoint", a.checkpoint, {}}};
+  // Resuming goes on writing to the checkpoint it read.
+  if (!a.resume.empty()) return {{"--resume", a.resume, {}}};
+  return {};
+}
+
 SolveOptions solveOptions(const SolveArgs& a) {
   SolveOptions o;
+  o.checkpoint.path = a.checkpoint.empty() ? a.resume : a.checkpoint;
+  o.checkpoint.resume = a.resume;
+  o.checkpoint.intervalSeconds = a.checkpointInterval;
   o.method = a.solver;
   o.backend = a.backend;
   o.refine.budget = size_t(a.refine);

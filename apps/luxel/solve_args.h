@@ -11,6 +11,7 @@
 
 #include "luxel/solve.h"
 #include "luxel/surface.h"
+#include "output_paths.h"
 
 namespace luxel::cli {
 
@@ -27,6 +28,9 @@ struct SolveArgs {
   // (option name, value text): only those given on the command line, so that a solver is never
   // handed an option it does not read unless the user asked for it.
   std::vector<std::pair<std::string, std::string>> flagged;
+  std::string checkpoint;           // --checkpoint FILE: the solve's state, written at intervals
+  std::string resume;               // --resume FILE: continue from it (and keep checkpointing to it)
+  double checkpointInterval = 60.0;  // --checkpoint-interval SECONDS
   CLI::App* command = nullptr;
 };
 
@@ -44,6 +48,9 @@ CLI::Validator finiteRange(double lo, double hi);
 void addSolveOptions(CLI::App& command, SolveArgs& args);
 
 DiscretiseOptions discretiseOptions(const SolveArgs& args);
+// The checkpoint a command writes, for its check of outputs before the solve; throws Error when
+// --resume names no file.
+std::vector<OutputPath> checkpointOutputs(const SolveArgs& args);
 // Adds the lights of --sky and --sun to `scene`. Throws Error on a bad direction.
 void addCommandLineLights(Scene& scene, const SolveArgs& args);
 // The request: method, backend and settings. Unknown names are caught when the solver is made.

@@ -38,6 +38,9 @@ struct SolveOptions {
   std::string backend = "cpu";
   SolverSettings settings;  // checked by the chosen solver: a name it does not read is an error
   RefineOptions refine;
+  // Write the solve's state at intervals, and continue from a written state (luxel/checkpoint.h).
+  // Solvers that cannot be checkpointed, and refinement, are an Error when either path is set.
+  CheckpointOptions checkpoint;
 };
 
 // Checks the method, the backend and every option against the registry without solving: what

@@ -12,6 +12,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "luxel/checkpoint.h"
 #include "luxel/progress.h"
 #include "luxel/solution.h"
 
@@ -107,6 +108,14 @@ class Solver {
     (void)objects;
     return false;
   }
+
+  // Checkpoints (luxel/checkpoint.h). A solver that can be checkpointed says so, writes
+  // everything step() needs to go on from where it is, and reads it back into a solver made
+  // afresh for the same system and options, which then continues to the same result, bit for
+  // bit. What can be recomputed exactly (cached form factors, the hierarchy) need not be written.
+  virtual bool checkpoints() const { return false; }
+  virtual void saveState(StateWriter& out) const { (void)out; }
+  virtual void restoreState(StateReader& in) { (void)in; }
 };
 
 }  // namespace luxel

@@ -194,6 +194,43 @@ class HierarchicalSolver final : public Solver {
     return out;
   }
 
+  // The tree and the cluster points are made again from the surfaces, to the same bits; the
+  // element tree and its fields are saved. Between sweeps nothing is in flight (next_ is zero).
+  bool checkpoints() const override { return true; }
+  void saveState(StateWriter& out) const override {
+    const size_t nodes = tree_.nodes.size();
+    out.array(unshot_), out.array(split_);
+    std::vector<uint32_t> field(nodes), since(nodes);
+    for (size_t i = 0; i < nodes; ++i) field[i] = field_[i].load(), since[i] = since_[i].load();
+    out.array(field), out.array(since);
+    out.value(uint64_t(fields_.size()));
+    for (const Field& f : fields_) out.value(f);
+    out.value(iterations_), out.value(unshotFraction_), out.value(done_), out.value(seconds_);
+    for (const auto* counter : {&links_, &refinedNear_, &refinedTransfer_, &refinedShadow_, &refinedSelf_})
+      out.value(counter->load());
+    out.value(uint64_t(leaves_.load())), out.value(uint64_t(elements_.load()));
+  }
+  void restoreState(StateReader& in) override {
+    const size_t nodes = tree_.nodes.size();
+    in.array(unshot_, nodes), in.array(split_, nodes);
+    std::vector<uint32_t> field, since;
+    in.array(field, nodes), in.array(since, nodes);
+    const uint64_t pool = in.arrayLength(StateReader::kAnyLength, sizeof(Field));
+    for (size_t i = 0; i < nodes; ++i) {
+      // A field index past the pool would send the solver out of bounds: checked.
+      if (field[i] != kNever && (pool < 2 || field[i] > pool - 2))
+        throw Error(fmt::format("checkpoint: cluster {} names field {} of a pool of {}", i, field[i], pool));
+      field_[i].store(field[i]), since_[i].store(since[i]);
+    }
+    fields_.clear();
+    fields_.grow_by(size_t(pool));
+    for (Field& f : fields_) in.value(f);
+    in.value(iterations_), in.value(unshotFraction_), in.value(done_), in.value(seconds_);
+    for (auto* counter : {&links_, &refinedNear_, &refinedTransfer_, &refinedShadow_, &refinedSelf_})
+      counter->store(in.value<uint64_t>());
+    leaves_.store(size_t(in.value<uint64_t>())), elements_.store(size_t(in.value<uint64_t>()));
+  }
+
   SolveStats stats() const override {
     SolveStats s;
     s.method = "hierarchical";

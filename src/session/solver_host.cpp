@@ -7,6 +7,8 @@
 
 #include "gl/gl_context.h"
 #include "luxel/error.h"
+#include "mesh/surface_hash.h"
+#include "session/checkpoint_file.h"
 #include "solve/method_choice.h"
 #include "solve/refinement.h"
 #include "transport/cpu_transport.h"
@@ -29,6 +31,9 @@ constexpr double kMaxUnshotFraction = 2.0;
 constexpr double kMaxAbsorbedShare = 1.5;
 // A solve asked to run to the end is still cut into slices of at most this long, to check it.
 constexpr double kHealthCheckSeconds = 0.25;
+
+// The checkpoints' format, in their key: bump it when a solver's saved state changes.
+constexpr const char* kCheckpointFormat = "luxel-checkpoint-1";
 
 const char* const kLikelyCauses =
     "likely causes: coincident faces (a mesh loaded twice in one place, which the importers remove but "
@@ -87,6 +92,7 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
     }
   }
   values_ = std::make_unique<SolverOptionValues>(name, entry_->description.options, settings);
+  settings_ = settings;
 
   if (chosen == "gl") {
     if (borrowed.glContext) glContext_ = borrowed.glContext;
@@ -102,6 +108,17 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
   }
   setupSeconds_ = watch.seconds();
   makeSolver();
+
+  const CheckpointOptions& cp = options.checkpoint;
+  if (!cp.path.empty() || !cp.resume.empty()) {
+    if (!solver_->checkpoints())
+      throw Error(fmt::format("{} cannot be checkpointed (--checkpoint, --resume); the CPU's progressive, gather "
+                              "and hierarchical solvers can",
+                              name));
+    if (options.refine.budget > 0) throw Error("checkpoints (--checkpoint, --resume) do not combine with --refine");
+    if (!(cp.intervalSeconds > 0.0)) throw Error("the checkpoint interval must be > 0 seconds");
+    if (!cp.resume.empty()) resumeFrom(cp.resume);
+  }
 }
 
 SolverHost::~SolverHost() = default;
@@ -167,6 +184,36 @@ void SolverHost::checkHealth() const {
         scene_.name, s.method, s.unshotFraction, kLikelyCauses));
 }
 
+uint64_t SolverHost::checkpointKey() const {
+  // Everything the solver's state was computed from: the surfaces and how they group into
+  // patches, the analytic light, the solver, its backend and options, and the state's format.
+  ContentHash h;
+  h.text(kCheckpointFormat);
+  hashSurfaces(h, surfaces_);
+  for (const Element& e : surfaces_.elements) h.value(e.patch);
+  h.bytes(analytic_.data(), analytic_.size() * sizeof(Rgb));
+  for (const std::string* s : {&entry_->description.name, &entry_->description.backend}) h.text(*s), h.value('\0');
+  for (const auto& [key, value] : settings_.values()) h.text(key), h.value('='), h.text(value), h.value('\0');
+  return h.digest();
+}
+
+void SolverHost::resumeFrom(const std::filesystem::path& path) {
+  const std::vector<std::byte> payload = readCheckpointFile(path, checkpointKey());
+  StateReader in(payload, path.string());
+  solver_->restoreState(in);
+  in.end();
+  checkHealth();
+}
+
+void SolverHost::checkpoint(bool now) {
+  const CheckpointOptions& cp = options_.checkpoint;
+  if (cp.path.empty() || (!now && sinceCheckpoint_.seconds() < cp.intervalSeconds)) return;
+  StateWriter out;
+  solver_->saveState(out);
+  writeCheckpointFile(cp.path, checkpointKey(), out.bytes());
+  sinceCheckpoint_.restart();
+}
+
 bool SolverHost::step(const StepLimit& limit, const ProgressCallback& progress) {
   const Stopwatch watch;
   while (true) {
@@ -175,8 +222,15 @@ bool SolverHost::step(const StepLimit& limit, const ProgressCallback& progress) 
     // A caller counting units gets its units; one running to the end or for a while gets slices,
     // so that a diverging solve is caught while it runs instead of looping for ever.
     if (!limit.units) left.seconds = left.seconds > 0 ? std::min(left.seconds, kHealthCheckSeconds) : kHealthCheckSeconds;
-    const bool more = solver_->step(left, progress);
+    bool more = false;
+    try {
+      more = solver_->step(left, progress);
+    } catch (const Cancelled&) {
+      checkpoint(/*now=*/true);  // the solver stands at its last whole unit of work: Ctrl-C keeps it
+      throw;
+    }
     checkHealth();
+    checkpoint(/*now=*/!more);
     if (more) {
       if (limit.units || (limit.seconds > 0 && watch.seconds() >= limit.seconds)) return true;  // the caller's slice ended
       continue;

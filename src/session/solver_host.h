@@ -5,6 +5,7 @@
 // are built on it.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,6 +60,11 @@ class SolverHost {
  private:
   // Throws Error when the solve diverges (non-finite, or the unshot light growing).
   void checkHealth() const;
+  // Checkpoints (options.checkpoint): the key of this solve, reading one, writing one when the
+  // interval is up (or now, when `now`).
+  uint64_t checkpointKey() const;
+  void resumeFrom(const std::filesystem::path& path);
+  void checkpoint(bool now);
   // Analytic irradiance (unless current), system and solver for the current surfaces.
   void makeSolver(bool analyticIsCurrent = false);
   void computeAnalytic();
@@ -71,6 +77,7 @@ class SolverHost {
   std::vector<std::string> warnings_;
   const SolverEntry* entry_ = nullptr;
   std::unique_ptr<SolverOptionValues> values_;
+  SolverSettings settings_;  // what the solver was given, for the checkpoints' key
   std::unique_ptr<gl::Context> ownContext_;  // declared before what uses it: destroyed after
   gl::Context* glContext_ = nullptr;
   std::unique_ptr<Transport> ownTransport_;
@@ -84,6 +91,7 @@ class SolverHost {
   int refinePasses_ = 0;
   bool refinementOver_ = false;
   double setupSeconds_ = 0.0, analyticSeconds_ = 0.0;
+  Stopwatch sinceCheckpoint_;
   Stopwatch lifetime_;
 };
 

@@ -102,6 +102,28 @@ class GatherSolver final : public Solver {
     return sol;
   }
 
+  // The matrix rows computed so far are the costly part of the state, and are saved with it.
+  bool checkpoints() const override { return true; }
+  void saveState(StateWriter& out) const override {
+    out.value(uint64_t(rowsDone_));
+    out.array(std::span<const float>(matrix_.data(), rowsDone_ * sys_.patchCount()));
+    out.array(radiosity_), out.array(irradiance_);
+    out.value(residual_), out.value(iterations_), out.value(seconds_), out.value(formFactorSeconds_), out.value(done_);
+    stagnation_.saveState(out);
+  }
+  void restoreState(StateReader& in) override {
+    const size_t ne = sys_.elementCount(), np = sys_.patchCount();
+    const uint64_t rows = in.value<uint64_t>();
+    if (rows > ne) throw Error(fmt::format("checkpoint: {} matrix rows where this solve has {} elements", rows, ne));
+    const uint64_t n = in.arrayLength(rows * np, sizeof(float));
+    in.raw(matrix_.data(), size_t(n) * sizeof(float));
+    rowsDone_ = size_t(rows);
+    in.array(radiosity_, ne), in.array(irradiance_, ne);
+    in.value(residual_), in.value(iterations_), in.value(seconds_), in.value(formFactorSeconds_), in.value(done_);
+    stagnation_.restoreState(in);
+    refreshPatches();
+  }
+
   SolveStats stats() const override {
     SolveStats st;
     st.method = "gather";
@@ -159,11 +181,12 @@ class GatherSolver final : public Solver {
       refreshPatches();
     }
     residual_ = maxB > 0.0 ? maxDelta / maxB : 0.0;
+    if (residual_ <= s_.residualThreshold || iterations_ >= s_.maxIterations) done_ = true;
+    if (stagnation_.stalled(residual_)) done_ = true;
+    // Last, so that a cancel read here leaves the sweep's state whole (a checkpoint saves it).
     reportProgress(progress, "solve",
                    std::clamp(std::log(std::max(residual_, 1e-30)) / std::log(s_.residualThreshold), 0.0, 1.0),
                    fmt::format("residual {:.2e}", residual_));
-    if (residual_ <= s_.residualThreshold || iterations_ >= s_.maxIterations) done_ = true;
-    if (stagnation_.stalled(residual_)) done_ = true;
   }
 
   const RadiositySystem& sys_;

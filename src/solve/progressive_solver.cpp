@@ -79,6 +79,22 @@ class ProgressiveSolver final : public Solver {
     return sol;
   }
 
+  // Form-factor columns are not saved: they are computed again, to the same bits, when needed.
+  bool checkpoints() const override { return true; }
+  void saveState(StateWriter& out) const override {
+    for (const auto* v : {&radiosity_, &unshot_, &irradiance_, &direct_, &patchUnshot_}) out.array(*v);
+    out.array(directAdded_);
+    out.value(shots_), out.value(seconds_), out.value(formFactorSeconds_), out.value(done_);
+  }
+  void restoreState(StateReader& in) override {
+    const size_t ne = sys_.elementCount(), np = sys_.patchCount();
+    for (auto* v : {&radiosity_, &unshot_, &irradiance_, &direct_}) in.array(*v, ne);
+    in.array(patchUnshot_, np);
+    in.array(directAdded_, np);
+    in.value(shots_), in.value(seconds_), in.value(formFactorSeconds_), in.value(done_);
+    unshotFraction_ = currentUnshotFraction();
+  }
+
   SolveStats stats() const override {
     SolveStats st;
     st.method = "progressive";

@@ -45,6 +45,8 @@ class StagnationStop {
     }
     return ++since_ >= 8;
   }
+  void saveState(StateWriter& out) const { out.value(best_), out.value(since_); }
+  void restoreState(StateReader& in) { in.value(best_), in.value(since_); }
 
  private:
   double best_ = std::numeric_limits<double>::max();

@@ -53,7 +53,9 @@ struct CliRun {
 // Runs `luxel ARGS` in `dir` (the working directory), capturing stdout, stderr and the exit code.
 // `shellSetup` runs first in the same shell (limits: "ulimit -f 8; "), and luxel is exec'd.
 CliRun luxel(const fs::path& dir, const std::vector<std::string>& args, const std::string& shellSetup = "") {
-  std::string cmd = "cd " + quote(dir.string()) + " && " + shellSetup + "exec " + quote(LUXEL_CLI);
+  // "cd || exit" rather than "cd &&": a setup that ends in '&' would otherwise take the cd with it
+  // into the background and leave luxel running in the test's own folder.
+  std::string cmd = "cd " + quote(dir.string()) + " || exit 126; " + shellSetup + "exec " + quote(LUXEL_CLI);
   for (const std::string& a : args) cmd += " " + quote(a);
   const fs::path outFile = dir.parent_path() / (dir.filename().string() + ".stdout");
   const fs::path errFile = dir.parent_path() / (dir.filename().string() + ".stderr");

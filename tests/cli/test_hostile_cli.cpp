@@ -87,7 +87,7 @@ TEST(HostileCli, SigtermEndsTheRunWithoutLeavingFiles) {
   fs::path dir = scratchDir();
   // Killed a moment after it starts, wherever it is: solving, rendering or writing.
   CliRun r = luxel(dir, {"render", "cornell", "-o", "big.exr", "--size", "2048x2048", "--spp", "64", "--elements", "2000", "-q"},
-                   "(sleep 1; kill -TERM $$) & ");
+                   "(sleep 1; kill -TERM $$) >/dev/null 2>&1 & ");
   EXPECT_NE(r.code, 0);
   for (const std::string& name : listDir(dir)) EXPECT_EQ(name.rfind(".", 0), std::string::npos) << "left behind: " << name;
   EXPECT_FALSE(fs::exists(dir / "big.exr") && fs::file_size(dir / "big.exr") == 0);

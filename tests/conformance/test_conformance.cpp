@@ -7,12 +7,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
 #include <numbers>
 
 #include "analytic/half_shadow_scene.h"
 #include "gl/gl_parity.h"
 #include "gl/gl_test_context.h"
 #include "luxel/bench.h"
+#include "luxel/error.h"
 #include "luxel/session.h"
 #include "luxel/solve.h"
 #include "scene/builtin/builtin_scenes.h"
@@ -22,6 +26,8 @@ namespace luxel {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
+std::string nameOf(const SolverEntry& e) { return e.description.name + "_" + e.description.backend; }
 
 class Conformance : public ::testing::TestWithParam<const SolverEntry*> {
  protected:
@@ -139,6 +145,47 @@ TEST_P(Conformance, SteppingReachesTheAnswerOfOneCall) {
       ASSERT_NEAR(last.radiosity[e][c], whole.radiosity[e][c], 1e-5f * (1.0f + whole.radiosity[e][c])) << "element " << e;
 }
 
+// A solver that can be checkpointed (luxel/checkpoint.h) and is stopped part way, then resumed
+// from its checkpoint by a new session, ends with the bits of one that ran through; one that
+// cannot says so when asked.
+TEST_P(Conformance, AResumedSolveEndsWhereAnUninterruptedOneDoes) {
+  const Scene scene = builtin::cornellBox();
+  DiscretiseOptions d;
+  d.elementBudget = 200;
+  SurfaceSet surfaces = discretise(scene, d);
+  SurfaceSet copy = surfaces;
+  const Solution whole = solve(scene, copy, converged());
+
+  const std::filesystem::path file = std::filesystem::path(LUXEL_TEST_TMP) / ("conformance-" + nameOf(entry()) + ".ckpt");
+  std::filesystem::create_directories(file.parent_path());
+  std::filesystem::remove(file);
+  SolveOptions writing = converged();
+  writing.checkpoint = {.path = file, .intervalSeconds = 1e-9};  // after every step
+  std::unique_ptr<Session> first;
+  try {
+    first = std::make_unique<Session>(scene, surfaces, SessionOptions{writing});
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be checkpointed"), std::string::npos) << e.what();
+    GTEST_SKIP() << "this solver cannot be checkpointed: " << e.what();
+  }
+  ASSERT_TRUE(first->step({0.0, 1}));
+  ASSERT_TRUE(first->step({0.0, 1}));
+  first.reset();  // as a killed process would leave it: the checkpoint of the last step
+
+  SolveOptions resuming = converged();
+  resuming.checkpoint.resume = file;
+  Session resumed(scene, surfaces, {resuming});
+  const Solution last = resumed.solve();
+  EXPECT_EQ(last.stats.shots, whole.stats.shots);
+  EXPECT_EQ(last.stats.iterations, whole.stats.iterations);
+  EXPECT_EQ(last.stats.links, whole.stats.links);
+  for (const auto [got, expected] : {std::pair{&last.radiosity, &whole.radiosity}, {&last.irradiance, &whole.irradiance},
+                                     {&last.directIrradiance, &whole.directIrradiance}}) {
+    ASSERT_EQ(got->size(), expected->size());
+    EXPECT_EQ(std::memcmp(got->data(), expected->data(), got->size() * sizeof(Rgb)), 0);
+  }
+}
+
 std::vector<const SolverEntry*> solversOn(const std::string& backend) {
   std::vector<const SolverEntry*> out;
   for (const SolverEntry& e : SolverRegistry::builtin().entries())
@@ -146,9 +193,7 @@ std::vector<const SolverEntry*> solversOn(const std::string& backend) {
   return out;
 }
 
-std::string solverName(const ::testing::TestParamInfo<const SolverEntry*>& info) {
-  return info.param->description.name + "_" + info.param->description.backend;
-}
+std::string solverName(const ::testing::TestParamInfo<const SolverEntry*>& info) { return nameOf(*info.param); }
 
 // Every backend the registry holds must be instantiated here (RegistryHasNoOtherBackend). The GL
 // ones are named Gl... so that `make asan` runs them in its GL batch (Mesa's allocations at exit
