@@ -62,7 +62,7 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
   solverFlag(c, a, "emitter-hemicubes-per-side", "gl progressive: k x k hemicubes for an emitting patch's first shot (default 6; 0: as other shooters)");
   c.add_option("--checkpoint", a.checkpoint,
                "Write the solve's state to this file at intervals, on Ctrl-C and at the end, for --resume "
-               "(CPU progressive, gather and hierarchical)");
+               "(every registered solver)");
   c.add_option("--resume", a.resume,
                "Continue the solve from this checkpoint, written by an earlier run with the same scene and options "
                "(and go on checkpointing to it)");

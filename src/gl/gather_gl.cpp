@@ -231,6 +231,21 @@ class GlGatherSolver final : public Solver {
     return sol;
   }
 
+  // The element states and patch means, read back from the GPU, and the iteration's counters.
+  bool checkpoints() const override { return true; }
+  void saveState(StateWriter& out) const override {
+    for (GLuint b : {buf_.states, buf_.patchRadiosity}) saveBuffer(b, out);
+    out.value(iteration_), out.value(residual_), out.value(uint64_t(rendered_)), out.value(seconds_), out.value(done_);
+    stagnation_.saveState(out);
+  }
+  void restoreState(StateReader& in) override {
+    for (GLuint b : {buf_.states, buf_.patchRadiosity}) restoreBuffer(b, in);
+    in.value(iteration_), in.value(residual_);
+    rendered_ = size_t(in.value<uint64_t>());
+    in.value(seconds_), in.value(done_);
+    stagnation_.restoreState(in);
+  }
+
   SolveStats stats() const override {
     SolveStats st;
     st.method = "gather";
@@ -270,12 +285,13 @@ class GlGatherSolver final : public Solver {
     std::memcpy(&change, &bits[0], sizeof change);
     std::memcpy(&largest, &bits[1], sizeof largest);
     residual_ = largest > 0.0f ? double(change) / double(largest) : 0.0;
-    reportProgress(progress, "solve",
-                   std::clamp(std::log(std::max(residual_, 1e-30)) / std::log(o_.residualThreshold), 0.0, 1.0),
-                   fmt::format("residual {:.2e}", residual_));
     if (iteration_ >= o_.maxIterations) done_ = true;
     if (iteration_ > 1 && residual_ <= o_.residualThreshold) done_ = true;  // the first only starts from E
     if (stagnation_.stalled(residual_)) done_ = true;
+    // Last, so that a cancel read here leaves the iteration's state whole (a checkpoint saves it).
+    reportProgress(progress, "solve",
+                   std::clamp(std::log(std::max(residual_, 1e-30)) / std::log(o_.residualThreshold), 0.0, 1.0),
+                   fmt::format("residual {:.2e}", residual_));
   }
 
   const RadiositySystem& sys_;

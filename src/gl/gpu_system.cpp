@@ -3,6 +3,9 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <cstddef>
+
+#include "gl/gl_context.h"
 
 namespace luxel::gl {
 
@@ -12,6 +15,29 @@ unsigned storageBuffer(const void* data, size_t bytes) {
   glNamedBufferStorage(b, GLsizeiptr(std::max<size_t>(bytes, 16)), nullptr, GL_DYNAMIC_STORAGE_BIT);
   if (data && bytes) glNamedBufferSubData(b, 0, GLsizeiptr(bytes), data);
   return b;
+}
+
+namespace {
+size_t bufferBytes(unsigned buffer) {
+  GLint64 bytes = 0;
+  glGetNamedBufferParameteri64v(buffer, GL_BUFFER_SIZE, &bytes);
+  return size_t(bytes);
+}
+}  // namespace
+
+void saveBuffer(unsigned buffer, StateWriter& out) {
+  std::vector<std::byte> bytes(bufferBytes(buffer));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(buffer, 0, GLsizeiptr(bytes.size()), bytes.data());
+  Context::check("reading back a GPU buffer for a checkpoint");
+  out.array(bytes);
+}
+
+void restoreBuffer(unsigned buffer, StateReader& in) {
+  std::vector<std::byte> bytes;
+  in.array(bytes, bufferBytes(buffer));
+  glNamedBufferSubData(buffer, 0, GLsizeiptr(bytes.size()), bytes.data());
+  Context::check("writing a checkpoint's state to a GPU buffer");
 }
 
 GpuPatches gpuPatches(const RadiositySystem& sys) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gl/shared_layout.h"
+#include "luxel/checkpoint.h"
 #include "luxel/solve.h"
 #include "solve/radiosity_system.h"
 
@@ -13,6 +14,11 @@ namespace luxel::gl {
 // A shader storage buffer holding `bytes` of `data` (or uninitialised when data is null),
 // updatable with glNamedBufferSubData. At least 16 bytes: zero-size storage is a GL error.
 unsigned storageBuffer(const void* data, size_t bytes);
+
+// Checkpoints: a storage buffer's whole contents into `out`, and back from `in` into a buffer of
+// the same size (a different size is an Error from the reader).
+void saveBuffer(unsigned buffer, StateWriter& out);
+void restoreBuffer(unsigned buffer, StateReader& in);
 
 // The patches: polygon, normal, area (the sum of its elements'), mean emission, and the range of
 // its elements in `elements` (GpuPatch::ids.x, .y).

@@ -433,6 +433,20 @@ class GlProgressiveSolver final : public Solver {
     return sol;
   }
 
+  // The element and patch states and the solver's counters, read back from the GPU; the
+  // hemicubes and the shooters' buffer are scratch, drawn anew each pass.
+  bool checkpoints() const override { return true; }
+  void saveState(StateWriter& out) const override {
+    for (GLuint b : {buf_.elementStates, buf_.patchStates, buf_.state}) saveBuffer(b, out);
+    out.value(emittersShot_), out.value(emitterShots_), out.value(shots_), out.value(unshotFraction_);
+    out.value(seconds_), out.value(done_);
+  }
+  void restoreState(StateReader& in) override {
+    for (GLuint b : {buf_.elementStates, buf_.patchStates, buf_.state}) restoreBuffer(b, in);
+    in.value(emittersShot_), in.value(emitterShots_), in.value(shots_), in.value(unshotFraction_);
+    in.value(seconds_), in.value(done_);
+  }
+
   SolveStats stats() const override {
     SolveStats st;
     st.method = "progressive";

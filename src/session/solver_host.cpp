@@ -112,9 +112,7 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
   const CheckpointOptions& cp = options.checkpoint;
   if (!cp.path.empty() || !cp.resume.empty()) {
     if (!solver_->checkpoints())
-      throw Error(fmt::format("{} cannot be checkpointed (--checkpoint, --resume); the CPU's progressive, gather "
-                              "and hierarchical solvers can",
-                              name));
+      throw Error(fmt::format("{} cannot be checkpointed (--checkpoint, --resume)", name));
     if (options.refine.budget > 0) throw Error("checkpoints (--checkpoint, --resume) do not combine with --refine");
     if (!(cp.intervalSeconds > 0.0)) throw Error("the checkpoint interval must be > 0 seconds");
     if (!cp.resume.empty()) resumeFrom(cp.resume);
