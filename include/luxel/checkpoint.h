@@ -52,8 +52,8 @@ class StateWriter {
 };
 
 // Reads what a StateWriter wrote. A read past the end, or an array whose length is not the one the
-// reader expects, throws Error naming `where` (the checkpoint file): a checkpoint is checked
-// before a solver sees it, so this is a defence against a solver's reader and writer disagreeing.
+// reader expects, throws Error beginning with `where` (what is being read): a checkpoint is
+// checked before a solver sees it, so this is a defence against a reader and writer disagreeing.
 class StateReader {
  public:
   StateReader(std::span<const std::byte> bytes, std::string where) : bytes_(bytes), where_(std::move(where)) {}

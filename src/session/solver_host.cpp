@@ -197,7 +197,7 @@ uint64_t SolverHost::checkpointKey() const {
 
 void SolverHost::resumeFrom(const std::filesystem::path& path) {
   const std::vector<std::byte> payload = readCheckpointFile(path, checkpointKey());
-  StateReader in(payload, path.string());
+  StateReader in(payload, fmt::format("checkpoint {}: the solver's state does not match this solve", path.string()));
   solver_->restoreState(in);
   in.end();
   checkHealth();

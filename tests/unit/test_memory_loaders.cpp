@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -71,6 +72,14 @@ MemoryResourceReader memoryCopyOf(const fs::path& dir) {
       reader.add(e.path().lexically_relative(dir).generic_string(), readFile(e.path()));
   return reader;
 }
+
+// Imports run in a child process (scene/import/child_process_import.h), where a RecordingReader's
+// record stays: the tests that read the record import in-process.
+class ImportsInProcess {
+ public:
+  ImportsInProcess() { setenv("LUXEL_IMPORT_IN_PROCESS", "1", 1); }
+  ~ImportsInProcess() { unsetenv("LUXEL_IMPORT_IN_PROCESS"); }
+};
 
 // Passes through to another reader and remembers what it was asked to read.
 class RecordingReader final : public ResourceReader {
@@ -438,6 +447,7 @@ TEST(MemoryLoad, FileReaderReadsUnderItsRoot) {
 // ---- (a) OBJ + MTL + texture --------------------------------------------------------------------
 
 TEST(MemoryLoad, ObjMtlAndTextureFromMemoryMatchTheFile) {
+  const ImportsInProcess inProcess;
   fs::path dir = tmpDir("obj");
   writeObjFixture(dir);
   const Scene fromFile = luxel::importMeshFile(dir / "box.obj");
@@ -525,6 +535,7 @@ TEST(MemoryLoad, TextureLookupMatchesTheFileLoader) {
 // ---- (b) glTF with an external buffer, and GLB --------------------------------------------------
 
 TEST(MemoryLoad, GltfWithExternalBufferFromMemoryMatchesTheFile) {
+  const ImportsInProcess inProcess;
   fs::path dir = tmpDir("gltf");
   const std::string json = gltfJson("buffers/quad.bin", "tex/my%20tex.png");
   writeFile(dir / "scene.gltf", json);
@@ -550,6 +561,7 @@ TEST(MemoryLoad, GltfWithExternalBufferFromMemoryMatchesTheFile) {
 }
 
 TEST(MemoryLoad, GlbFromMemoryMatchesTheFile) {
+  const ImportsInProcess inProcess;
   fs::path dir = tmpDir("glb");
   const std::string bytes = glb("tex/t.png");
   writeFile(dir / "scene.glb", bytes);

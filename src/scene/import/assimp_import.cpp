@@ -29,6 +29,7 @@
 #include "core/large_stack.h"
 #include "scene/coincident_faces.h"
 #include "scene/import/assimp_io.h"
+#include "scene/import/child_process_import.h"
 #include "scene/import/gltf_extras.h"
 #include "scene/import/ply_header.h"
 #include "scene/import/quads.h"
@@ -567,6 +568,8 @@ std::string assimpMainPath(const std::string& name, std::string hint) {
 namespace {
 Scene importMeshOnThisStack(std::span<const std::byte> bytes, std::string_view formatHint,
                             const ResourceReader& resources, std::string_view name);
+Scene readWithAssimp(const std::string& file, const std::string& assimpPath, std::span<const std::byte> bytes,
+                     std::string_view formatHint, const ResourceReader& resources);
 }  // namespace
 
 Scene importMesh(std::span<const std::byte> bytes, std::string_view formatHint,
@@ -585,7 +588,16 @@ Scene importMeshOnThisStack(std::span<const std::byte> bytes, std::string_view f
   const std::string assimpPath = assimpMainPath(file, std::string(formatHint));
   checkPlyCounts(bytes, file);
   checkGlbLayout(bytes, file);
+  // Assimp and the conversion of what it read, in a child process with limits: a crash, a hang or
+  // a memory bomb in Assimp is an Error naming the file.
+  Scene scene = importInChildProcess(file, bytes.size(),
+                                     [&] { return readWithAssimp(file, assimpPath, bytes, formatHint, resources); });
+  removeCoincidentFaces(scene);
+  return scene;
+}
 
+Scene readWithAssimp(const std::string& file, const std::string& assimpPath, std::span<const std::byte> bytes,
+                     std::string_view formatHint, const ResourceReader& resources) {
   Assimp::Importer importer;
   importer.SetIOHandler(new ResourceIOSystem(assimpPath, bytes, resources));  // owned by importer
   // Read without post-processing first: validation would reject a file without faces as
@@ -607,9 +619,7 @@ Scene importMeshOnThisStack(std::span<const std::byte> bytes, std::string_view f
                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
   if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
   if (ai->mNumMeshes == 0) throw Error(fmt::format("{}: contains no triangles", file));
-  Scene scene = AssimpImport(file, assimpPath, bytes, resources, *ai).run();
-  removeCoincidentFaces(scene);
-  return scene;
+  return AssimpImport(file, assimpPath, bytes, resources, *ai).run();
 }
 
 }  // namespace

@@ -1,0 +1,101 @@
+#include "scene/scene_bytes.h"
+
+#include <string>
+
+#include "luxel/checkpoint.h"
+
+namespace luxel {
+namespace {
+
+// Every field of every struct below is written. A field added to one of them must be added here
+// too: these sizes (x86-64, libstdc++) make the build say so.
+static_assert(sizeof(Texture) == 64, "Texture changed: update scene_bytes.cpp");
+static_assert(sizeof(Material) == 72, "Material changed: update scene_bytes.cpp");
+static_assert(sizeof(Object) == 168, "Object changed: update scene_bytes.cpp");
+static_assert(sizeof(Mesh) == 192, "Mesh changed: update scene_bytes.cpp");
+static_assert(sizeof(Light) == 96, "Light changed: update scene_bytes.cpp");
+static_assert(sizeof(Camera) == 72, "Camera changed: update scene_bytes.cpp");
+static_assert(sizeof(Scene) == 216, "Scene changed: update scene_bytes.cpp");
+
+void put(StateWriter& out, const std::string& s) { out.array(std::span<const char>(s)); }
+void get(StateReader& in, std::string& s) {
+  s.resize(size_t(in.arrayLength(StateReader::kAnyLength, 1)));
+  in.raw(s.data(), s.size());
+}
+
+}  // namespace
+
+std::vector<std::byte> sceneBytes(const Scene& scene) {
+  StateWriter out;
+  put(out, scene.name);
+  out.value(uint64_t(scene.objects.size()));
+  for (const Object& o : scene.objects) put(out, o.name), out.value(o.transform), out.value(o.dynamic), out.value(o.restTransform);
+  out.value(uint64_t(scene.meshes.size()));
+  for (const Mesh& m : scene.meshes) {
+    put(out, m.name);
+    out.value(m.object), out.value(m.material);
+    out.array(m.positions), out.array(m.uvs), out.array(m.lightmapUvs), out.array(m.faces);
+    out.array(m.elementGrids), out.array(m.restPositions);
+  }
+  out.value(uint64_t(scene.materials.size()));
+  for (const Material& m : scene.materials) {
+    put(out, m.name);
+    out.value(m.reflectance), out.value(m.reflectanceTexture), out.value(m.emission), out.value(m.emissionTexture);
+    out.value(m.twoSided);
+  }
+  out.value(uint64_t(scene.textures.size()));
+  for (const Texture& t : scene.textures) put(out, t.path), out.value(t.width), out.value(t.height), out.array(t.texels);
+  out.value(uint64_t(scene.lights.size()));
+  for (const Light& l : scene.lights) {
+    put(out, l.name);
+    out.value(l.type), out.value(l.color), out.value(l.intensity), out.value(l.position), out.value(l.direction);
+    out.value(l.innerConeAngle), out.value(l.outerConeAngle), out.value(l.angularRadius);
+  }
+  out.value(uint64_t(scene.cameras.size()));
+  for (const Camera& c : scene.cameras) put(out, c.name), out.value(c.eye), out.value(c.target), out.value(c.up), out.value(c.fovY);
+  out.value(scene.up);
+  out.value(uint64_t(scene.warnings.size()));
+  for (const std::string& w : scene.warnings) put(out, w);
+  return out.bytes();
+}
+
+Scene sceneFromBytes(std::span<const std::byte> bytes) {
+  StateReader in(bytes, "an imported scene");
+  // A count is checked against the bytes left (each item takes at least one byte) before anything
+  // is allocated for it.
+  auto count = [&] { return size_t(in.arrayLength(StateReader::kAnyLength, 1)); };
+  Scene scene;
+  get(in, scene.name);
+  scene.objects.resize(count());
+  for (Object& o : scene.objects) get(in, o.name), in.value(o.transform), in.value(o.dynamic), in.value(o.restTransform);
+  scene.meshes.resize(count());
+  for (Mesh& m : scene.meshes) {
+    get(in, m.name);
+    in.value(m.object), in.value(m.material);
+    in.array(m.positions), in.array(m.uvs), in.array(m.lightmapUvs), in.array(m.faces);
+    in.array(m.elementGrids), in.array(m.restPositions);
+  }
+  scene.materials.resize(count());
+  for (Material& m : scene.materials) {
+    get(in, m.name);
+    in.value(m.reflectance), in.value(m.reflectanceTexture), in.value(m.emission), in.value(m.emissionTexture);
+    in.value(m.twoSided);
+  }
+  scene.textures.resize(count());
+  for (Texture& t : scene.textures) get(in, t.path), in.value(t.width), in.value(t.height), in.array(t.texels);
+  scene.lights.resize(count());
+  for (Light& l : scene.lights) {
+    get(in, l.name);
+    in.value(l.type), in.value(l.color), in.value(l.intensity), in.value(l.position), in.value(l.direction);
+    in.value(l.innerConeAngle), in.value(l.outerConeAngle), in.value(l.angularRadius);
+  }
+  scene.cameras.resize(count());
+  for (Camera& c : scene.cameras) get(in, c.name), in.value(c.eye), in.value(c.target), in.value(c.up), in.value(c.fovY);
+  in.value(scene.up);
+  scene.warnings.resize(count());
+  for (std::string& w : scene.warnings) get(in, w);
+  in.end();
+  return scene;
+}
+
+}  // namespace luxel
