@@ -51,6 +51,16 @@ std::vector<uint8_t> meshesMatching(const Scene& scene, const std::vector<std::s
 
 }  // namespace
 
+void checkBakeArgs(const BakeArgs& a) {
+  if (a.lightmaps && a.vertexColors)
+    throw Error("--lightmaps and --vertex-colors exclude each other (--vertex-colors-for PATTERN picks meshes for "
+                "vertex colours beside lightmaps)");
+  if (!a.vertexColorsFor.empty() && !a.lightmaps)
+    throw Error("--vertex-colors-for needs --lightmaps (the other meshes get lightmaps); --vertex-colors alone "
+                "colours every mesh");
+  checkSolveArgs(a.solve);
+}
+
 int runBake(const BakeArgs& a) {
   // Check the output before the (possibly long) solve.
   const fs::path out(a.output);
@@ -58,12 +68,6 @@ int runBake(const BakeArgs& a) {
   if (!a.tracePath.empty()) paths.push_back({"--progress-trace", a.tracePath, {}});
   for (OutputPath& p : checkpointOutputs(a.solve)) paths.push_back(std::move(p));
   checkOutputPaths(paths);
-  if (a.lightmaps && a.vertexColors)
-    throw Error("--lightmaps and --vertex-colors exclude each other (--vertex-colors-for PATTERN picks meshes for "
-                "vertex colours beside lightmaps)");
-  if (!a.vertexColorsFor.empty() && !a.lightmaps)
-    throw Error("--vertex-colors-for needs --lightmaps (the other meshes get lightmaps); --vertex-colors alone "
-                "colours every mesh");
 
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)

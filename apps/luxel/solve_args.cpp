@@ -79,22 +79,36 @@ DiscretiseOptions discretiseOptions(const SolveArgs& a) {
   return d;
 }
 
+namespace {
+
+// --sun X,Y,Z: a direction, normalised; throws Error.
+Vec3 sunDirection(const std::string& text) {
+  Vec3 d;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> d.x >> c1 >> d.y >> c2 >> d.z) || c1 != ',' || c2 != ',' || !in.eof() || !std::isfinite(d.x) ||
+      !std::isfinite(d.y) || !std::isfinite(d.z) || glm::length(d) < 1e-12f)
+    throw Error(fmt::format("--sun '{}': expected a direction X,Y,Z, not zero", text));
+  return glm::normalize(d);
+}
+
+}  // namespace
+
 void addCommandLineLights(Scene& scene, const SolveArgs& a) {
   if (a.sky > 0.0f) scene.lights.push_back(Light{.type = Light::Type::Sky, .name = "sky (--sky)", .intensity = a.sky});
   if (!a.sun.empty()) {
-    Vec3 d;
-    char c1 = 0, c2 = 0;
-    std::istringstream in(a.sun);
-    if (!(in >> d.x >> c1 >> d.y >> c2 >> d.z) || c1 != ',' || c2 != ',' || !in.eof() || !std::isfinite(d.x) ||
-        !std::isfinite(d.y) || !std::isfinite(d.z) || glm::length(d) < 1e-12f)
-      throw Error(fmt::format("--sun '{}': expected a direction X,Y,Z, not zero", a.sun));
     // 100,000 lux on a surface facing it: a clear-sky sun; its disc 0.53 degrees across.
     scene.lights.push_back(Light{.type = Light::Type::Directional,
                                  .name = "sun (--sun)",
                                  .intensity = 100000.0f,
-                                 .direction = glm::normalize(d),
+                                 .direction = sunDirection(a.sun),
                                  .angularRadius = 0.00465f});
   }
+}
+
+void checkSolveArgs(const SolveArgs& a) {
+  if (!a.sun.empty()) sunDirection(a.sun);
+  validateSolveOptions(solveOptions(a));
 }
 
 std::vector<OutputPath> checkpointOutputs(const SolveArgs& a) {

@@ -55,5 +55,7 @@ std::vector<OutputPath> checkpointOutputs(const SolveArgs& args);
 void addCommandLineLights(Scene& scene, const SolveArgs& args);
 // The request: method, backend and settings. Unknown names are caught when the solver is made.
 SolveOptions solveOptions(const SolveArgs& args);
+// Checks what needs no scene and no file (--sun, the solver, backend and options): throws Error.
+void checkSolveArgs(const SolveArgs& args);
 
 }  // namespace luxel::cli
