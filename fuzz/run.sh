@@ -28,9 +28,10 @@ seed fuzz-mesh-dae "$here"/seeds/dae/*
 seed fuzz-mesh-fbx "$build"/test-tmp/import/*/*.fbx
 seed fuzz-scene-json "$here"/seeds/scene-json/*
 seed fuzz-texture "$here"/seeds/texture/*
+seed fuzz-cli "$here"/seeds/cli/*
 
 status=0
-for harness in fuzz-mesh-obj fuzz-mesh-gltf fuzz-mesh-glb fuzz-mesh-ply fuzz-mesh-dae fuzz-mesh-fbx fuzz-scene-json fuzz-texture; do
+for harness in fuzz-mesh-obj fuzz-mesh-gltf fuzz-mesh-glb fuzz-mesh-ply fuzz-mesh-dae fuzz-mesh-fbx fuzz-scene-json fuzz-texture fuzz-cli; do
   mkdir -p "$corpus/$harness"
   echo "fuzz: $harness for ${seconds}s"
   # -rss_limit_mb: a memory bomb is a finding. -timeout: so is an input that takes 10 s.
