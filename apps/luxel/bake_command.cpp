@@ -179,7 +179,8 @@ void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
   bake.add_option("--vertex-colors-for", a.vertexColorsFor,
                   "With --lightmaps: meshes whose names match these globs (comma-separated) get vertex colours "
                   "(COLOR_0, irradiance) instead of a lightmap")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);  // one word (of comma-separated globs) per use, never the scene after it
 }
 
 }  // namespace luxel::cli

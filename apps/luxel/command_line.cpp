@@ -18,7 +18,11 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   CLI::App* render = line->renderCommand = app.add_subcommand("render", "Solve a scene and render an image");
   render->add_option("scene", ra.scene, "Built-in name (" + fmt::format("{}", fmt::join(builtinSceneNames(), ", ")) +
                                             "), a scene file (.json) or a mesh file")->required();
-  render->add_option("-o,--output", ra.outputs, "Output image(s): .exr (linear radiance) or .png (tone-mapped)")->required();
+  // One value per -o (repeat -o for more): CLI11 lets a vector option take every word up to the
+  // next option, so `render -o a.png cornell` took the scene for a second image.
+  render->add_option("-o,--output", ra.outputs, "Output image(s): .exr (linear radiance) or .png (tone-mapped); repeat -o for more")
+      ->required()
+      ->allow_extra_args(false);
   render->add_option("--camera", ra.camera, "A named camera of the scene");
   render->add_option("--eye", ra.eye, "Camera position X,Y,Z");
   render->add_option("--target", ra.target, "Point the camera looks at X,Y,Z");

@@ -53,7 +53,9 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
   c.add_option("--sky", a.sky, "Add a uniform sky of this radiance (W/(m2 sr), or cd/m2: 5000 is a bright overcast day)")
       ->check(finiteRange(0.0, double(kMaxRadiance)));
   c.add_option("--sun", a.sun, "Add a sun shining along X,Y,Z (the direction light travels), 100,000 lux, 0.53 degrees wide");
-  c.add_option("--set", a.set, "A solver option NAME=VALUE (repeatable; luxel solvers lists each solver's)");
+  // One NAME=VALUE per --set: a vector option would otherwise take the scene that follows it.
+  c.add_option("--set", a.set, "A solver option NAME=VALUE (repeatable; luxel solvers lists each solver's)")
+      ->allow_extra_args(false);
   solverFlag(c, a, "unshot", "progressive: stop below this unshot fraction (default 0.001)");
   solverFlag(c, a, "rays-per-pair", "cpu: visibility rays per element-patch pair (default 4)");
   solverFlag(c, a, "shooters-per-pass", "progressive: patches shot together in one pass (default 8; 1 on a software rasteriser)");
