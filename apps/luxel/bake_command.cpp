@@ -18,6 +18,7 @@
 #include "luxel/lightmap.h"
 #include "luxel/session.h"
 #include "luxel/solve.h"
+#include "out_of_memory.h"
 #include "output_paths.h"
 #include "progress_bar.h"
 
@@ -76,12 +77,17 @@ int runBake(const BakeArgs& a) {
   ProgressBar bar(a.quiet);
   if (!a.tracePath.empty()) bar.traceTo(a.tracePath);
   const auto start = std::chrono::steady_clock::now();
+  nowDoing(fmt::format("loading scene '{}'", a.scene), "the scene is too big for this machine's memory");
   Scene scene = loadScene(a.scene);
   addCommandLineLights(scene, a.solve);
   if (!a.quiet)
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
   const SolveOptions so = solveOptions(a.solve);  // checked by the session or recipe before any work
+  nowDoing(fmt::format("baking scene '{}' ({})", scene.name, a.lightmaps && a.texelsPerMetre > 0.0f
+                                                                ? fmt::format("--texels-per-metre {:g}", a.texelsPerMetre)
+                                                                : solveSize(a.solve)),
+           solveSizeHint(a.solve, a.lightmaps));
   if (a.lightmaps) {
     const std::vector<uint8_t> vertexColored = meshesMatching(scene, a.vertexColorsFor);  // before the solve
     LightmapRecipe recipe;

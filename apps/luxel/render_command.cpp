@@ -18,6 +18,7 @@
 #include "luxel/session.h"
 #include "luxel/solve.h"
 #include "luxel/stats.h"
+#include "out_of_memory.h"
 #include "output_paths.h"
 #include "progress_bar.h"
 
@@ -31,6 +32,10 @@ Camera cameraFor(const Scene& scene, const RenderArgs& a) {
   if (a.up) cam.up = parseVec3(*a.up, "up");
   if (a.fov > 0.0f) cam.fovY = a.fov;
   return cam;
+}
+
+std::string renderingWhat(const RenderArgs& a, const std::string& sceneName) {
+  return fmt::format("rendering scene '{}' ({} image, {} samples per pixel)", sceneName, a.size, a.spp);
 }
 
 double meanLuminance(const Image& img) {
@@ -84,6 +89,7 @@ int runRender(const RenderArgs& a) {
   ProgressBar bar(a.quiet);
   if (!a.tracePath.empty()) bar.traceTo(a.tracePath);
   const auto start = std::chrono::steady_clock::now();
+  nowDoing(fmt::format("loading scene '{}'", a.scene), "the scene is too big for this machine's memory");
   Scene scene = loadScene(a.scene);
   addCommandLineLights(scene, a.solve);
   const std::string sceneName = scene.name;
@@ -108,6 +114,7 @@ int runRender(const RenderArgs& a) {
   Solution solution;
   Image image;
   RenderStats rs;
+  nowDoing(fmt::format("solving scene '{}' ({})", sceneName, solveSize(a.solve)), solveSizeHint(a.solve, lightmapped));
   if (lightmapped) {
     LightmapRecipe recipe;
     recipe.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize : 0.0f;
@@ -115,10 +122,12 @@ int runRender(const RenderArgs& a) {
     recipe.solve = so;
     const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
     solution = baked.bake.solution;
+    nowDoing(renderingWhat(a, sceneName), "use a smaller image (--size)");
     image = renderLightmapped(scene, baked.atlas, baked.bake, ro, bar.callback(), &rs);
   } else {
     Session session(std::move(scene), discretiseOptions(a.solve), {so});
     solution = session.solve(bar.callback());
+    nowDoing(renderingWhat(a, sceneName), "use a smaller image (--size)");
     image = render(session.scene(), session.surfaces(), solution, ro, bar.callback(), &rs);
   }
   if (!a.quiet)

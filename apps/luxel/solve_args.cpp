@@ -108,6 +108,19 @@ void addCommandLineLights(Scene& scene, const SolveArgs& a) {
   }
 }
 
+std::string solveSize(const SolveArgs& a) {
+  if (a.elements > 0) return fmt::format("--elements {}", a.elements);
+  if (a.elementSize > 0.0f) return fmt::format("--element-size {:g}", a.elementSize);
+  return "the default 10,000-element budget";
+}
+
+std::string solveSizeHint(const SolveArgs& a, bool lightmaps) {
+  std::string hint = lightmaps ? "use fewer texels (--elements, a lower --texels-per-metre or a larger --element-size)"
+                               : "use fewer elements (--elements, or a larger --element-size)";
+  if (a.refine > 0) hint += " or less refinement (--refine)";
+  return hint;
+}
+
 void checkSolveArgs(const SolveArgs& a) {
   if (!a.sun.empty()) sunDirection(a.sun);
   validateSolveOptions(solveOptions(a));
