@@ -40,7 +40,7 @@ fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(BUILD_FUZZ) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLUXEL_FUZZ=ON \
 	  -DLUXEL_BUILD_TESTS=OFF -DLUXEL_BUILD_BENCH=OFF $(CMAKE_ARGS)
 	cmake --build $(BUILD_FUZZ) -j $(JOBS) --target fuzz-mesh-obj fuzz-mesh-gltf fuzz-mesh-glb fuzz-mesh-ply \
-	  fuzz-mesh-dae fuzz-mesh-fbx fuzz-scene-json fuzz-texture
+	  fuzz-mesh-dae fuzz-mesh-fbx fuzz-scene-json fuzz-texture fuzz-cli
 	./fuzz/run.sh $(BUILD_FUZZ) $(FUZZ_SECONDS)
 
 bench: build

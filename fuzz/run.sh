@@ -28,16 +28,20 @@ seed fuzz-mesh-dae "$here"/seeds/dae/*
 seed fuzz-mesh-fbx "$build"/test-tmp/import/*/*.fbx
 seed fuzz-scene-json "$here"/seeds/scene-json/*
 seed fuzz-texture "$here"/seeds/texture/*
+seed fuzz-cli "$here"/seeds/cli/*
 
 status=0
-for harness in fuzz-mesh-obj fuzz-mesh-gltf fuzz-mesh-glb fuzz-mesh-ply fuzz-mesh-dae fuzz-mesh-fbx fuzz-scene-json fuzz-texture; do
+for harness in fuzz-mesh-obj fuzz-mesh-gltf fuzz-mesh-glb fuzz-mesh-ply fuzz-mesh-dae fuzz-mesh-fbx fuzz-scene-json fuzz-texture fuzz-cli; do
   mkdir -p "$corpus/$harness"
   echo "fuzz: $harness for ${seconds}s"
+  # A dictionary of the input's words, where one exists (fuzz/cli.dict: options and values).
+  dict=()
+  [ -f "$here/${harness#fuzz-}.dict" ] && dict=(-dict="$here/${harness#fuzz-}.dict")
   # -rss_limit_mb: a memory bomb is a finding. -timeout: so is an input that takes 10 s.
   if ! ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$here/lsan.supp" \
       UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       "$build/$harness" "$corpus/$harness" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-      -max_len=65536 -artifact_prefix="$artifacts/$harness-" -print_final_stats=1 2>"$build/$harness.log"; then
+      -max_len=65536 "${dict[@]}" -artifact_prefix="$artifacts/$harness-" -print_final_stats=1 2>"$build/$harness.log"; then
     echo "fuzz: $harness FAILED; see $build/$harness.log and $artifacts" >&2
     tail -30 "$build/$harness.log" >&2
     status=1

@@ -18,6 +18,7 @@
 #include "luxel/lightmap.h"
 #include "luxel/session.h"
 #include "luxel/solve.h"
+#include "out_of_memory.h"
 #include "output_paths.h"
 #include "progress_bar.h"
 
@@ -51,6 +52,16 @@ std::vector<uint8_t> meshesMatching(const Scene& scene, const std::vector<std::s
 
 }  // namespace
 
+void checkBakeArgs(const BakeArgs& a) {
+  if (a.lightmaps && a.vertexColors)
+    throw Error("--lightmaps and --vertex-colors exclude each other (--vertex-colors-for PATTERN picks meshes for "
+                "vertex colours beside lightmaps)");
+  if (!a.vertexColorsFor.empty() && !a.lightmaps)
+    throw Error("--vertex-colors-for needs --lightmaps (the other meshes get lightmaps); --vertex-colors alone "
+                "colours every mesh");
+  checkSolveArgs(a.solve);
+}
+
 int runBake(const BakeArgs& a) {
   // Check the output before the (possibly long) solve.
   const fs::path out(a.output);
@@ -58,12 +69,6 @@ int runBake(const BakeArgs& a) {
   if (!a.tracePath.empty()) paths.push_back({"--progress-trace", a.tracePath, {}});
   for (OutputPath& p : checkpointOutputs(a.solve)) paths.push_back(std::move(p));
   checkOutputPaths(paths);
-  if (a.lightmaps && a.vertexColors)
-    throw Error("--lightmaps and --vertex-colors exclude each other (--vertex-colors-for PATTERN picks meshes for "
-                "vertex colours beside lightmaps)");
-  if (!a.vertexColorsFor.empty() && !a.lightmaps)
-    throw Error("--vertex-colors-for needs --lightmaps (the other meshes get lightmaps); --vertex-colors alone "
-                "colours every mesh");
 
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)
@@ -72,12 +77,17 @@ int runBake(const BakeArgs& a) {
   ProgressBar bar(a.quiet);
   if (!a.tracePath.empty()) bar.traceTo(a.tracePath);
   const auto start = std::chrono::steady_clock::now();
+  nowDoing(fmt::format("loading scene '{}'", a.scene), "the scene is too big for this machine's memory");
   Scene scene = loadScene(a.scene);
   addCommandLineLights(scene, a.solve);
   if (!a.quiet)
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
   const SolveOptions so = solveOptions(a.solve);  // checked by the session or recipe before any work
+  nowDoing(fmt::format("baking scene '{}' ({})", scene.name, a.lightmaps && a.texelsPerMetre > 0.0f
+                                                                ? fmt::format("--texels-per-metre {:g}", a.texelsPerMetre)
+                                                                : solveSize(a.solve)),
+           solveSizeHint(a.solve, a.lightmaps));
   if (a.lightmaps) {
     const std::vector<uint8_t> vertexColored = meshesMatching(scene, a.vertexColorsFor);  // before the solve
     LightmapRecipe recipe;
@@ -175,7 +185,8 @@ void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
   bake.add_option("--vertex-colors-for", a.vertexColorsFor,
                   "With --lightmaps: meshes whose names match these globs (comma-separated) get vertex colours "
                   "(COLOR_0, irradiance) instead of a lightmap")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);  // one word (of comma-separated globs) per use, never the scene after it
 }
 
 }  // namespace luxel::cli

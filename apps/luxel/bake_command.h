@@ -31,6 +31,8 @@ struct BakeArgs {
   std::string tracePath;  // --progress-trace FILE
 };
 
+// Everything about the arguments that can be checked without a file: throws Error.
+void checkBakeArgs(const BakeArgs& args);
 int runBake(const BakeArgs& args);
 // Registers --lightmaps, --texels-per-metre, --lightmap-size and --vertex-colors-for on the bake
 // subcommand (main.cpp).

@@ -53,7 +53,9 @@ void addSolveOptions(CLI::App& c, SolveArgs& a) {
   c.add_option("--sky", a.sky, "Add a uniform sky of this radiance (W/(m2 sr), or cd/m2: 5000 is a bright overcast day)")
       ->check(finiteRange(0.0, double(kMaxRadiance)));
   c.add_option("--sun", a.sun, "Add a sun shining along X,Y,Z (the direction light travels), 100,000 lux, 0.53 degrees wide");
-  c.add_option("--set", a.set, "A solver option NAME=VALUE (repeatable; luxel solvers lists each solver's)");
+  // One NAME=VALUE per --set: a vector option would otherwise take the scene that follows it.
+  c.add_option("--set", a.set, "A solver option NAME=VALUE (repeatable; luxel solvers lists each solver's)")
+      ->allow_extra_args(false);
   solverFlag(c, a, "unshot", "progressive: stop below this unshot fraction (default 0.001)");
   solverFlag(c, a, "rays-per-pair", "cpu: visibility rays per element-patch pair (default 4)");
   solverFlag(c, a, "shooters-per-pass", "progressive: patches shot together in one pass (default 8; 1 on a software rasteriser)");
@@ -79,22 +81,49 @@ DiscretiseOptions discretiseOptions(const SolveArgs& a) {
   return d;
 }
 
+namespace {
+
+// --sun X,Y,Z: a direction, normalised; throws Error.
+Vec3 sunDirection(const std::string& text) {
+  Vec3 d;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> d.x >> c1 >> d.y >> c2 >> d.z) || c1 != ',' || c2 != ',' || !in.eof() || !std::isfinite(d.x) ||
+      !std::isfinite(d.y) || !std::isfinite(d.z) || glm::length(d) < 1e-12f)
+    throw Error(fmt::format("--sun '{}': expected a direction X,Y,Z, not zero", text));
+  return glm::normalize(d);
+}
+
+}  // namespace
+
 void addCommandLineLights(Scene& scene, const SolveArgs& a) {
   if (a.sky > 0.0f) scene.lights.push_back(Light{.type = Light::Type::Sky, .name = "sky (--sky)", .intensity = a.sky});
   if (!a.sun.empty()) {
-    Vec3 d;
-    char c1 = 0, c2 = 0;
-    std::istringstream in(a.sun);
-    if (!(in >> d.x >> c1 >> d.y >> c2 >> d.z) || c1 != ',' || c2 != ',' || !in.eof() || !std::isfinite(d.x) ||
-        !std::isfinite(d.y) || !std::isfinite(d.z) || glm::length(d) < 1e-12f)
-      throw Error(fmt::format("--sun '{}': expected a direction X,Y,Z, not zero", a.sun));
     // 100,000 lux on a surface facing it: a clear-sky sun; its disc 0.53 degrees across.
     scene.lights.push_back(Light{.type = Light::Type::Directional,
                                  .name = "sun (--sun)",
                                  .intensity = 100000.0f,
-                                 .direction = glm::normalize(d),
+                                 .direction = sunDirection(a.sun),
                                  .angularRadius = 0.00465f});
   }
+}
+
+std::string solveSize(const SolveArgs& a) {
+  if (a.elements > 0) return fmt::format("--elements {}", a.elements);
+  if (a.elementSize > 0.0f) return fmt::format("--element-size {:g}", a.elementSize);
+  return "the default 10,000-element budget";
+}
+
+std::string solveSizeHint(const SolveArgs& a, bool lightmaps) {
+  std::string hint = lightmaps ? "use fewer texels (--elements, a lower --texels-per-metre or a larger --element-size)"
+                               : "use fewer elements (--elements, or a larger --element-size)";
+  if (a.refine > 0) hint += " or less refinement (--refine)";
+  return hint;
+}
+
+void checkSolveArgs(const SolveArgs& a) {
+  if (!a.sun.empty()) sunDirection(a.sun);
+  validateSolveOptions(solveOptions(a));
 }
 
 std::vector<OutputPath> checkpointOutputs(const SolveArgs& a) {

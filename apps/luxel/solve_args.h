@@ -55,5 +55,12 @@ std::vector<OutputPath> checkpointOutputs(const SolveArgs& args);
 void addCommandLineLights(Scene& scene, const SolveArgs& args);
 // The request: method, backend and settings. Unknown names are caught when the solver is made.
 SolveOptions solveOptions(const SolveArgs& args);
+// How big a solve was asked for, for messages: "--elements 2000000", "--element-size 0.01" or
+// "the default 10,000-element budget".
+std::string solveSize(const SolveArgs& args);
+// What to reduce when a solve runs out of memory; `lightmaps`: texels are its elements.
+std::string solveSizeHint(const SolveArgs& args, bool lightmaps);
+// Checks what needs no scene and no file (--sun, the solver, backend and options): throws Error.
+void checkSolveArgs(const SolveArgs& args);
 
 }  // namespace luxel::cli

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "luxel/image.h"
@@ -47,9 +48,13 @@ struct LightmapAtlas {
     bool conservative = false;
   };
   std::vector<std::vector<FaceUv>> faces;  // [mesh][face], parallel to Scene::meshes[m].faces
+  // What the atlas did on its own, for the caller to show: meshes whose given UVs had no area and
+  // were unwrapped instead (docs/lightmaps.md, "Given UVs").
+  std::vector<std::string> warnings;
 };
 
-// Throws Error naming the mesh when given UVs overlap or leave [0,1], or options are absurd.
+// Throws Error naming the mesh when given UVs overlap or leave [0,1], or options are absurd. Given
+// UVs of (nearly) no area are replaced by luxel's own, with a warning in LightmapAtlas::warnings.
 LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options = {});
 
 // ---- Baking: texels as elements (docs/lightmaps.md, "Baking") ----------------------------------

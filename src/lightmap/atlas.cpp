@@ -2,6 +2,7 @@
 // the density, and the conservative-rasterisation flags.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -55,21 +56,29 @@ LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options
   atlas.faces.resize(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) atlas.faces[m].resize(scene.meshes[m].faces.size());
 
+  // Per mesh: keep its own UVs? Not when they have no area: they would bake black.
+  std::vector<uint8_t> given(scene.meshes.size(), 0);
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    if (!options.useMeshUvs || mesh.lightmapUvs.empty() || mesh.faces.empty()) continue;
+    const std::string degenerate = lightmap::degenerateGivenUvs(scene, m);
+    if (degenerate.empty()) given[m] = 1;
+    else atlas.warnings.push_back(degenerate);
+  }
+
   // Meshes without their own UVs: charts, flattened, then packed together (below).
   std::vector<lightmap::Chart> charts;
   double area = 0.0;
   const float maxAngle = options.chartAngle * std::numbers::pi_v<float> / 180.0f;
   for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
-    if ((options.useMeshUvs && !mesh.lightmapUvs.empty()) || mesh.faces.empty()) continue;
+    if (given[m] || mesh.faces.empty()) continue;
     lightmap::WeldedMesh w = lightmap::weld(mesh);
     for (float a : w.area) area += a;
     auto flat = lightmap::parameterise(w, lightmap::segmentCharts(w, m, maxAngle));
     for (auto& c : flat) charts.push_back(std::move(c));
   }
-  bool givenUvs = false;
-  for (const Mesh& mesh : scene.meshes)
-    givenUvs = givenUvs || (options.useMeshUvs && !mesh.lightmapUvs.empty() && !mesh.faces.empty());
+  const bool givenUvs = std::find(given.begin(), given.end(), 1) != given.end();
   if (options.sizePagesToContent && !givenUvs && !charts.empty()) {
     // The smallest power of two that needs no more pages (pagesNeeded counts a page that would
     // scale a chart down as needing infinitely many: then the largest page stays).
@@ -89,8 +98,7 @@ LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options
   // Meshes with their own UVs: a page each, as given, first.
   uint32_t page = 0;
   for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
-    const Mesh& mesh = scene.meshes[m];
-    if (!options.useMeshUvs || mesh.lightmapUvs.empty() || mesh.faces.empty()) continue;
+    if (!given[m]) continue;
     atlas.chartCount +=
         lightmap::useExistingUvs(scene, m, o.pageSize, page++, uint32_t(atlas.chartCount), atlas);
   }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "luxel/lightmap.h"
@@ -72,6 +73,12 @@ PackResult packCharts(const std::vector<Chart>& charts, float density, const Atl
                       uint32_t firstPage, uint32_t firstChart, LightmapAtlas* atlas);
 // The number of pages packCharts would use (no output).
 int pagesNeeded(const std::vector<Chart>& charts, float density, const AtlasOptions& options);
+
+// Given UVs that are no lightmap layout: the faces whose UV area is (near) zero, for their share of
+// the mesh's UV area by their surface area, hold more than half the mesh's surface. Such UVs bake
+// black (no texel centre falls in a face of no area), so the atlas unwraps the mesh itself with a
+// warning. Returns that warning, or "" when the UVs are usable.
+std::string degenerateGivenUvs(const Scene& scene, uint32_t meshIndex);
 
 // Checks a mesh's lightmapUvs (in [0,1], no two faces claiming a texel at pageSize) and writes
 // them to atlas.faces[meshIndex] on `page`, one chart per UV-connected component, numbered from

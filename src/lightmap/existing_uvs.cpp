@@ -1,12 +1,49 @@
 // A mesh's own lightmap UVs (Mesh::lightmapUvs): checked, then used as they are.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <numeric>
+#include <string>
+#include <vector>
 
 #include "lightmap/atlas_internal.h"
 #include "luxel/error.h"
 
 namespace luxel::lightmap {
+
+std::string degenerateGivenUvs(const Scene& scene, uint32_t meshIndex) {
+  const Mesh& mesh = scene.meshes[meshIndex];
+  const auto& uv = mesh.lightmapUvs;
+  auto uvArea = [&](uint32_t a, uint32_t b, uint32_t c) {
+    const Vec2 e1 = uv[b] - uv[a], e2 = uv[c] - uv[a];
+    return 0.5 * std::abs(double(e1.x) * e2.y - double(e1.y) * e2.x);
+  };
+  auto area = [&](uint32_t a, uint32_t b, uint32_t c) {
+    return 0.5 * double(glm::length(glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a])));
+  };
+  std::vector<double> faceArea(mesh.faces.size()), faceUvArea(mesh.faces.size());
+  double total = 0.0, totalUv = 0.0;
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& face = mesh.faces[f];
+    faceArea[f] = area(face.v[0], face.v[1], face.v[2]) + (face.isTriangle() ? 0.0 : area(face.v[0], face.v[2], face.v[3]));
+    faceUvArea[f] = uvArea(face.v[0], face.v[1], face.v[2]) + (face.isTriangle() ? 0.0 : uvArea(face.v[0], face.v[2], face.v[3]));
+    total += faceArea[f];
+    totalUv += faceUvArea[f];
+  }
+  if (!(total > 0.0)) return "";  // nothing to light: the checks of useExistingUvs are enough
+  // A face is collapsed when its UVs hold under 1/10,000 of the UV area its surface would get at
+  // the mesh's mean density. Engines' unwrappers collapse hidden faces (under a prop) on purpose,
+  // so a few are fine; most of the surface collapsed (every UV at (0,0), a channel exported empty)
+  // is not a lightmap layout.
+  double collapsedArea = 0.0;
+  size_t collapsed = 0;
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    if (faceUvArea[f] <= 1e-4 * totalUv * faceArea[f] / total && faceArea[f] > 0.0) collapsedArea += faceArea[f], ++collapsed;
+  if (collapsedArea <= 0.5 * total) return "";
+  return fmt::format("scene '{}': mesh '{}': its lightmap uvs have no area on {} of its {} faces ({:.0f}% of its "
+                     "surface; uv area {:.3g} in all), which would bake black: unwrapped by luxel instead",
+                     scene.name, mesh.name, collapsed, mesh.faces.size(), 100.0 * collapsedArea / total, totalUv);
+}
 
 size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint32_t page,
                       uint32_t firstChart, LightmapAtlas& atlas) {

@@ -40,6 +40,9 @@ BakedLightmaps bakeLightmaps(const Scene& scene, const LightmapRecipe& recipe, c
   lo.solve = recipe.solve;
   lo.dilation = ao.gutter;
   out.bake = bakeLightmaps(scene, out.atlas, lo, progress);
+  // Shown with the solve's warnings, where every caller already looks.
+  auto& warnings = out.bake.solution.stats.warnings;
+  warnings.insert(warnings.begin(), out.atlas.warnings.begin(), out.atlas.warnings.end());
   return out;
 }
 

@@ -83,6 +83,31 @@ TEST(HostileCli, EmissionThatWouldOverflowIsRefused) {
   expectFailure(r, dir, {"hot.mtl", "hot.obj"}, {"hot", "emission", "over the limit"});
 }
 
+// Sanitizers reserve terabytes of address space: ulimit -v would stop them before main().
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+TEST(HostileCli, RunningOutOfMemorySaysWhatAndWhatToReduce) {
+  if (kSanitized) GTEST_SKIP() << "ulimit -v and sanitizers do not mix";
+  fs::path dir = scratchDir();
+  // 400 MB of address space: the scene loads, two million elements do not fit. It said
+  // "luxel: error: std::bad_alloc".
+  CliRun r = luxel(dir, {"render", "cornell", "-o", "a.png", "--size", "8x8", "--elements", "2000000", "--threads", "2", "-q"},
+                   "ulimit -v 400000; ");
+  expectFailure(r, dir, {}, {"out of memory while solving scene 'cornell' (--elements 2000000)", "use fewer elements (--elements"});
+  r = luxel(dir, {"bake", "cornell", "-o", "a.glb", "--elements", "2000000", "--threads", "2", "-q"}, "ulimit -v 400000; ");
+  expectFailure(r, dir, {}, {"out of memory while baking scene 'cornell' (--elements 2000000)", "use fewer elements"});
+}
+
 TEST(HostileCli, SigtermEndsTheRunWithoutLeavingFiles) {
   fs::path dir = scratchDir();
   // Killed a moment after it starts, wherever it is: solving, rendering or writing.

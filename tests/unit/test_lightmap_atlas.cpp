@@ -436,6 +436,41 @@ TEST(LightmapAtlas, UsesGivenUvsAsTheyAre) {
   EXPECT_EQ(luxel::buildLightmapAtlas(s, o).pageCount, 1);
 }
 
+// A second UV set with no area (every vertex at (0,0): a placeholder channel, or one exported
+// empty) passed the checks (nothing overlaps, nothing leaves [0,1]) and baked black: no texel
+// centre falls in a face of no area. The mesh is unwrapped by luxel instead, with a warning.
+TEST(LightmapAtlas, GivenUvsOfNoAreaAreUnwrappedWithAWarning) {
+  Scene s = twoMeshes();
+  for (Vec2& uv : s.meshes[0].lightmapUvs) uv = Vec2(0.0f, 0.0f);
+  AtlasOptions o;
+  o.pageSize = 64;
+  o.texelsPerMetre = 16.0f;
+  LightmapAtlas atlas = luxel::buildLightmapAtlas(s, o);
+  ASSERT_EQ(atlas.warnings.size(), 1u);
+  EXPECT_NE(atlas.warnings[0].find("mesh 'given uvs'"), std::string::npos) << atlas.warnings[0];
+  EXPECT_NE(atlas.warnings[0].find("unwrapped by luxel"), std::string::npos) << atlas.warnings[0];
+  EXPECT_EQ(atlas.pageCount, 1);  // both meshes generated, packed together
+  for (const auto& uv : atlas.faces[0]) EXPECT_FALSE(uv.conservative);  // each face holds texels
+  AtlasCheck c = check(s, atlas, 0);
+  EXPECT_EQ(c.overlaps, 0u);
+  EXPECT_EQ(c.outside, 0u);
+
+  // Collapsed into a line (u only): no area either.
+  s = twoMeshes();
+  for (Vec2& uv : s.meshes[0].lightmapUvs) uv.y = 0.25f;
+  EXPECT_EQ(luxel::buildLightmapAtlas(s, o).warnings.size(), 1u);
+
+  // Engines' unwrappers collapse hidden faces on purpose; here one face of two (half the
+  // surface, not more) has no UV area: the layout is kept as given, without a warning.
+  s = twoMeshes();
+  s.meshes[0].lightmapUvs[4] = s.meshes[0].lightmapUvs[1];
+  s.meshes[0].lightmapUvs[5] = s.meshes[0].lightmapUvs[2];
+  atlas = luxel::buildLightmapAtlas(s, o);
+  EXPECT_TRUE(atlas.warnings.empty());
+  EXPECT_EQ(atlas.pageCount, 2);
+  EXPECT_EQ(atlas.faces[0][1].texel[1], s.meshes[0].lightmapUvs[4] * 64.0f);
+}
+
 TEST(LightmapAtlas, OverlappingOrOutOfRangeGivenUvsNameTheMesh) {
   Scene s = twoMeshes();
   s.meshes[0].lightmapUvs[4] = Vec2(0.25f, 0.0f);  // the second quad folds back over the first

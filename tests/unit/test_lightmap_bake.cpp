@@ -3,6 +3,7 @@
 // by the spatial hash exactly as by comparing all pairs, and stitched on meshes of any size.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -313,6 +314,30 @@ TEST(LightmapBake, CornerIrradianceFollowsTheTexels) {
   EXPECT_NEAR(high, 86.6, 1.0);
   EXPECT_NEAR(fold, 0.5 * (low + high), 1.0);
   EXPECT_THROW(luxel::lightmapCornerIrradiance(c.scene, c.atlas, c.bake, {}), luxel::Error);  // one flag per mesh
+}
+
+// A mesh whose given lightmap UVs are all (0,0) baked black: every face was a point in texel
+// space. Now it is unwrapped by luxel, says so among the solve's warnings, and its faces are lit.
+TEST(LightmapBake, GivenUvsOfNoAreaAreUnwrappedAndLit) {
+  luxel::Scene scene = luxel::loadScene("cornell");
+  luxel::Mesh& mesh = scene.meshes[0];
+  mesh.lightmapUvs.assign(mesh.positions.size(), luxel::Vec2(0.0f, 0.0f));
+  luxel::LightmapRecipe recipe;
+  recipe.texelBudget = 3000;
+  const luxel::BakedLightmaps baked = luxel::bakeLightmaps(scene, recipe);
+  const auto& warnings = baked.bake.solution.stats.warnings;
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_NE(warnings[0].find("mesh '" + mesh.name + "'"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("unwrapped by luxel"), std::string::npos) << warnings[0];
+  // Each face's centre texel holds light, and faces hold texels of their own.
+  const int size = baked.bake.pageSize;
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& uv = baked.atlas.faces[0][f];
+    EXPECT_FALSE(uv.conservative) << "face " << f;
+    const luxel::Vec2 c = 0.25f * (uv.texel[0] + uv.texel[1] + uv.texel[2] + uv.texel[3]);
+    const int x = std::clamp(int(c.x), 0, size - 1), y = std::clamp(int(c.y), 0, size - 1);
+    EXPECT_GT(luminance(baked.bake.pages[uv.page][size_t(y) * size_t(size) + size_t(x)]), 0.0f) << "face " << f;
+  }
 }
 
 TEST(LightmapBake, RgbmRoundTrips) {

@@ -1,0 +1,167 @@
+#include "render_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include "luxel/error.h"
+#include "luxel/image.h"
+#include "luxel/import.h"
+#include "luxel/lightmap.h"
+#include "luxel/render.h"
+#include "luxel/session.h"
+#include "luxel/solve.h"
+#include "luxel/stats.h"
+#include "out_of_memory.h"
+#include "output_paths.h"
+#include "progress_bar.h"
+
+namespace luxel::cli {
+namespace {
+
+Camera cameraFor(const Scene& scene, const RenderArgs& a) {
+  Camera cam = chooseCamera(scene, a.camera, a.fov);
+  if (a.eye) cam.eye = parseVec3(*a.eye, "eye");
+  if (a.target) cam.target = parseVec3(*a.target, "target");
+  if (a.up) cam.up = parseVec3(*a.up, "up");
+  if (a.fov > 0.0f) cam.fovY = a.fov;
+  return cam;
+}
+
+std::string renderingWhat(const RenderArgs& a, const std::string& sceneName) {
+  return fmt::format("rendering scene '{}' ({} image, {} samples per pixel)", sceneName, a.size, a.spp);
+}
+
+double meanLuminance(const Image& img) {
+  double sum = 0.0;
+  for (const Rgb& c : img.pixels) sum += 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+  return img.pixels.empty() ? 0.0 : sum / double(img.pixels.size());
+}
+
+}  // namespace
+
+Vec3 parseVec3(const std::string& text, const char* what) {
+  Vec3 v;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+      !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw Error(fmt::format("--{} '{}': expected X,Y,Z", what, text));
+  return v;
+}
+
+std::pair<int, int> parseSize(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w < 1 || h < 1 || w > 32768 || h > 32768)
+    throw Error(fmt::format("--size '{}': expected WxH with sides from 1 to 32768", text));
+  return {w, h};
+}
+
+void checkRenderArgs(const RenderArgs& a) {
+  parseSize(a.size);
+  if (a.eye) parseVec3(*a.eye, "eye");
+  if (a.target) parseVec3(*a.target, "target");
+  if (a.up) parseVec3(*a.up, "up");
+  if (a.mode != "lightmap") parseRenderMode(a.mode);
+  parseToneCurve(a.toneCurve);
+  checkSolveArgs(a.solve);
+}
+
+int runRender(const RenderArgs& a) {
+  std::vector<OutputPath> paths;
+  for (const std::string& o : a.outputs) paths.push_back({"-o", o, {".exr", ".png"}});
+  if (!a.statsPath.empty()) paths.push_back({"--stats", a.statsPath, {}});
+  if (!a.tracePath.empty()) paths.push_back({"--progress-trace", a.tracePath, {}});
+  for (OutputPath& p : checkpointOutputs(a.solve)) paths.push_back(std::move(p));
+  checkOutputPaths(paths);
+  auto [width, height] = parseSize(a.size);
+  std::unique_ptr<tbb::global_control> threads;
+  if (a.threads > 0) threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
+
+  ProgressBar bar(a.quiet);
+  if (!a.tracePath.empty()) bar.traceTo(a.tracePath);
+  const auto start = std::chrono::steady_clock::now();
+  nowDoing(fmt::format("loading scene '{}'", a.scene), "the scene is too big for this machine's memory");
+  Scene scene = loadScene(a.scene);
+  addCommandLineLights(scene, a.solve);
+  const std::string sceneName = scene.name;
+  if (!a.quiet)
+    for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
+
+  RenderOptions ro;
+  ro.camera = cameraFor(scene, a);
+  ro.width = width, ro.height = height;
+  ro.samplesPerPixel = a.spp;
+  // "lightmap": bake lightmaps and show them as an engine would (luxel::renderLightmapped).
+  const bool lightmapped = a.mode == "lightmap";
+  ro.mode = lightmapped ? RenderOptions::Mode::Radiosity : parseRenderMode(a.mode);
+  validateRenderOptions(ro);  // before the solve, which can take a while
+  ToneMap tm;
+  tm.curve = parseToneCurve(a.toneCurve);
+  tm.exposure = a.exposure;
+
+  // A bad solver, backend or option fails before any work: the session and the lightmap recipe
+  // check them first.
+  SolveOptions so = solveOptions(a.solve);
+  Solution solution;
+  Image image;
+  RenderStats rs;
+  nowDoing(fmt::format("solving scene '{}' ({})", sceneName, solveSize(a.solve)), solveSizeHint(a.solve, lightmapped));
+  if (lightmapped) {
+    LightmapRecipe recipe;
+    recipe.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize : 0.0f;
+    recipe.texelBudget = size_t(a.solve.elements);
+    recipe.solve = so;
+    const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
+    solution = baked.bake.solution;
+    nowDoing(renderingWhat(a, sceneName), "use a smaller image (--size)");
+    image = renderLightmapped(scene, baked.atlas, baked.bake, ro, bar.callback(), &rs);
+  } else {
+    Session session(std::move(scene), discretiseOptions(a.solve), {so});
+    solution = session.solve(bar.callback());
+    nowDoing(renderingWhat(a, sceneName), "use a smaller image (--size)");
+    image = render(session.scene(), session.surfaces(), solution, ro, bar.callback(), &rs);
+  }
+  if (!a.quiet)
+    for (const std::string& w : solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
+  for (const std::string& o : a.outputs) {
+    if (ProgressBar::interrupted()) throw Cancelled();  // between outputs, each written whole or not at all
+    writeImage(image, o, tm);
+  }
+  bar.finish();
+  bar.writeTrace();
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const SolveStats& s = solution.stats;
+  if (!a.statsPath.empty()) {
+    RunRecord record;
+    record.scene = sceneName;
+    record.solve = s;
+    record.image = RunRecord::Image{width, height, a.spp, a.mode, meanLuminance(image), rs.rays, rs.seconds};
+    record.threads = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
+    record.outputs = a.outputs;
+    record.totalSeconds = total;
+    writeStatsJson(record, a.statsPath);
+  }
+  if (!a.quiet) {
+    std::cout << fmt::format("luxel: {} — {} elements in {} patches, {} on {}{} ({} shots, {} iterations), unshot {:.3f}%\n",
+                             sceneName, s.elements, s.patches, s.method, s.backend,
+                             s.device.empty() ? "" : " (" + s.device + ")", s.shots, s.iterations, 100.0 * s.unshotFraction);
+    std::cout << fmt::format("luxel: solve {:.3f} s (setup {:.3f}, form factors {:.3f}, iterate {:.3f}), {:.1f} M rays/s\n",
+                             s.secondsTotal, s.secondsSetup, s.secondsFormFactors, s.secondsSolve, s.raysPerSecond() / 1e6);
+    std::cout << fmt::format("luxel: render {}x{} at {} spp ({}) {:.3f} s; total {:.3f} s\n", width, height, a.spp,
+                             a.mode, rs.seconds, total);
+    for (const std::string& o : a.outputs) std::cout << "luxel: wrote " << o << "\n";
+  }
+  return 0;
+}
+
+}  // namespace luxel::cli
