@@ -246,7 +246,10 @@ TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int 
       }
     }
   }
-  if (set.faces.empty()) throw Error(fmt::format("scene '{}': no face has a positive area", scene.name));
+  if (set.faces.empty()) {
+    scene.validate();  // coordinates past the limit overflow every area: say that, not its symptom
+    throw Error(fmt::format("scene '{}': no face has a positive area", scene.name));
+  }
   if (orientByLight) {
     set.flippedFaces = orientFacesByLight(scene, set.faces, set.sceneExtent);
     for (size_t i = 0; i < set.faces.size(); ++i)

@@ -360,8 +360,11 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
       if (set.faces[i].flipped) grids[i] = turnedRound(set.faces[i], grids[i]);
   }
   addTwinFaces(scene, set.faces, grids);
-  if (set.faces.empty())
+  if (set.faces.empty()) {
+    // Coordinates past the limit overflow every area to infinity: say that, not its symptom.
+    scene.validate();
     throw Error(fmt::format("scene '{}': no face has a positive area", scene.name));
+  }
   // Faces with a prescribed grid are fixed; the budget search sizes the others only.
   double freeArea = 0.0, fixedArea = 0.0;
   size_t fixedElements = 0, freeFaces = 0;

@@ -230,5 +230,24 @@ TEST(ImportMalformed, UndefinedUsemtlIsAWarningNamingTheMaterial) {
   EXPECT_TRUE(importMesh(bytesOf(obj), "obj", side, "room.obj").warnings.empty());
 }
 
+// Assimp's own words name its parser's stages and tokens, or say nothing about the file.
+TEST(ImportMalformed, AssimpMessagesAreTranslatedKeepingTheFileName) {
+  const std::string fbx = "; FBX 7.4.0 project file\n\"foo\": {{\n";
+  const std::string message = errorOf([&] { importMesh(bytesOf(fbx), "fbx", kNone, "broken.fbx"); });
+  EXPECT_EQ(message, "broken.fbx: not a valid FBX file: its syntax breaks at line 2, column 6");
+  const std::string text = "hello world, this is not a model\n";
+  EXPECT_EQ(errorOf([&] { importMesh(bytesOf(text), "xyz", kNone, "note.xyz"); }),
+            "note.xyz: not a valid .xyz file, nor any other format luxel can import");
+}
+
+// stb_image's reasons are its shorthand ("first not IHDR", "unknown image type").
+TEST(ImportMalformed, TextureDecoderMessagesSayWhatIsWrongWithTheFile) {
+  const std::string png = std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDX", 16) + std::string(17, '\0');
+  EXPECT_EQ(errorOf([&] { decodeTextureBytes(bytesOf(png), true, "cut.png"); }),
+            "texture 'cut.png': the image is damaged or truncated and cannot be decoded");
+  EXPECT_EQ(errorOf([&] { decodeTextureBytes(bytesOf(std::string("plain text")), true, "notes.txt"); }),
+            "texture 'notes.txt': not an image luxel reads (PNG, JPEG, TGA, BMP, PSD, GIF, HDR, PIC or PNM)");
+}
+
 }  // namespace
 }  // namespace luxel

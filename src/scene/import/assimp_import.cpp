@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <map>
 #include <optional>
+#include <regex>
 #include <span>
 #include <system_error>
 #include <utility>
@@ -574,6 +575,18 @@ std::string assimpError(const std::string& raw, const std::string& assimpPath) {
   if (raw.find("No suitable reader") != std::string::npos || raw.find("Unable to open file") != std::string::npos)
     return ext.empty() ? "not in a format luxel can import"
                        : fmt::format("not a valid {} file, nor any other format luxel can import", ext);
+  // "FBX-Tokenize (line 2 <<  col 6) unexpected colon", "FBX-Parser (TOK_DATA, line 1, col 20)
+  // unexpected token, expected TOK_KEY": the reader's stage and token names, then a position.
+  if (raw.rfind("FBX-", 0) == 0) {
+    std::smatch at;
+    static const std::regex kLine(R"(line (\d+)\D+col (\d+))");
+    static const std::regex kOffset(R"(offset (0x[0-9a-fA-F]+))");
+    if (std::regex_search(raw, at, kLine))
+      return fmt::format("not a valid FBX file: its syntax breaks at line {}, column {}", at[1].str(), at[2].str());
+    if (std::regex_search(raw, at, kOffset))
+      return fmt::format("not a valid FBX file: its structure breaks at byte {}", at[1].str());
+    return "not a valid FBX file";
+  }
   for (const char* internal : {"aiMesh", "aiScene", "aiNode", "aiMaterial", "aiFace", "aiAnimation", "mNum", "Validation failed"})
     if (raw.find(internal) != std::string::npos)
       return "malformed: its meshes, faces or nodes refer to data that is not there or of the wrong kind";
