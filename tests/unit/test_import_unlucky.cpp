@@ -9,7 +9,6 @@
 #include <functional>
 #include <string>
 
-#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "luxel/error.h"
@@ -68,18 +67,6 @@ TEST(ImportUnlucky, CamerasByNameCostLinearlyManyComparisons) {
   EXPECT_FALSE(added);
   EXPECT_EQ(at, 123u);
   EXPECT_LE(comparisons, 2 * n) << "name lookups are no longer constant time";
-}
-
-TEST(ImportUnlucky, HundredThousandCamerasLoadAndALaterOneReplacesAnEarlierOfTheSameName) {
-  const size_t n = 100000;
-  std::string json = R"({"builtin": "cornell", "cameras": [)";
-  for (size_t i = 0; i < n; ++i)
-    json += fmt::format(R"({{"name": "c{}", "eye": [0, 0, {}], "target": [0, 0, 0]}},)", i, i + 1);
-  json += R"({"name": "c7", "eye": [0, 0, -5], "target": [0, 0, 0]}]})";
-  const Scene scene = loadSceneJson(json, ".", "many.json");
-  const size_t builtin = builtinScene("cornell").cameras.size();
-  ASSERT_EQ(scene.cameras.size(), builtin + n);
-  EXPECT_EQ(scene.cameras[builtin + 7].eye.z, -5.0f);
 }
 
 TEST(ImportUnlucky, AFolderOrAFifoAsTheSceneSaysWhatItIs) {
