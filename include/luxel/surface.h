@@ -19,6 +19,10 @@ struct Polygon {
   Vec3 centroid() const;
   Vec3 normal() const;  // unit, from the winding
   float area() const;
+  // Whether the area is above rounding noise for the polygon's own size (1e-14 of its longest
+  // edge squared). Relative to the face, not the scene: a small face (a lamp) in a scene whose
+  // extent is huge is still a face.
+  bool hasArea() const;
 };
 
 // A scene face after import, kept so elements can be re-cut from its parameter space.

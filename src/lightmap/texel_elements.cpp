@@ -190,7 +190,6 @@ TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int 
   for (const Mesh& mesh : scene.meshes)
     for (const Vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
   set.sceneExtent = glm::length(hi - lo);
-  const float minArea = 1e-14f * set.sceneExtent * set.sceneExtent;
 
   for (uint32_t mi = 0; mi < scene.meshes.size(); ++mi) {
     const Mesh& mesh = scene.meshes[mi];
@@ -207,7 +206,7 @@ TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int 
       const auto& uv = atlas.faces[mi][fi];
       std::vector<glm::dvec2> tp;
       for (int i = 0; i < poly.count; ++i) tp.push_back(uv.texel[size_t(i)]);
-      if (!(poly.area() > minArea) || !(std::abs(area2(tp)) > 1e-12)) {
+      if (!poly.hasArea() || !(std::abs(area2(tp)) > 1e-12)) {
         ++ts.skippedFaces;
         continue;
       }
@@ -224,7 +223,7 @@ TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int 
       }
       auto add = [&](SurfaceFace g, std::array<Vec2, 4> t) {
         Polygon q{g.corners, g.triangle ? 3 : 4};
-        if (!(q.area() > minArea)) return;
+        if (!q.hasArea()) return;
         g.normal = q.normal();
         set.faces.push_back(g);
         ts.faceTexels.push_back(t);
@@ -247,7 +246,10 @@ TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int 
       }
     }
   }
-  if (set.faces.empty()) throw Error(fmt::format("scene '{}': no face has a positive area", scene.name));
+  if (set.faces.empty()) {
+    scene.validate();  // coordinates past the limit overflow every area: say that, not its symptom
+    throw Error(fmt::format("scene '{}': no face has a positive area", scene.name));
+  }
   if (orientByLight) {
     set.flippedFaces = orientFacesByLight(scene, set.faces, set.sceneExtent);
     for (size_t i = 0; i < set.faces.size(); ++i)

@@ -324,7 +324,6 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
   set.sceneExtent = glm::length(hi - lo);
   for (const Object& o : scene.objects) set.objectTransforms.push_back(o.transform);
 
-  const float minArea = 1e-14f * set.sceneExtent * set.sceneExtent;
   std::vector<ElementGrid> grids;  // one per entry of set.faces
   for (uint32_t mi = 0; mi < scene.meshes.size(); ++mi) {
     const Mesh& mesh = scene.meshes[mi];
@@ -348,7 +347,7 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
       if (pieces.size() > 1) grid = {0, 0};
       for (SurfaceFace& piece : pieces) {
         Polygon poly{piece.corners, piece.triangle ? 3 : 4};
-        if (!(poly.area() > minArea)) continue;  // degenerate faces carry no light
+        if (!poly.hasArea()) continue;  // degenerate faces carry no light
         piece.normal = poly.normal();
         set.faces.push_back(piece);
         grids.push_back(grid);
@@ -361,8 +360,11 @@ SurfaceSet discretise(const Scene& scene, const DiscretiseOptions& options) {
       if (set.faces[i].flipped) grids[i] = turnedRound(set.faces[i], grids[i]);
   }
   addTwinFaces(scene, set.faces, grids);
-  if (set.faces.empty())
+  if (set.faces.empty()) {
+    // Coordinates past the limit overflow every area to infinity: say that, not its symptom.
+    scene.validate();
     throw Error(fmt::format("scene '{}': no face has a positive area", scene.name));
+  }
   // Faces with a prescribed grid are fixed; the budget search sizes the others only.
   double freeArea = 0.0, fixedArea = 0.0;
   size_t fixedElements = 0, freeFaces = 0;

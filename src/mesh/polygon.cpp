@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "luxel/surface.h"
@@ -30,6 +31,12 @@ float Polygon::area() const {
   Vec3 sum(0.0f);
   for (int i = 1; i + 1 < count; ++i) sum += glm::cross(v[i] - v[0], v[i + 1] - v[0]);
   return 0.5f * glm::length(sum);
+}
+
+bool Polygon::hasArea() const {
+  float longest = 0.0f;
+  for (int i = 0; i < count; ++i) longest = std::max(longest, glm::length(v[(i + 1) % count] - v[i]));
+  return area() > 1e-14f * longest * longest;
 }
 
 Vec3 SurfaceFace::position(Vec2 st) const {

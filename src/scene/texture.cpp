@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <span>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -17,6 +18,7 @@
 
 #include "luxel/error.h"
 #include "luxel/import.h"
+#include "io/input_file.h"
 #include "scene/texture_decode.h"
 
 namespace luxel {
@@ -56,9 +58,15 @@ struct StbFree {
   void operator()(void* p) const { stbi_image_free(p); }
 };
 
+// stb_image's reasons are its own shorthand ("first not IHDR", "bad huffman code"): say what it
+// means for the file instead.
 std::string failure(const std::string& path) {
-  const char* reason = stbi_failure_reason();
-  return fmt::format("texture '{}': {}", path, reason ? reason : "cannot decode image");
+  const std::string_view reason = stbi_failure_reason() ? stbi_failure_reason() : "";
+  if (reason == "unknown image type")
+    return fmt::format("texture '{}': not an image luxel reads (PNG, JPEG, TGA, BMP, PSD, GIF, HDR, PIC or PNM)",
+                       path);
+  if (reason == "outofmem") return fmt::format("texture '{}': out of memory while decoding it", path);
+  return fmt::format("texture '{}': the image is damaged or truncated and cannot be decoded", path);
 }
 
 }  // namespace
@@ -167,9 +175,8 @@ Texture decodeTextureBytes(std::span<const std::byte> bytes, bool srgb, std::str
 
 Texture loadTexture(const std::filesystem::path& path, bool srgb) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error(fmt::format("texture '{}': no such file", name));
+  if (const std::optional<std::string> why = whyNotARegularFile(path))
+    throw Error(fmt::format("texture '{}': {}", name, *why));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("texture '{}': cannot open file", name));
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -247,6 +247,22 @@ TEST(Discretise, SceneWithOnlyZeroAreaFacesThrows) {
   EXPECT_THROW(discretise(scene, DiscretiseOptions{}), Error);
 }
 
+// A quad 10^30 across: its area overflows float to infinity, so no face passes as having one. The
+// cause is the coordinates, past the 10^9 limit Scene::validate names; saying "no face has a
+// positive area" sent users looking for degenerate faces.
+TEST(Discretise, CoordinatesPastTheLimitAreNamedRatherThanTheAreasTheyOverflow) {
+  const float big = 1e30f;
+  Scene scene = quadScene({{Vec3(0, 0, 0), Vec3(big, 0, 0), Vec3(big, big, 0), Vec3(0, big, 0)}});
+  std::string message;
+  try {
+    discretise(scene, DiscretiseOptions{});
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("mesh 'quads': vertex 1 at (1e+30, 0, 0) is beyond 1e+09 scene units"), std::string::npos)
+      << message;
+}
+
 // The Cornell box with the back wall (mesh 3) and the floor (mesh 0) wound the wrong way round:
 // face vertices 1 and 3 swapped.
 Scene cornellWithTwoWallsReversed() {

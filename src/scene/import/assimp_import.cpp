@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <map>
 #include <optional>
+#include <regex>
 #include <span>
 #include <system_error>
 #include <utility>
@@ -27,10 +28,15 @@
 #include "luxel/import.h"
 #include "luxel/resources.h"
 #include "core/large_stack.h"
+#include "io/input_file.h"
 #include "scene/coincident_faces.h"
+#include "scene/stray_geometry.h"
 #include "scene/import/assimp_io.h"
 #include "scene/import/child_process_import.h"
+#include "scene/import/collada_indices.h"
+#include "scene/import/gltf_accessors.h"
 #include "scene/import/gltf_extras.h"
+#include "scene/import/obj_references.h"
 #include "scene/import/ply_header.h"
 #include "scene/import/quads.h"
 #include "scene/import/resource_path.h"
@@ -178,10 +184,15 @@ class AssimpImport {
     if (!haveBase) am.Get(AI_MATKEY_COLOR_DIFFUSE, base);
     Rgb reflectance(base.r, base.g, base.b);
     Rgb clamped;
-    for (int c = 0; c < 3; ++c)
+    bool outside = false;  // of [0, 1], where the file's value is wrong, not just capped by luxel
+    for (int c = 0; c < 3; ++c) {
       clamped[c] =
           std::isfinite(reflectance[c]) ? std::clamp(reflectance[c], 0.0f, kMaxReflectance) : 0.0f;
-    if (clamped != reflectance)
+      outside |= !(reflectance[c] >= 0.0f && reflectance[c] <= 1.0f);
+    }
+    // Up to 1 is a valid colour (glTF's default base colour is 1, and emitters keep it): capping
+    // it at kMaxReflectance is luxel's business, not something the file should be warned about.
+    if (outside)
       scene_.warnings.push_back(
           fmt::format("{}: material '{}': reflectance ({}, {}, {}) clamped to [0, {}]", file_,
                       mat.name, reflectance.x, reflectance.y, reflectance.z, kMaxReflectance));
@@ -462,11 +473,21 @@ class AssimpImport {
       if (light.type == Light::Type::Spot) {
         // glTF's innerConeAngle/outerConeAngle are angles from the axis; Assimp copies them
         // unchanged, and luxel uses the same convention.
-        float inner = al.mAngleInnerCone, outer = al.mAngleOuterCone;
-        if (!std::isfinite(outer) || outer <= 0.0f || outer > 0.5f * kPi) outer = 0.25f * kPi;
-        if (!std::isfinite(inner) || inner < 0.0f) inner = 0.0f;
-        light.outerConeAngle = outer;
-        light.innerConeAngle = std::min(inner, outer);
+        // KHR_lights_punctual: 0 <= inner < outer <= pi/2. Out of range, the file's cone is not
+        // what renders, so say which one is used instead. (inner == outer, a hard edge, is what
+        // Blender exports for a spot without blend; luxel renders it as written.)
+        const float inner = al.mAngleInnerCone, outer = al.mAngleOuterCone;
+        float usedOuter = outer, usedInner = inner;
+        if (!std::isfinite(outer) || outer <= 0.0f || outer > 0.5f * kPi) usedOuter = 0.25f * kPi;
+        if (!std::isfinite(inner) || inner < 0.0f) usedInner = 0.0f;
+        usedInner = std::min(usedInner, usedOuter);
+        if (usedOuter != outer || usedInner != inner)
+          scene_.warnings.push_back(fmt::format(
+              "{}: light '{}': spot cone angles inner {:g} and outer {:g} rad are outside 0 <= inner <= outer <= "
+              "pi/2; using inner {:g} and outer {:g} rad",
+              file_, name, inner, outer, usedInner, usedOuter));
+        light.outerConeAngle = usedOuter;
+        light.innerConeAngle = usedInner;
       }
       transformLight(light, nodeTransform(al.mName));
       scene_.lights.push_back(light);
@@ -547,6 +568,32 @@ bool hasPolygons(const aiScene& ai) {
   return false;
 }
 
+// Assimp's messages name its own structures ("aiMesh::mFaces[3] is a LINE") or say nothing a user
+// can act on ("No suitable reader found for the file format of file ..."): translate those, and
+// keep the ones that describe the file in its format's terms ("OBJ: ...").
+std::string assimpError(const std::string& raw, const std::string& assimpPath) {
+  const std::string ext = lower(fs::path(assimpPath).extension().string());
+  if (raw.find("No suitable reader") != std::string::npos || raw.find("Unable to open file") != std::string::npos)
+    return ext.empty() ? "not in a format luxel can import"
+                       : fmt::format("not a valid {} file, nor any other format luxel can import", ext);
+  // "FBX-Tokenize (line 2 <<  col 6) unexpected colon", "FBX-Parser (TOK_DATA, line 1, col 20)
+  // unexpected token, expected TOK_KEY": the reader's stage and token names, then a position.
+  if (raw.rfind("FBX-", 0) == 0) {
+    std::smatch at;
+    static const std::regex kLine(R"(line (\d+)\D+col (\d+))");
+    static const std::regex kOffset(R"(offset (0x[0-9a-fA-F]+))");
+    if (std::regex_search(raw, at, kLine))
+      return fmt::format("not a valid FBX file: its syntax breaks at line {}, column {}", at[1].str(), at[2].str());
+    if (std::regex_search(raw, at, kOffset))
+      return fmt::format("not a valid FBX file: its structure breaks at byte {}", at[1].str());
+    return "not a valid FBX file";
+  }
+  for (const char* internal : {"aiMesh", "aiScene", "aiNode", "aiMaterial", "aiFace", "aiAnimation", "mNum", "Validation failed"})
+    if (raw.find(internal) != std::string::npos)
+      return "malformed: its meshes, faces or nodes refer to data that is not there or of the wrong kind";
+  return raw;
+}
+
 // The name Assimp reads the main file under: `name`, with ".<hint>" appended unless it already
 // ends that way, since Assimp picks its importer from the extension (see assimp_io.h).
 std::string assimpMainPath(const std::string& name, std::string hint) {
@@ -588,16 +635,24 @@ Scene importMeshOnThisStack(std::span<const std::byte> bytes, std::string_view f
   const std::string assimpPath = assimpMainPath(file, std::string(formatHint));
   checkPlyCounts(bytes, file);
   checkGlbLayout(bytes, file);
-  // Assimp and the conversion of what it read, in a child process with limits: a crash, a hang or
-  // a memory bomb in Assimp is an Error naming the file.
+  // The format checks, Assimp and the conversion of what it read, in a child process with limits:
+  // a crash, a hang or a memory bomb in any of them is an Error naming the file.
   Scene scene = importInChildProcess(file, bytes.size(),
                                      [&] { return readWithAssimp(file, assimpPath, bytes, formatHint, resources); });
+  warnAboutStrayMesh(scene, file);  // first: what follows is measured against the extent
   removeCoincidentFaces(scene);
   return scene;
 }
 
 Scene readWithAssimp(const std::string& file, const std::string& assimpPath, std::span<const std::byte> bytes,
                      std::string_view formatHint, const ResourceReader& resources) {
+  // Checks for what Assimp would silently repair, format by format (see each header).
+  const std::string extension = lower(fs::path(assimpPath).extension().string());
+  if (formatOf(assimpPath) == Format::Gltf) checkGltfAccessors(bytes, resources, file);
+  if (formatOf(assimpPath) == Format::Collada) checkColladaIndices(bytes, file);
+  std::vector<std::string> warnings;
+  if (extension == ".obj") warnings = checkObjReferences(bytes, resources, file);
+
   Assimp::Importer importer;
   importer.SetIOHandler(new ResourceIOSystem(assimpPath, bytes, resources));  // owned by importer
   // Read without post-processing first: validation would reject a file without faces as
@@ -607,7 +662,7 @@ Scene readWithAssimp(const std::string& file, const std::string& assimpPath, std
     const std::string hint = lower(std::string(formatHint));
     if (hint == "gltf" || hint == ".gltf" || hint == "glb" || hint == ".glb")
       if (const std::optional<std::string> why = gltfJsonError(bytes)) throw Error(fmt::format("{}: {}", file, *why));
-    throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
+    throw Error(fmt::format("{}: {}", file, assimpError(importer.GetErrorString(), assimpPath)));
   }
   if (!ai->mRootNode || !hasPolygons(*ai))
     throw Error(fmt::format("{}: contains no triangles", file));
@@ -617,18 +672,18 @@ Scene readWithAssimp(const std::string& file, const std::string& assimpPath, std
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   ai = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
                                     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
-  if (!ai) throw Error(fmt::format("{}: {}", file, importer.GetErrorString()));
+  if (!ai) throw Error(fmt::format("{}: {}", file, assimpError(importer.GetErrorString(), assimpPath)));
   if (ai->mNumMeshes == 0) throw Error(fmt::format("{}: contains no triangles", file));
-  return AssimpImport(file, assimpPath, bytes, resources, *ai).run();
+  Scene scene = AssimpImport(file, assimpPath, bytes, resources, *ai).run();
+  scene.warnings.insert(scene.warnings.begin(), warnings.begin(), warnings.end());
+  return scene;
 }
 
 }  // namespace
 
 Scene importMeshFile(const fs::path& path) {
   const std::string file = path.string();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(fmt::format("{}: no such file", file));
-  if (!fs::is_regular_file(path, ec)) throw Error(fmt::format("{}: not a regular file", file));
+  if (const std::optional<std::string> why = whyNotARegularFile(path)) throw Error(fmt::format("{}: {}", file, *why));
   // Side files and textures are found next to the model, as they always were.
   const FileResourceReader resources(path.parent_path());
   std::optional<std::vector<std::byte>> bytes;

@@ -16,7 +16,11 @@
 
 #include "luxel/error.h"
 #include "luxel/import.h"
+#include "io/input_file.h"
 #include "scene/coincident_faces.h"
+#include "scene/stray_geometry.h"
+#include "scene/import/name_index.h"
+#include "scene/import/strict_json.h"
 #include "scene/import/transform.h"
 
 namespace luxel {
@@ -195,14 +199,15 @@ class SceneFileLoader {
     }
     if (auto it = doc.find("cameras"); it != doc.end()) {
       const Json& cameras = in_.array(*it, "/cameras");
+      NameIndex<> byName;
+      for (size_t c = 0; c < scene_.cameras.size(); ++c) byName.findOrAdd(scene_.cameras[c].name, c);
       for (size_t i = 0; i < cameras.size(); ++i) {
         Camera cam = readCamera(cameras[i], Reader::child("/cameras", i), i);
-        auto same = std::find_if(scene_.cameras.begin(), scene_.cameras.end(),
-                                 [&](const Camera& c) { return c.name == cam.name; });
-        if (same != scene_.cameras.end())
-          *same = cam;  // a file's camera redefined by name
+        const auto [at, added] = byName.findOrAdd(cam.name, scene_.cameras.size());
+        if (added)
+          scene_.cameras.push_back(std::move(cam));
         else
-          scene_.cameras.push_back(cam);
+          scene_.cameras[at] = std::move(cam);  // a file's camera redefined by name
       }
     }
     if (auto it = doc.find("up"); it != doc.end()) scene_.up = in_.direction(*it, "/up");
@@ -524,7 +529,7 @@ Scene loadSceneJson(std::string_view text, const fs::path& baseFolder, std::stri
   const std::string file(name);
   Json doc;
   try {
-    doc = Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+    doc = parseJsonWithoutDuplicateKeys(text, file);
   } catch (const Json::parse_error& e) {
     // what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ...".
     std::string what = e.what();
@@ -539,14 +544,14 @@ Scene loadSceneJson(std::string_view text, const fs::path& baseFolder, std::stri
     throw Error(fmt::format("{}: invalid JSON: {}", file, what));
   }
   Scene scene = SceneFileLoader(baseFolder, file).load(doc);
+  warnAboutStrayMesh(scene, file);  // first: what follows is measured against the extent
   removeCoincidentFaces(scene);  // across files: each file's own copies went at its import
   return scene;
 }
 
 Scene loadSceneFile(const fs::path& path) {
   const std::string file = path.string();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw Error(fmt::format("{}: no such file", file));
+  if (const std::optional<std::string> why = whyNotARegularFile(path)) throw Error(fmt::format("{}: {}", file, *why));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: cannot open file", file));
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
