@@ -108,7 +108,10 @@ TEST(ChildProcessImport, ACrashIsAnErrorNamingTheFile) {
       return {};
     });
   });
-  expectIn(e, {"crash.dae", "crashed", "segmentation fault"});
+  expectIn(e, {"crash.dae", "crashed"});
+#if !defined(__SANITIZE_ADDRESS__)  // AddressSanitizer takes the signal, reports it and exits 1
+  expectIn(e, {"segmentation fault"});
+#endif
 }
 
 TEST(ChildProcessImport, AHangIsStoppedAtTheTimeLimit) {

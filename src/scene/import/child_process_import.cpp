@@ -66,6 +66,9 @@ size_t addressSpaceInUse() {
   return pages * size_t(sysconf(_SC_PAGE_SIZE));
 }
 
+// The child's exit status when it could not write its result.
+constexpr int kChildWriteFailed = 3;
+
 bool writeAll(int fd, const void* data, size_t size) {
   const auto* p = static_cast<const char*>(data);
   while (size > 0) {
@@ -94,7 +97,7 @@ bool writeAll(int fd, const void* data, size_t size) {
   std::string message;
   try {
     const std::vector<std::byte> bytes = sceneBytes(import());
-    _exit(writeAll(fd, "S", 1) && writeAll(fd, bytes.data(), bytes.size()) ? 0 : 3);
+    _exit(writeAll(fd, "S", 1) && writeAll(fd, bytes.data(), bytes.size()) ? 0 : kChildWriteFailed);
   } catch (const std::bad_alloc&) {
     message = fmt::format("{}: ran out of memory importing it: the file is malformed, or too big to import", file);
   } catch (const std::exception& e) {
@@ -103,7 +106,7 @@ bool writeAll(int fd, const void* data, size_t size) {
       message = fmt::format("{}: ran out of memory importing it: the file is malformed, or too big to import", file);
   }
   message.insert(0, "E");
-  _exit(writeAll(fd, message.data(), message.size()) ? 0 : 3);
+  _exit(writeAll(fd, message.data(), message.size()) ? 0 : kChildWriteFailed);
 }
 
 std::string signalName(int signal) {
@@ -170,9 +173,13 @@ Scene importInChildProcess(const std::string& file, size_t inputBytes, const std
     throw Error(fmt::format("{}: the importer crashed reading it, with {}: the file is malformed", file,
                             signalName(WTERMSIG(status))));
   }
+  // The child itself exits 0, or kChildWriteFailed; any other status is something ending it on its
+  // way, such as a sanitizer's report of a crash.
+  if (WIFEXITED(status) && WEXITSTATUS(status) == kChildWriteFailed)
+    throw Error(fmt::format("{}: the importer could not hand its result over (out of memory for it?)", file));
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw Error(fmt::format("{}: the importer failed reading it (exit status {})", file,
-                            WIFEXITED(status) ? WEXITSTATUS(status) : -1));
+    throw Error(fmt::format("{}: the importer crashed reading it (it ended with exit status {}): the file is malformed",
+                            file, WIFEXITED(status) ? WEXITSTATUS(status) : -1));
 
   struct stat info {};
   if (fstat(result.get(), &info) != 0 || info.st_size < 1)
