@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <thread>
@@ -167,6 +168,14 @@ TEST(ChildProcessImport, ACrashInsideAssimpLeavesTheCallerStanding) {
   // And the next import works.
   MemoryResourceReader fine;
   EXPECT_EQ(importMesh(std::as_bytes(std::span<const char>(obj)), "obj", fine, "box.obj").triangleCount(), 1u);
+}
+
+// A real one: an 855-byte COLLADA file (fuzz-mesh-dae found it) on which Debian's Assimp 5.2
+// dereferences a null pointer in its COLLADA reader; in-process, luxel died of SIGSEGV.
+TEST(ChildProcessImport, AFileThatCrashesAssimpIsAnErrorNamingIt) {
+  const std::filesystem::path file = std::filesystem::path(LUXEL_SOURCE_DIR) / "tests/data/assimp-crashes/collada-null-node.dae";
+  const std::string e = errorOf([&] { importMeshFile(file); });
+  expectIn(e, {"collada-null-node.dae", "crashed"});
 }
 
 TEST(ChildProcessImport, CtrlCInTheChildCancels) {
