@@ -134,12 +134,18 @@ Texture decodeTexture(const unsigned char* data, size_t size, bool srgb, const s
                                 i % size_t(w), i / size_t(w), std::max({rows[i].r, rows[i].g, rows[i].b}), kMaxRadiance));
     }
   } else if (stbi_is_16_bit_from_memory(data, len)) {
-    std::unique_ptr<stbi_us, StbFree> px(stbi_load_16_from_memory(data, len, &w, &h, &channels, 3));
+    // The file's own channels, expanded to RGB here: asked for 3 channels of a 16-bit PNM with
+    // fewer, Debian 12's stb_image converts them with its 8-bit routine into a buffer half the
+    // size the 16-bit reader then walks (fuzz-texture found the overflow).
+    std::unique_ptr<stbi_us, StbFree> px(stbi_load_16_from_memory(data, len, &w, &h, &channels, 0));
     if (!px) throw Error(failure(path));
+    if (channels < 1 || channels > 4) throw Error(fmt::format("texture '{}': {} channels", path, channels));
     rows.resize(size_t(w) * size_t(h));
     for (size_t i = 0; i < rows.size(); ++i) {
+      const stbi_us* texel = px.get() + size_t(channels) * i;
       for (int c = 0; c < 3; ++c) {
-        float v = float(px.get()[3 * i + size_t(c)]) / 65535.0f;
+        // Grey (and grey with alpha) to all three; red, green, blue as they are.
+        float v = float(texel[channels < 3 ? 0 : c]) / 65535.0f;
         rows[i][c] = srgb ? srgbToLinear(v) : v;
       }
     }

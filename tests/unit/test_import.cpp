@@ -288,6 +288,26 @@ TEST(Texture, LoadsPngAndHdr) {
   expectRgb(h.texels[0], Rgb(1.0f, 0.5f, 0.25f));
 }
 
+// 16-bit PNMs with one or two channels: stb_image, asked for RGB, wrote them through its 8-bit
+// converter into half the buffer it then read as 16-bit (a heap overflow fuzz-texture found).
+TEST(Texture, SixteenBitGreyPnmReadsItsOwnValues) {
+  // 2 x 1 grey, maxval 65535, big-endian samples 0x0000 and 0xFFFF; then the same with alpha.
+  const std::string grey = std::string("P5\n2 1\n65535\n") + std::string("\x00\x00\xff\xff", 4);
+  Texture g = luxel::decodeTextureBytes(std::as_bytes(std::span<const char>(grey)), false, "grey.pgm");
+  ASSERT_EQ(g.width, 2);
+  ASSERT_EQ(g.height, 1);
+  expectRgb(g.texels[0], Rgb(0, 0, 0));
+  expectRgb(g.texels[1], Rgb(1, 1, 1));
+  // The fuzzer's input itself: maxval 256 makes it 16-bit; it decodes or is refused, within bounds.
+  const std::string found("\x50\x35\x0a\x32\x20\x31\x0a\x32\x35\x36\x0a\x32\x20\x31\x00\x23\x00\x00\x00\x00\x00\x3f\x52\x46\x0a\x32\x33\x31\x4f\xb6\x52\x4d\x41\x54\x3d\x33\x32\x2d\x62\x69\x00\x23\x3f\x52\x74\x5f\x72\x6c\x41\x44", 50);
+  try {
+    const Texture t = luxel::decodeTextureBytes(std::as_bytes(std::span<const char>(found)), true, "found.pnm");
+    EXPECT_EQ(t.texels.size(), size_t(t.width) * size_t(t.height));
+  } catch (const luxel::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("found.pnm"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Texture, BadFilesThrowNamingThePath) {
   fs::path dir = tmpDir("texture-bad");
   writeFile(dir / "garbage.png", "this is not an image at all");
