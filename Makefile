@@ -6,7 +6,7 @@ FUZZ_SECONDS ?= 60
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: deps configure build demo test asan fuzz bench bench-suite bench-peer clean
+.PHONY: deps configure build demo test asan fuzz fuzz-smoke bench bench-suite bench-peer clean
 
 deps:
 	./scripts/install-deps.sh
@@ -42,6 +42,13 @@ fuzz: deps
 	cmake --build $(BUILD_FUZZ) -j $(JOBS) --target fuzz-mesh-obj fuzz-mesh-gltf fuzz-mesh-glb fuzz-mesh-ply \
 	  fuzz-mesh-dae fuzz-mesh-fbx fuzz-scene-json fuzz-texture fuzz-cli
 	./fuzz/run.sh $(BUILD_FUZZ) $(FUZZ_SECONDS)
+
+# CI's short, seeded run of the harnesses over luxel's own parsers (fuzz/smoke.sh says why not Assimp's).
+fuzz-smoke: deps
+	CC=clang CXX=clang++ cmake -S . -B $(BUILD_FUZZ) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLUXEL_FUZZ=ON \
+	  -DLUXEL_BUILD_TESTS=OFF -DLUXEL_BUILD_BENCH=OFF $(CMAKE_ARGS)
+	cmake --build $(BUILD_FUZZ) -j $(JOBS) --target fuzz-scene-json fuzz-texture fuzz-cli
+	./fuzz/smoke.sh $(BUILD_FUZZ)
 
 bench: build
 	./$(BUILD)/luxel-bench --benchmark_min_time=0.5
