@@ -10,9 +10,12 @@
 #include "luxel/error.h"
 #include "luxel/session.h"
 #include "luxel/import.h"
+#include "error_message.h"
 
 namespace luxel {
 namespace {
+
+using luxel::test::errorOf;
 
 namespace fs = std::filesystem;
 
@@ -52,15 +55,6 @@ TEST(Checkpoint, AFinishedSolveResumesAsFinished) {
   Session again(scene, small(), options("progressive", {.resume = file}));
   EXPECT_FALSE(again.step({.units = 1}));
   EXPECT_TRUE(bitIdentical(expected.radiosity, again.solution().radiosity));
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 TEST(Checkpoint, AnotherSolvesOrADamagedCheckpointIsRefused) {

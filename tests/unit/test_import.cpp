@@ -24,6 +24,7 @@
 #include "luxel/error.h"
 #include "luxel/import.h"
 #include "scene/import/quads.h"
+#include "error_message.h"
 
 namespace fs = std::filesystem;
 using luxel::Error;
@@ -35,6 +36,8 @@ using luxel::Vec2;
 using luxel::Vec3;
 
 namespace {
+
+using luxel::test::errorOf;
 
 constexpr float kPi = 3.14159265358979f;
 
@@ -96,21 +99,6 @@ RoundTripSource roundTripSource() {
 #define SKIP_IF_MISSING(path) \
   if (!fs::exists(path))      \
   GTEST_SKIP() << (path).string() << " is missing: unzip ../shared/scenes/*.zip there"
-
-// Runs `f`, expects luxel::Error, and returns its message.
-template <class F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a non-luxel exception: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
 
 void expectRgb(Rgb got, Rgb want, float tol = 1e-5f) {
   EXPECT_NEAR(got.x, want.x, tol);

@@ -16,20 +16,15 @@
 #include "luxel/resources.h"
 #include "luxel/surface.h"
 #include "scene/import/name_index.h"
+#include "error_message.h"
 
 namespace luxel {
 namespace {
 
-namespace fs = std::filesystem;
+using luxel::test::errorOf;
+using luxel::test::bytesOf;
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+namespace fs = std::filesystem;
 
 fs::path tmpDir(const std::string& name) {
   const fs::path dir = fs::path(LUXEL_TEST_TMP) / "import-unlucky" / name;
@@ -37,8 +32,6 @@ fs::path tmpDir(const std::string& name) {
   fs::create_directories(dir);
   return dir;
 }
-
-std::span<const std::byte> bytesOf(const std::string& s) { return std::as_bytes(std::span<const char>(s)); }
 
 TEST(ImportUnlucky, SceneJsonWithADuplicateKeyIsAnErrorNamingTheKeyAndWhere) {
   const std::string json = "{\n  \"name\": \"a\",\n  \"up\": [0, 1, 0],\n  \"name\": \"b\"\n}\n";

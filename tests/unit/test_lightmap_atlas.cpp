@@ -23,6 +23,7 @@
 #include "luxel/error.h"
 #include "luxel/import.h"
 #include "luxel/lightmap.h"
+#include "error_message.h"
 
 namespace fs = std::filesystem;
 using luxel::AtlasOptions;
@@ -36,17 +37,9 @@ using luxel::Vec3;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979;
+using luxel::test::errorOf;
 
-template <class F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+constexpr double kPi = 3.14159265358979;
 
 double cross2(Vec2 a, Vec2 b, Vec2 c) {
   return double(b.x - a.x) * double(c.y - a.y) - double(c.x - a.x) * double(b.y - a.y);

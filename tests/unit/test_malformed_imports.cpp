@@ -16,20 +16,13 @@
 #include "luxel/error.h"
 #include "luxel/import.h"
 #include "luxel/resources.h"
+#include "error_message.h"
 
 namespace luxel {
 namespace {
 
-std::span<const std::byte> bytesOf(const std::string& s) { return std::as_bytes(std::span<const char>(s)); }
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using luxel::test::errorOf;
+using luxel::test::bytesOf;
 
 std::string base64(const std::string& bytes) {
   static const char* const kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";

@@ -29,6 +29,7 @@
 #include "luxel/error.h"
 #include "luxel/import.h"
 #include "luxel/resources.h"
+#include "error_message.h"
 
 namespace fs = std::filesystem;
 using luxel::Error;
@@ -41,6 +42,8 @@ using luxel::Texture;
 using luxel::Vec3;
 
 namespace {
+
+using luxel::test::errorOf;
 
 fs::path tmpDir(const std::string& name) {
   fs::path dir = fs::path(LUXEL_TEST_TMP) / "memory-load" / name;
@@ -107,21 +110,6 @@ class UnreadableReader final : public ResourceReader {
   }
   bool exists(std::string_view) const override { return true; }
 };
-
-// Runs `f`, expects luxel::Error, and returns its message.
-template <class F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a non-luxel exception: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
-}
 
 bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 

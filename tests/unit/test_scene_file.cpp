@@ -13,6 +13,7 @@
 #include "luxel/import.h"
 #include "luxel/surface.h"
 #include "scene/import/transform.h"
+#include "error_message.h"
 
 namespace fs = std::filesystem;
 using luxel::Error;
@@ -22,6 +23,8 @@ using luxel::Scene;
 using luxel::Vec3;
 
 namespace {
+
+using luxel::test::errorOf;
 
 constexpr float kPi = 3.14159265358979f;
 
@@ -36,20 +39,6 @@ void writeFile(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
   std::ofstream out(path, std::ios::binary);
   out << text;
-}
-
-template <class F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "threw a non-luxel exception: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "did not throw";
-  return {};
 }
 
 void expectVec(Vec3 got, Vec3 want, float tol = 1e-5f) {
