@@ -1,11 +1,12 @@
 #include "solve_args.h"
 
 #include <cmath>
-#include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
 
+#include "io/input_file.h"
 #include "luxel/error.h"
 
 namespace luxel::cli {
@@ -127,10 +128,9 @@ void checkSolveArgs(const SolveArgs& a) {
 }
 
 std::vector<OutputPath> checkpointOutputs(const SolveArgs& a) {
-  std::error_code ec;
-  if (!a.resume.empty() && !std::filesystem::is_regular_file(a.resume, ec))
-    throw Error(fmt::format("--resume {}: {}", a.resume,
-                            std::filesystem::exists(a.resume, ec) ? "not a regular file" : "no such file"));
+  if (!a.resume.empty())
+    if (const std::optional<std::string> why = whyNotARegularFile(a.resume))
+      throw Error(fmt::format("--resume {}: {}", a.resume, *why));
   if (!a.checkpoint.empty()) return {{"--checkpoint", a.checkpoint, {}}};
   // Resuming goes on writing to the checkpoint it read.
   if (!a.resume.empty()) return {{"--resume", a.resume, {}}};

@@ -7,6 +7,7 @@
 
 #include "core/content_hash.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 #include "luxel/checkpoint.h"
 #include "luxel/error.h"
 
@@ -50,9 +51,8 @@ void writeCheckpointFile(const std::filesystem::path& path, uint64_t key, std::s
 
 std::vector<std::byte> readCheckpointFile(const std::filesystem::path& path, uint64_t key) {
   const std::string name = path.string();
+  if (const std::optional<std::string> why = whyNotARegularFile(path)) throw Error(fmt::format("checkpoint {}: {}", name, *why));
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error(fmt::format("checkpoint {}: {}", name, std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
   const uintmax_t size = std::filesystem::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
   if (ec || !in) throw Error(fmt::format("checkpoint {}: cannot be read", name));

@@ -140,6 +140,7 @@ void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
   transport_->objectsMoved(objects);
   computeAnalytic();
   system_->refresh(analytic_);
+  checkpointKey_.reset(), finalCheckpointWritten_ = false;
   if (!solver_->objectsMoved(objects)) {
     retire();
     makeSolver(/*analyticIsCurrent=*/true);
@@ -147,6 +148,7 @@ void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
 }
 
 void SolverHost::makeSolver(bool analyticIsCurrent) {
+  checkpointKey_.reset(), finalCheckpointWritten_ = false;
   solver_.reset();
   system_.reset();
   if (!analyticIsCurrent) computeAnalytic();
@@ -182,7 +184,8 @@ void SolverHost::checkHealth() const {
         scene_.name, s.method, s.unshotFraction, kLikelyCauses));
 }
 
-uint64_t SolverHost::checkpointKey() const {
+uint64_t SolverHost::checkpointKey() {
+  if (checkpointKey_) return *checkpointKey_;
   // Everything the solver's state was computed from: the surfaces and how they group into
   // patches, the analytic light, the solver, its backend and options, and the state's format.
   ContentHash h;
@@ -192,7 +195,8 @@ uint64_t SolverHost::checkpointKey() const {
   h.bytes(analytic_.data(), analytic_.size() * sizeof(Rgb));
   for (const std::string* s : {&entry_->description.name, &entry_->description.backend}) h.text(*s), h.value('\0');
   for (const auto& [key, value] : settings_.values()) h.text(key), h.value('='), h.text(value), h.value('\0');
-  return h.digest();
+  checkpointKey_ = h.digest();
+  return *checkpointKey_;
 }
 
 void SolverHost::resumeFrom(const std::filesystem::path& path) {
@@ -205,7 +209,8 @@ void SolverHost::resumeFrom(const std::filesystem::path& path) {
 
 void SolverHost::checkpoint(bool now) {
   const CheckpointOptions& cp = options_.checkpoint;
-  if (cp.path.empty() || (!now && sinceCheckpoint_.seconds() < cp.intervalSeconds)) return;
+  if (cp.path.empty() || finalCheckpointWritten_ || (!now && sinceCheckpoint_.seconds() < cp.intervalSeconds))
+    return;
   StateWriter out;
   solver_->saveState(out);
   writeCheckpointFile(cp.path, checkpointKey(), out.bytes());
@@ -229,6 +234,7 @@ bool SolverHost::step(const StepLimit& limit, const ProgressCallback& progress) 
     }
     checkHealth();
     checkpoint(/*now=*/!more);
+    finalCheckpointWritten_ = !more;
     if (more) {
       if (limit.units || (limit.seconds > 0 && watch.seconds() >= limit.seconds)) return true;  // the caller's slice ended
       continue;

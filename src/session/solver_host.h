@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,9 +61,10 @@ class SolverHost {
  private:
   // Throws Error when the solve diverges (non-finite, or the unshot light growing).
   void checkHealth() const;
-  // Checkpoints (options.checkpoint): the key of this solve, reading one, writing one when the
-  // interval is up (or now, when `now`).
-  uint64_t checkpointKey() const;
+  // Checkpoints (options.checkpoint): the key of this solve (computed again only after the
+  // surfaces or the analytic light change), reading one, writing one when the interval is up (or
+  // now, when `now`).
+  uint64_t checkpointKey();
   void resumeFrom(const std::filesystem::path& path);
   void checkpoint(bool now);
   // Analytic irradiance (unless current), system and solver for the current surfaces.
@@ -92,6 +94,8 @@ class SolverHost {
   bool refinementOver_ = false;
   double setupSeconds_ = 0.0, analyticSeconds_ = 0.0;
   Stopwatch sinceCheckpoint_;
+  std::optional<uint64_t> checkpointKey_;  // reset by makeSolver and objectsMoved
+  bool finalCheckpointWritten_ = false;    // a front end may keep stepping a finished solve
   Stopwatch lifetime_;
 };
 

@@ -29,6 +29,13 @@ constexpr double kPi = std::numbers::pi;
 
 std::string nameOf(const SolverEntry& e) { return e.description.name + "_" + e.description.backend; }
 
+// The Cornell box at 200 elements: small enough to solve twice over in a test.
+SurfaceSet smallCornell(const Scene& scene) {
+  DiscretiseOptions d;
+  d.elementBudget = 200;
+  return discretise(scene, d);
+}
+
 class Conformance : public ::testing::TestWithParam<const SolverEntry*> {
  protected:
   void SetUp() override {
@@ -121,9 +128,7 @@ TEST_P(Conformance, CornellAgreesWithTheConvergedCpuReference) {
 // between steps, reaches the answer of one call.
 TEST_P(Conformance, SteppingReachesTheAnswerOfOneCall) {
   const Scene scene = builtin::cornellBox();
-  DiscretiseOptions d;
-  d.elementBudget = 200;
-  SurfaceSet surfaces = discretise(scene, d);
+  SurfaceSet surfaces = smallCornell(scene);
   SurfaceSet copy = surfaces;
   const Solution whole = solve(scene, copy, converged());
 
@@ -150,9 +155,7 @@ TEST_P(Conformance, SteppingReachesTheAnswerOfOneCall) {
 // cannot says so when asked.
 TEST_P(Conformance, AResumedSolveEndsWhereAnUninterruptedOneDoes) {
   const Scene scene = builtin::cornellBox();
-  DiscretiseOptions d;
-  d.elementBudget = 200;
-  SurfaceSet surfaces = discretise(scene, d);
+  SurfaceSet surfaces = smallCornell(scene);
   SurfaceSet copy = surfaces;
   const Solution whole = solve(scene, copy, converged());
 

@@ -1,8 +1,8 @@
 // Importing a model in a child process, so that whatever the importer does with a hostile file
 // becomes an Error naming the file, never a crash of the caller.
 //
-// Why: Debian's Assimp crashes, loops and allocates without bound on malformed files (fuzzing
-// found a SEGV, a 3 GiB allocation and a parse of over 10 s within minutes: docs/hostile-inputs.md),
+// Why: Debian's Assimp crashes, loops and allocates without bound on malformed files (what fuzzing
+// found, and how soon: docs/hostile-inputs.md),
 // and a crash in-process takes the whole run with it. Checks before Assimp (PLY and GLB headers)
 // close the holes found so far, not the ones not found yet. Browsers isolate their parsers of
 // untrusted files the same way.

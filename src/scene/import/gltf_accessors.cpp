@@ -12,6 +12,7 @@
 #include <tiny_gltf.h>
 
 #include "luxel/error.h"
+#include "scene/import/gltf_extras.h"
 #include "scene/import/resource_path.h"
 
 namespace luxel {
@@ -19,15 +20,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
-constexpr uint32_t kGlbBinChunk = 0x004E4942;  // "BIN\0"
 constexpr int kFloat = 5126;
-
-uint32_t readU32(std::span<const std::byte> b, size_t at) {
-  uint32_t v = 0;
-  std::memcpy(&v, b.data() + at, 4);
-  return v;
-}
 
 size_t componentBytes(int type) {
   switch (type) {
@@ -194,24 +187,11 @@ class AccessorCheck {
 
 void checkGltfAccessors(std::span<const std::byte> bytes, const ResourceReader& resources,
                         const std::string& file) {
-  const char* text = reinterpret_cast<const char*>(bytes.data());
-  json doc;
-  std::span<const std::byte> bin;
-  if (bytes.size() >= 20 && readU32(bytes, 0) == kGlbMagic) {
-    // checkGlbLayout has made sure the chunks lie inside the file.
-    const uint32_t jsonLength = readU32(bytes, 12);
-    if (size_t(jsonLength) > bytes.size() - 20) return;
-    doc = json::parse(text + 20, text + 20 + jsonLength, nullptr, false);
-    const size_t binAt = 20 + size_t(jsonLength);
-    if (bytes.size() >= binAt + 8 && readU32(bytes, binAt + 4) == kGlbBinChunk) {
-      const size_t binLength = std::min<size_t>(readU32(bytes, binAt), bytes.size() - binAt - 8);
-      bin = bytes.subspan(binAt + 8, binLength);
-    }
-  } else {
-    doc = json::parse(text, text + bytes.size(), nullptr, false);
-  }
+  const std::optional<GltfParts> parts = gltfParts(bytes);
+  if (!parts) return;
+  const json doc = json::parse(parts->json.begin(), parts->json.end(), nullptr, false);
   if (doc.is_discarded() || !doc.is_object()) return;
-  AccessorCheck(doc, bin, resources, file).run();
+  AccessorCheck(doc, parts->bin, resources, file).run();
 }
 
 }  // namespace luxel

@@ -20,6 +20,7 @@ using nlohmann::json;
 
 constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
 constexpr uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
+constexpr uint32_t kGlbBinChunk = 0x004E4942;   // "BIN\0"
 constexpr float kFactorTolerance = 1e-5f;
 
 uint32_t readU32(std::span<const std::byte> b, size_t at) {
@@ -86,20 +87,27 @@ std::optional<std::string> gltfJsonError(std::span<const std::byte> bytes) {
   return std::nullopt;
 }
 
-std::optional<GltfExtras> readGltfExtras(std::span<const std::byte> bytes) {
-  if (bytes.empty()) return std::nullopt;
+std::optional<GltfParts> gltfParts(std::span<const std::byte> bytes) {
   // nlohmann::json parses chars; the bytes are viewed, not copied.
   const char* text = reinterpret_cast<const char*>(bytes.data());
-  json doc;
-  if (bytes.size() >= 20 && readU32(bytes, 0) == kGlbMagic) {
-    // Header (magic, version, length), then the JSON chunk (length, type, data).
-    uint32_t chunkLength = readU32(bytes, 12);
-    if (readU32(bytes, 16) != kGlbJsonChunk || size_t(chunkLength) > bytes.size() - 20)
-      return std::nullopt;
-    doc = json::parse(text + 20, text + 20 + chunkLength, nullptr, false);
-  } else {
-    doc = json::parse(text, text + bytes.size(), nullptr, false);
+  if (bytes.size() < 20 || readU32(bytes, 0) != kGlbMagic) return GltfParts{std::string_view(text, bytes.size()), {}};
+  // Header (magic, version, length), then the JSON chunk (length, type, data), then maybe BIN.
+  const uint32_t jsonLength = readU32(bytes, 12);
+  if (readU32(bytes, 16) != kGlbJsonChunk || size_t(jsonLength) > bytes.size() - 20) return std::nullopt;
+  GltfParts parts{std::string_view(text + 20, jsonLength), {}};
+  const size_t binAt = 20 + size_t(jsonLength);
+  if (bytes.size() >= binAt + 8 && readU32(bytes, binAt + 4) == kGlbBinChunk) {
+    const size_t binLength = std::min<size_t>(readU32(bytes, binAt), bytes.size() - binAt - 8);
+    parts.bin = bytes.subspan(binAt + 8, binLength);
   }
+  return parts;
+}
+
+std::optional<GltfExtras> readGltfExtras(std::span<const std::byte> bytes) {
+  if (bytes.empty()) return std::nullopt;
+  const std::optional<GltfParts> parts = gltfParts(bytes);
+  if (!parts) return std::nullopt;
+  const json doc = json::parse(parts->json.begin(), parts->json.end(), nullptr, false);
   if (doc.is_discarded() || !doc.is_object()) return std::nullopt;
   auto asset = doc.find("asset");
   if (asset == doc.end() || !asset->is_object() || !asset->contains("version") ||

@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "luxel/scene.h"
@@ -38,6 +39,14 @@ struct GltfExtras {
 // glTF 2.0 JSON; the caller has already imported them through Assimp, so that only means there
 // is nothing extra to read.
 std::optional<GltfExtras> readGltfExtras(std::span<const std::byte> bytes);
+
+// The JSON text of a .gltf file, or the JSON and binary chunks of a .glb file (`bin` empty when it
+// has none); nullopt when a GLB's JSON chunk is not where its header says.
+struct GltfParts {
+  std::string_view json;
+  std::span<const std::byte> bin;
+};
+std::optional<GltfParts> gltfParts(std::span<const std::byte> bytes);
 
 // When `bytes` are a GLB file (they start "glTF"), throws Error naming `file` unless its header and
 // chunks fit what it holds: version 2, the declared length at most the bytes there are, a JSON

@@ -43,8 +43,8 @@ struct TrackingIterator {
 };
 
 // nlohmann's DOM builder, with the keys of each open object remembered. Not a parser callback:
-// nlohmann's callback builder searches the whole parent at every object's end, which made 100,000
-// cameras take 7.4 s, 84% of it in that search (perf).
+// nlohmann's callback builder searches the whole parent at every object's end, which is quadratic
+// in a long list of objects (docs/hostile-inputs.md).
 class DuplicateKeySax {
  public:
   DuplicateKeySax(Json& result, std::string_view text, const char* const& reached, const std::string& file)
