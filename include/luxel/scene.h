@@ -148,6 +148,9 @@ struct Scene {
   // Throws luxel::Error naming the mesh and face when indices, materials or values are invalid
   // (out of range, NaN, negative emission, reflectance outside [0,1], empty scene).
   void validate() const;
+  // The parts of validate() for materials and lights alone (an edit of either checks only these).
+  void validateMaterials() const;
+  void validateLights() const;
   const Camera* findCamera(const std::string& name) const;
   int findMaterial(const std::string& name) const;  // -1 when absent
   int findObject(const std::string& name) const;    // -1 when absent

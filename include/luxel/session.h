@@ -59,6 +59,15 @@ class Session {
   void placeObjects(const std::vector<std::pair<uint32_t, glm::mat4>>& placements);
   void placeObject(uint32_t object, const glm::mat4& transform) { placeObjects({{object, transform}}); }
 
+  // Replaces the scene's lights (moved, turned, recoloured, added or removed): the analytic light
+  // is recomputed exactly, and the solve continues from the last solution where the solver can
+  // follow light changes (it shoots the difference, Puech et al. 1990), or starts again where it
+  // cannot. Throws Error naming the light when one is invalid, and changes nothing then.
+  void setLights(std::vector<Light> lights);
+  // Edits a material's reflectance and emission (textures and sides stay): every element made of
+  // it follows, and the solve continues as for setLights. Throws Error on an invalid material.
+  void setMaterial(uint32_t material, const Rgb& reflectance, const Rgb& emission);
+
   // The camera a render of this session's scene uses: the one called `name` (Error listing the
   // scene's cameras when there is none), else the one called "default", else the first, else one
   // framing the scene's bounding box from +z with `fovY` degrees (45 when 0).

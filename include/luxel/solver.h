@@ -109,6 +109,11 @@ class Solver {
     return false;
   }
 
+  // The system's emission, reflectance or analytic irradiance changed (lights moved or recoloured,
+  // materials edited); the geometry did not. Returns true when the solver has brought its state
+  // along (shooting the difference); false, the default, when its owner must replace it.
+  virtual bool sourcesChanged() { return false; }
+
   // Checkpoints (luxel/checkpoint.h). A solver that can be checkpointed says so, writes
   // everything step() needs to go on from where it is, and reads it back into a solver made
   // afresh for the same system and options, which then continues to the same result, bit for

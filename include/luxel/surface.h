@@ -104,6 +104,9 @@ struct SurfaceSet {
   // puts them (after Scene::placeObject). Throws Error when the move is not a similarity, or the
   // object's elements were refined after its first move.
   void placeObject(const Scene& scene, uint32_t object);
+  // Reads every element's reflectance and exitance again from its face's material (after the
+  // scene's materials were edited); geometry is untouched.
+  void refreshMaterials(const Scene& scene);
   // Splits element `e` into four (quads at parameter midpoints, triangles at edge midpoints).
   // The first child reuses index `e`; the other three are appended. Patches are updated.
   void splitElement(uint32_t e, const Scene& scene);

@@ -209,10 +209,20 @@ Patch makePatch(const SurfaceFace& f, uint32_t faceIndex, const std::array<Vec2,
   return patch;
 }
 
+// An element's reflectance and exitance: its face's material, textures averaged over the element.
+void readMaterial(const Scene& scene, const SurfaceFace& f, Element& e) {
+  const Material& m = scene.materials[f.material];
+  e.reflectance = m.reflectance;
+  if (m.reflectanceTexture >= 0)
+    e.reflectance *= textureMean(scene.textures[size_t(m.reflectanceTexture)], f, e.param);
+  e.exitance = kPi * m.emission;
+  if (m.emissionTexture >= 0)
+    e.exitance *= textureMean(scene.textures[size_t(m.emissionTexture)], f, e.param);
+}
+
 Element makeElement(const Scene& scene, const SurfaceSet& set, uint32_t faceIndex,
                     uint32_t patchIndex, const std::array<Vec2, 4>& param, uint8_t depth) {
   const SurfaceFace& f = set.faces[faceIndex];
-  const Material& m = scene.materials[f.material];
   Element e;
   e.polygon = polygonFromParams(f, param);
   e.param = param;
@@ -222,12 +232,7 @@ Element makeElement(const Scene& scene, const SurfaceSet& set, uint32_t faceInde
   e.face = faceIndex;
   e.patch = patchIndex;
   e.material = f.material;
-  e.reflectance = m.reflectance;
-  if (m.reflectanceTexture >= 0)
-    e.reflectance *= textureMean(scene.textures[size_t(m.reflectanceTexture)], f, param);
-  e.exitance = kPi * m.emission;
-  if (m.emissionTexture >= 0)
-    e.exitance *= textureMean(scene.textures[size_t(m.emissionTexture)], f, param);
+  readMaterial(scene, f, e);
   e.depth = depth;
   return e;
 }
@@ -278,6 +283,10 @@ void cutPrescribed(const Scene& scene, SurfaceSet& set, uint32_t fi, const Eleme
 }
 
 }  // namespace
+
+void SurfaceSet::refreshMaterials(const Scene& scene) {
+  for (Element& e : elements) readMaterial(scene, faces[e.face], e);
+}
 
 float SurfaceSet::totalArea() const {
   double a = 0.0;

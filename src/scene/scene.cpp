@@ -50,24 +50,7 @@ bool Scene::hasLight() const {
 
 void Scene::validate() const {
   if (faceCount() == 0) throw Error(fmt::format("scene '{}': contains no faces", name));
-  for (const Material& m : materials) {
-    for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(m.reflectance[c]) || m.reflectance[c] < 0.0f || m.reflectance[c] > 1.0f)
-        throw Error(fmt::format("scene '{}': material '{}': reflectance {} is outside [0,1]", name,
-                                m.name, m.reflectance[c]));
-      if (!std::isfinite(m.emission[c]) || m.emission[c] < 0.0f)
-        throw Error(fmt::format("scene '{}': material '{}': emission {} is negative or not finite",
-                                name, m.name, m.emission[c]));
-      if (m.emission[c] > kMaxRadiance)
-        throw Error(fmt::format("scene '{}': material '{}': emission {:g} is over the limit of {:g} (a million "
-                                "times the sun's radiance; the light would overflow in float)",
-                                name, m.name, m.emission[c], kMaxRadiance));
-    }
-    for (int t : {m.reflectanceTexture, m.emissionTexture})
-      if (t >= int(textures.size()))
-        throw Error(fmt::format("scene '{}': material '{}': texture index {} out of range", name,
-                                m.name, t));
-  }
+  validateMaterials();
   for (const Mesh& mesh : meshes) {
     if (mesh.material >= materials.size())
       throw Error(fmt::format("scene '{}': mesh '{}': material index {} out of range ({} materials)",
@@ -108,6 +91,42 @@ void Scene::validate() const {
                                 mesh.faces[f].isTriangle() ? " for a triangle (needs n x n)" : ""));
     }
   }
+  validateLights();
+  for (const Camera& c : cameras)
+    if (!inRange(c.eye) || !inRange(c.target) || !finite(c.up))
+      throw Error(fmt::format("scene '{}': camera '{}': eye, target or up is not finite or beyond {:g} scene units "
+                              "from the origin", name, c.name, kMaxCoordinate));
+  if (glm::length(up) < 1e-12f || !finite(up))
+    throw Error(fmt::format("scene '{}': up vector is zero or not finite", name));
+  for (const Mesh& mesh : meshes)
+    if (mesh.object != kNoObject && mesh.object >= objects.size())
+      throw Error(fmt::format("scene '{}': mesh '{}': object index {} out of range ({} objects)", name, mesh.name,
+                              mesh.object, objects.size()));
+}
+
+
+void Scene::validateMaterials() const {
+  for (const Material& m : materials) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(m.reflectance[c]) || m.reflectance[c] < 0.0f || m.reflectance[c] > 1.0f)
+        throw Error(fmt::format("scene '{}': material '{}': reflectance {} is outside [0,1]", name,
+                                m.name, m.reflectance[c]));
+      if (!std::isfinite(m.emission[c]) || m.emission[c] < 0.0f)
+        throw Error(fmt::format("scene '{}': material '{}': emission {} is negative or not finite",
+                                name, m.name, m.emission[c]));
+      if (m.emission[c] > kMaxRadiance)
+        throw Error(fmt::format("scene '{}': material '{}': emission {:g} is over the limit of {:g} (a million "
+                                "times the sun's radiance; the light would overflow in float)",
+                                name, m.name, m.emission[c], kMaxRadiance));
+    }
+    for (int t : {m.reflectanceTexture, m.emissionTexture})
+      if (t >= int(textures.size()))
+        throw Error(fmt::format("scene '{}': material '{}': texture index {} out of range", name,
+                                m.name, t));
+  }
+}
+
+void Scene::validateLights() const {
   for (const Light& l : lights) {
     if (!finite(l.color) || !std::isfinite(l.intensity) || l.intensity < 0.0f ||
         l.color.r < 0.0f || l.color.g < 0.0f || l.color.b < 0.0f)
@@ -127,16 +146,6 @@ void Scene::validate() const {
     if (directed && glm::length(l.direction) < 1e-12f)
       throw Error(fmt::format("scene '{}': light '{}': direction is zero", name, l.name));
   }
-  for (const Camera& c : cameras)
-    if (!inRange(c.eye) || !inRange(c.target) || !finite(c.up))
-      throw Error(fmt::format("scene '{}': camera '{}': eye, target or up is not finite or beyond {:g} scene units "
-                              "from the origin", name, c.name, kMaxCoordinate));
-  if (glm::length(up) < 1e-12f || !finite(up))
-    throw Error(fmt::format("scene '{}': up vector is zero or not finite", name));
-  for (const Mesh& mesh : meshes)
-    if (mesh.object != kNoObject && mesh.object >= objects.size())
-      throw Error(fmt::format("scene '{}': mesh '{}': object index {} out of range ({} objects)", name, mesh.name,
-                              mesh.object, objects.size()));
 }
 
 }  // namespace luxel

@@ -70,6 +70,35 @@ void Session::placeObjects(const std::vector<std::pair<uint32_t, glm::mat4>>& pl
   state_->host->objectsMoved(moved);
 }
 
+void Session::setLights(std::vector<Light> lights) {
+  Scene& scene = state_->scene;
+  std::swap(scene.lights, lights);
+  try {
+    scene.validateLights();
+  } catch (...) {
+    std::swap(scene.lights, lights);
+    throw;
+  }
+  state_->host->sourcesChanged();
+}
+
+void Session::setMaterial(uint32_t material, const Rgb& reflectance, const Rgb& emission) {
+  Scene& scene = state_->scene;
+  if (material >= scene.materials.size())
+    throw Error(fmt::format("scene '{}' has no material {} ({} materials)", scene.name, material, scene.materials.size()));
+  Material& m = scene.materials[material];
+  const Material before = m;
+  m.reflectance = reflectance, m.emission = emission;
+  try {
+    scene.validateMaterials();
+  } catch (...) {
+    m = before;
+    throw;
+  }
+  state_->surfaces.refreshMaterials(scene);
+  state_->host->sourcesChanged();
+}
+
 Camera Session::camera(const std::string& name, float fovY) const { return chooseCamera(state_->scene, name, fovY); }
 
 Camera chooseCamera(const Scene& scene, const std::string& name, float fovY) {

@@ -147,6 +147,16 @@ void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
   }
 }
 
+void SolverHost::sourcesChanged() {
+  computeAnalytic();
+  system_->refresh(analytic_);
+  checkpointKey_.reset(), finalCheckpointWritten_ = false;
+  if (!solver_->sourcesChanged()) {
+    retire();
+    makeSolver(/*analyticIsCurrent=*/true);
+  }
+}
+
 void SolverHost::makeSolver(bool analyticIsCurrent) {
   checkpointKey_.reset(), finalCheckpointWritten_ = false;
   solver_.reset();

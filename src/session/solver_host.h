@@ -49,6 +49,10 @@ class SolverHost {
   // SurfaceSet::placeObject). The transport updates its instances, the analytic light is
   // recomputed, and the solver continues if it can follow moves or starts afresh otherwise.
   void objectsMoved(std::span<const uint32_t> objects);
+  // The scene's lights or the surfaces' reflectance and emission changed (Session::setLights,
+  // setMaterial): the analytic light is recomputed, and the solver continues if it can follow the
+  // change or starts afresh otherwise.
+  void sourcesChanged();
   // The solution so far, with every statistic filled in (energy balance included).
   Solution solution();
   SolveStats stats() const;
