@@ -33,6 +33,9 @@ struct SolveStats {
   bool hierarchyCached = false;   // hierarchical: the tree was read from the disk cache
   uint32_t hierarchyDepth = 0;    // hierarchical: the tree's deepest leaf
   double hierarchyMeanLeafDepth = 0.0;
+  uint64_t redistributions = 0;    // dynamic solvers: moves and light edits followed
+  uint64_t factorsRecomputed = 0;  // dynamic solvers: element-patch factors computed again for them
+  double secondsRedistribution = 0.0;  // dynamic solvers: the corrections (new factors included)
   double residual = 0.0;       // gather: last relative change; progressive: unshot fraction
   double unshotFraction = 0.0;
   double secondsSetup = 0.0;        // BVH build, GL context, analytic lights, solver setup

@@ -45,6 +45,10 @@ std::string statsJson(const RunRecord& r) {
                         {"self", s.refinements[3]}}},
                       {"elements", s.clusterElements},
                       {"leaves", s.clusterLeaves}};
+  if (s.redistributions > 0)
+    j["redistribution"] = {{"count", s.redistributions},
+                           {"factors_recomputed", s.factorsRecomputed},
+                           {"seconds", s.secondsRedistribution}};
   if (r.image)
     j["image"] = {{"width", r.image->width},         {"height", r.image->height},
                   {"spp", r.image->samplesPerPixel}, {"mode", r.image->mode},

@@ -6,6 +6,8 @@ class SolverRegistry;
 void registerCpuProgressive(SolverRegistry&);  // solve/progressive_solver.cpp
 void registerCpuGather(SolverRegistry&);       // solve/gather_solver.cpp
 void registerCpuHierarchical(SolverRegistry&); // hierarchical/hierarchical_solver.cpp
+void registerCpuIncremental(SolverRegistry&);          // dynamic/redistribution_solver.cpp
+void registerCpuCrossRedistribution(SolverRegistry&);  // dynamic/redistribution_solver.cpp
 void registerGlProgressive(SolverRegistry&);   // gl/gl_solvers.cpp
 void registerGlGather(SolverRegistry&);        // gl/gl_solvers.cpp
 
@@ -13,6 +15,8 @@ void registerBuiltinSolvers(SolverRegistry& registry) {
   registerCpuProgressive(registry);
   registerCpuGather(registry);
   registerCpuHierarchical(registry);
+  registerCpuIncremental(registry);
+  registerCpuCrossRedistribution(registry);
   registerGlProgressive(registry);
   registerGlGather(registry);
 }

@@ -1,8 +1,6 @@
-// Progressive refinement radiosity: Cohen, Chen, Wallace and Greenberg, "A Progressive Refinement
-// Approach to Fast Radiosity Image Generation", SIGGRAPH 1988. The patch with the most unshot
-// power shoots it into every element; the ambient term of the same paper estimates, for display,
-// the light not yet shot. Columns of form factors are cached, so a patch that shoots again (its
-// elements received more light) costs no rays.
+// Progressive refinement radiosity (Cohen et al. 1988): see solve/progressive_solver.h.
+#include "solve/progressive_solver.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,209 +15,155 @@
 #include "transport/form_factor_options.h"
 
 namespace luxel {
-namespace {
 
-// Form-factor columns are kept while they fit in this much memory.
-constexpr size_t kColumnCacheBytes = size_t(2) << 30;
-
-struct ProgressiveSettings {
-  double unshotThreshold;
-  double timeBudget;
-  uint64_t shotBudget;
-  size_t shootersPerPass;
-  bool ambient;
-};
-
-class ProgressiveSolver final : public Solver {
- public:
-  ProgressiveSolver(const RadiositySystem& sys, Transport& transport, const ProgressiveSettings& s)
-      : sys_(sys), transport_(transport), s_(s), cache_(sys.patchCount()), scratch_(s.shootersPerPass),
-        ranked_(sys.patchCount()), directAdded_(sys.patchCount(), 0) {
-    const size_t ne = sys.elementCount();
-    radiosity_.resize(ne), unshot_.resize(ne);
-    irradiance_ = sys.analytic;
-    direct_ = sys.analytic;
-    for (size_t e = 0; e < ne; ++e)
-      radiosity_[e] = unshot_[e] = sys.emission[e] + sys.reflectance[e] * sys.analytic[e];
-    patchUnshot_.resize(sys.patchCount());
-    updatePatchUnshot();
-    sourcePower_ = sys.sourcePower();
-    patchEmission_ = sys.patchMeans(sys.emission);
-    unshotFraction_ = currentUnshotFraction();
+bool ProgressiveSolver::step(const StepLimit& limit, const ProgressCallback& progress) {
+  const Stopwatch watch;
+  uint64_t units = 0;
+  while (!done_) {
+    if (sliceSpent(limit, units, watch)) break;
+    shootOnePass(progress, seconds_ + watch.seconds());
+    ++units;
   }
+  seconds_ += watch.seconds();
+  if (done_) reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
+  return !done_;
+}
 
-  bool step(const StepLimit& limit, const ProgressCallback& progress) override {
-    const Stopwatch watch;
-    uint64_t units = 0;
-    while (!done_) {
-      if (sliceSpent(limit, units, watch)) break;
-      shootOnePass(progress, seconds_ + watch.seconds());
-      ++units;
-    }
-    seconds_ += watch.seconds();
-    if (done_) reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
-    return !done_;
+Solution ProgressiveSolver::solution() {
+  const Stopwatch watch;
+  Solution sol;
+  sol.radiosity = radiosity_;
+  sol.irradiance = irradiance_;
+  if (s_.ambient) addAmbientTerm(sys_, unshot_, sol.radiosity, sol.irradiance);
+  // Direct irradiance: the analytic lights plus one bounce from each emitting patch, added the
+  // first time its column is at hand (an emitter that has not shot yet is computed here).
+  for (uint32_t p = 0; p < sys_.patchCount(); ++p)
+    if (!directAdded_[p] && channelSum(patchEmission_[p]) > 0.0) addDirect(p, column(p, 0));
+  sol.directIrradiance = direct_;
+  sol.stats = stats();
+  seconds_ += watch.seconds();
+  return sol;
+}
+
+void ProgressiveSolver::saveState(StateWriter& out) const {
+  for (const auto* v : {&radiosity_, &unshot_, &irradiance_, &direct_, &patchUnshot_}) out.array(*v);
+  out.array(directAdded_);
+  out.value(shots_), out.value(seconds_), out.value(formFactorSeconds_), out.value(done_);
+}
+
+void ProgressiveSolver::restoreState(StateReader& in) {
+  const size_t ne = sys_.elementCount(), np = sys_.patchCount();
+  for (auto* v : {&radiosity_, &unshot_, &irradiance_, &direct_}) in.array(*v, ne);
+  in.array(patchUnshot_, np);
+  in.array(directAdded_, np);
+  in.value(shots_), in.value(seconds_), in.value(formFactorSeconds_), in.value(done_);
+  unshotFraction_ = currentUnshotFraction();
+}
+
+SolveStats ProgressiveSolver::stats() const {
+  SolveStats st;
+  st.method = "progressive";
+  st.backend = "cpu";
+  st.shots = shots_;
+  st.unshotFraction = st.residual = unshotFraction_;
+  st.secondsFormFactors = formFactorSeconds_;
+  st.secondsSolve = std::max(0.0, seconds_ - formFactorSeconds_);
+  return st;
+}
+
+void ProgressiveSolver::updatePatchUnshot() {
+  const auto& patches = sys_.surfaces.patches;
+  tbb::parallel_for(size_t(0), sys_.patchCount(), [&](size_t p) {
+    Rgb sum(0.0f);
+    for (uint32_t e : patches[p].elements) sum += sys_.area[e] * unshot_[e];
+    patchUnshot_[p] = sum;
+  });
+}
+
+double ProgressiveSolver::currentUnshotFraction() {
+  double total = 0.0;
+  for (size_t p = 0; p < sys_.patchCount(); ++p) {
+    const Rgb& u = patchUnshot_[p];
+    const double power = double(std::abs(u.r)) + double(std::abs(u.g)) + double(std::abs(u.b));
+    total += power;
+    ranked_[p] = {power, uint32_t(p)};
   }
+  return sourcePower_ > 0.0 ? total / sourcePower_ : 0.0;
+}
 
-  bool done() const override { return done_; }
+const std::vector<float>& ProgressiveSolver::column(uint32_t p, size_t slot) {
+  if (!cache_[p].empty()) return cache_[p];
+  const Stopwatch watch;
+  const size_t ne = sys_.elementCount();
+  const bool keep = cachedBytes_ + ne * sizeof(float) <= kColumnCacheBytes;
+  std::vector<float>& out = keep ? cache_[p] : scratch_[slot];
+  out.resize(ne);
+  transport_.columns({&p, 1}, out);
+  if (keep) cachedBytes_ += ne * sizeof(float);
+  formFactorSeconds_ += watch.seconds();
+  return out;
+}
 
-  Solution solution() override {
-    const Stopwatch watch;
-    Solution sol;
-    sol.radiosity = radiosity_;
-    sol.irradiance = irradiance_;
-    if (s_.ambient) addAmbientTerm(sys_, unshot_, sol.radiosity, sol.irradiance);
-    // Direct irradiance: the analytic lights plus one bounce from each emitting patch, added the
-    // first time its column is at hand (an emitter that has not shot yet is computed here).
-    for (uint32_t p = 0; p < sys_.patchCount(); ++p)
-      if (!directAdded_[p] && channelSum(patchEmission_[p]) > 0.0) addDirect(p, column(p, 0));
-    sol.directIrradiance = direct_;
-    sol.stats = stats();
-    seconds_ += watch.seconds();
-    return sol;
+void ProgressiveSolver::addDirect(uint32_t p, const std::vector<float>& f) {
+  for (size_t e = 0; e < sys_.elementCount(); ++e) direct_[e] += f[e] * patchEmission_[p];
+  directAdded_[p] = 1;
+}
+
+void ProgressiveSolver::shootOnePass(const ProgressCallback& progress, double secondsSpent) {
+  const size_t np = sys_.patchCount();
+  // unshotFraction_ and ranked_ are current: set by the constructor or the previous pass.
+  if (unshotFraction_ <= s_.unshotThreshold || (s_.shotBudget && shots_ >= s_.shotBudget) ||
+      (s_.timeBudget > 0.0 && secondsSpent >= s_.timeBudget)) {
+    done_ = true;
+    return;
   }
+  // Progress is logarithmic in the unshot fraction: each decade takes about as long.
+  const double fraction = std::clamp(std::log(unshotFraction_) / std::log(s_.unshotThreshold), 0.0, 1.0);
+  if (throttle_.due(fraction))
+    reportProgress(progress, "solve", fraction, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
 
-  // Form-factor columns are not saved: they are computed again, to the same bits, when needed.
-  bool checkpoints() const override { return true; }
-  void saveState(StateWriter& out) const override {
-    for (const auto* v : {&radiosity_, &unshot_, &irradiance_, &direct_, &patchUnshot_}) out.array(*v);
-    out.array(directAdded_);
-    out.value(shots_), out.value(seconds_), out.value(formFactorSeconds_), out.value(done_);
+  size_t batch = std::min(s_.shootersPerPass, np);
+  if (s_.shotBudget) batch = std::min<size_t>(batch, s_.shotBudget - shots_);
+  std::partial_sort(ranked_.begin(), ranked_.begin() + long(batch), ranked_.end(), std::greater<>());
+  while (batch > 0 && ranked_[batch - 1].first <= 0.0) --batch;
+  if (batch == 0) {
+    done_ = true;
+    return;
   }
-  void restoreState(StateReader& in) override {
-    const size_t ne = sys_.elementCount(), np = sys_.patchCount();
-    for (auto* v : {&radiosity_, &unshot_, &irradiance_, &direct_}) in.array(*v, ne);
-    in.array(patchUnshot_, np);
-    in.array(directAdded_, np);
-    in.value(shots_), in.value(seconds_), in.value(formFactorSeconds_), in.value(done_);
-    unshotFraction_ = currentUnshotFraction();
+  const auto& patches = sys_.surfaces.patches;
+  const float* columns[kMaxShootersPerPass];
+  Rgb shot[kMaxShootersPerPass];
+  for (size_t k = 0; k < batch; ++k) {
+    const uint32_t shooter = ranked_[k].second;
+    const std::vector<float>& f = column(shooter, k);
+    if (!directAdded_[shooter] && channelSum(patchEmission_[shooter]) > 0.0) addDirect(shooter, f);
+    columns[k] = f.data();
+    shot[k] = patchUnshot_[shooter] / sys_.patchArea[shooter];
+    for (uint32_t e : patches[shooter].elements) unshot_[e] = Rgb(0.0f);
+    patchUnshot_[shooter] = Rgb(0.0f);
   }
-
-  SolveStats stats() const override {
-    SolveStats st;
-    st.method = "progressive";
-    st.backend = "cpu";
-    st.shots = shots_;
-    st.unshotFraction = st.residual = unshotFraction_;
-    st.secondsFormFactors = formFactorSeconds_;
-    st.secondsSolve = std::max(0.0, seconds_ - formFactorSeconds_);
-    return st;
-  }
-
- private:
-  void updatePatchUnshot() {
-    const auto& patches = sys_.surfaces.patches;
-    tbb::parallel_for(size_t(0), sys_.patchCount(), [&](size_t p) {
-      Rgb sum(0.0f);
-      for (uint32_t e : patches[p].elements) sum += sys_.area[e] * unshot_[e];
-      patchUnshot_[p] = sum;
-    });
-  }
-
-  double currentUnshotFraction() {
-    double total = 0.0;
-    for (size_t p = 0; p < sys_.patchCount(); ++p) {
-      const double power = channelSum(patchUnshot_[p]);
-      total += power;
-      ranked_[p] = {power, uint32_t(p)};
-    }
-    return sourcePower_ > 0.0 ? total / sourcePower_ : 0.0;
-  }
-
-  // The column of patch p, from the cache or computed (into scratch slot `slot` when the cache
-  // is full).
-  const std::vector<float>& column(uint32_t p, size_t slot) {
-    if (!cache_[p].empty()) return cache_[p];
-    const Stopwatch watch;
-    const size_t ne = sys_.elementCount();
-    const bool keep = cachedBytes_ + ne * sizeof(float) <= kColumnCacheBytes;
-    std::vector<float>& out = keep ? cache_[p] : scratch_[slot];
-    out.resize(ne);
-    transport_.columns({&p, 1}, out);
-    if (keep) cachedBytes_ += ne * sizeof(float);
-    formFactorSeconds_ += watch.seconds();
-    return out;
-  }
-
-  void addDirect(uint32_t p, const std::vector<float>& f) {
-    for (size_t e = 0; e < sys_.elementCount(); ++e) direct_[e] += f[e] * patchEmission_[p];
-    directAdded_[p] = 1;
-  }
-
-  // One pass: the patches with the most unshot power shoot together, in one pass over the
-  // receivers (the pass costs memory traffic over every element, which one shooter alone does
-  // not repay). Sets done_ when the stopping rules say so instead.
-  void shootOnePass(const ProgressCallback& progress, double secondsSpent) {
-    const size_t np = sys_.patchCount();
-    // unshotFraction_ and ranked_ are current: set by the constructor or the previous pass.
-    if (unshotFraction_ <= s_.unshotThreshold || (s_.shotBudget && shots_ >= s_.shotBudget) ||
-        (s_.timeBudget > 0.0 && secondsSpent >= s_.timeBudget)) {
-      done_ = true;
-      return;
-    }
-    // Progress is logarithmic in the unshot fraction: each decade takes about as long.
-    const double fraction = std::clamp(std::log(unshotFraction_) / std::log(s_.unshotThreshold), 0.0, 1.0);
-    if (throttle_.due(fraction))
-      reportProgress(progress, "solve", fraction, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
-
-    size_t batch = std::min(s_.shootersPerPass, np);
-    if (s_.shotBudget) batch = std::min<size_t>(batch, s_.shotBudget - shots_);
-    std::partial_sort(ranked_.begin(), ranked_.begin() + long(batch), ranked_.end(), std::greater<>());
-    while (batch > 0 && ranked_[batch - 1].first <= 0.0) --batch;
-    if (batch == 0) {
-      done_ = true;
-      return;
-    }
-    const auto& patches = sys_.surfaces.patches;
-    const float* columns[kMaxShootersPerPass];
-    Rgb shot[kMaxShootersPerPass];
-    for (size_t k = 0; k < batch; ++k) {
-      const uint32_t shooter = ranked_[k].second;
-      const std::vector<float>& f = column(shooter, k);
-      if (!directAdded_[shooter] && channelSum(patchEmission_[shooter]) > 0.0) addDirect(shooter, f);
-      columns[k] = f.data();
-      shot[k] = patchUnshot_[shooter] / sys_.patchArea[shooter];
-      for (uint32_t e : patches[shooter].elements) unshot_[e] = Rgb(0.0f);
-      patchUnshot_[shooter] = Rgb(0.0f);
-    }
-    // Receivers patch by patch, so each patch's unshot power is updated by the change of its own
-    // elements instead of being summed again from scratch.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 8), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t q = r.begin(); q < r.end(); ++q) {
-        Rgb added(0.0f);
-        for (uint32_t e : patches[q].elements) {
-          Rgb dh(0.0f);
-          for (size_t k = 0; k < batch; ++k) dh += columns[k][e] * shot[k];
-          if (dh.r == 0.0f && dh.g == 0.0f && dh.b == 0.0f) continue;
-          const Rgb db = sys_.reflectance[e] * dh;
-          irradiance_[e] += dh;
-          radiosity_[e] += db;
-          unshot_[e] += db;
-          added += sys_.area[e] * db;
-        }
-        patchUnshot_[q] += added;
+  // Receivers patch by patch, so each patch's unshot power is updated by the change of its own
+  // elements instead of being summed again from scratch.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 8), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t q = r.begin(); q < r.end(); ++q) {
+      Rgb added(0.0f);
+      for (uint32_t e : patches[q].elements) {
+        Rgb dh(0.0f);
+        for (size_t k = 0; k < batch; ++k) dh += columns[k][e] * shot[k];
+        if (dh.r == 0.0f && dh.g == 0.0f && dh.b == 0.0f) continue;
+        const Rgb db = sys_.reflectance[e] * dh;
+        irradiance_[e] += dh;
+        radiosity_[e] += db;
+        unshot_[e] += db;
+        added += sys_.area[e] * db;
       }
-    });
-    shots_ += batch;
-    unshotFraction_ = currentUnshotFraction();
-  }
+      patchUnshot_[q] += added;
+    }
+  });
+  shots_ += batch;
+  unshotFraction_ = currentUnshotFraction();
+}
 
-  const RadiositySystem& sys_;
-  Transport& transport_;
-  const ProgressiveSettings s_;
-  std::vector<Rgb> radiosity_, unshot_, irradiance_, direct_, patchUnshot_, patchEmission_;
-  std::vector<std::vector<float>> cache_, scratch_;
-  size_t cachedBytes_ = 0;
-  std::vector<std::pair<double, uint32_t>> ranked_;
-  std::vector<uint8_t> directAdded_;
-  double sourcePower_ = 0.0, unshotFraction_ = 1.0;
-  ProgressThrottle throttle_;
-  double seconds_ = 0.0, formFactorSeconds_ = 0.0;
-  uint64_t shots_ = 0;
-  bool done_ = false;
-};
-
-}  // namespace
 
 // Options and defaults shared with GL progressive, which solves the same way on the GPU.
 std::vector<SolverOption> progressiveStopOptions() {

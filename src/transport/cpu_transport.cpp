@@ -182,8 +182,9 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
   // Receiver quadratures depend on how near other faces come (within nearFactor times the
   // element's radius): only the moved elements and those that reach the moved faces' old or new
   // bounds can change.
+  redoneByMove_.clear();
   if (!quadratureReady_.load()) return;  // made from scratch when first needed
-  std::vector<uint32_t> near;
+  std::vector<uint32_t>& near = redoneByMove_;
   for (uint32_t e = 0; e < surfaces_.elements.size(); ++e) {
     const Element& el = surfaces_.elements[e];
     const float reach = options_.nearFactor * elementRadius_[e];
@@ -443,6 +444,19 @@ void CpuTransport::rows(std::span<const uint32_t> elements, std::span<float> out
     size_t count = 0;
     for (size_t i = r.begin(); i < r.end(); ++i) {
       batch[count++] = Pair{elements[i / np], uint32_t(i % np), out.data() + i};
+      if (count == kPairsPerBatch) computePairs({batch, count}), count = 0;
+    }
+    if (count) computePairs({batch, count});
+  });
+}
+
+void CpuTransport::pairs(std::span<const ElementPatch> pairs, std::span<float> out) {
+  ensureQuadrature();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), kPairsPerBatch), [&](const tbb::blocked_range<size_t>& r) {
+    Pair batch[kPairsPerBatch];
+    size_t count = 0;
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      batch[count++] = Pair{pairs[i].element, pairs[i].patch, out.data() + i};
       if (count == kPairsPerBatch) computePairs({batch, count}), count = 0;
     }
     if (count) computePairs({batch, count});

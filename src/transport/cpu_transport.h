@@ -25,12 +25,14 @@ class CpuTransport final : public Transport {
 
   void columns(std::span<const uint32_t> patches, std::span<float> out) override;
   void rows(std::span<const uint32_t> elements, std::span<float> out) override;
+  void pairs(std::span<const ElementPatch> pairs, std::span<float> out) override;
   void analyticIrradiance(std::span<Rgb> out) override;
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
   void elementsChanged() override;
   // Moves the objects' ray tracer instances (a commit, no rebuild) and forgets what depended on
   // where they were: pair classifications and receiver quadratures.
   void objectsMoved(std::span<const uint32_t> objects) override;
+  std::vector<uint32_t> receiversRedoneByMove() const override { return redoneByMove_; }
 
   RayTracer& tracer() { return tracer_; }
   RayTracer* rayTracer() override { return &tracer_; }
@@ -77,6 +79,7 @@ class CpuTransport final : public Transport {
   std::vector<float> elementRadius_;
   std::vector<uint8_t> elementQuadrature_;  // receiver midpoint rule: k x k points
   std::vector<uint8_t> patchEmits_;
+  std::vector<uint32_t> redoneByMove_;  // the receivers whose quadrature the last move made again
   struct ThreadLocal;
   std::unique_ptr<ThreadLocal> threadLocal_;
 };

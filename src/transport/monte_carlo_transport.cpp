@@ -100,16 +100,26 @@ void MonteCarloTransport::rows(std::span<const uint32_t> elements, std::span<flo
   });
 }
 
-void MonteCarloTransport::columns(std::span<const uint32_t> patches, std::span<float> out) {
+void MonteCarloTransport::ensureMatrix() {
   const size_t ne = surfaces_.elements.size(), np = surfaces_.patches.size();
-  if (matrix_.size() != ne * np) {
-    std::vector<uint32_t> all(ne);
-    std::iota(all.begin(), all.end(), 0u);
-    matrix_.assign(ne * np, 0.0f);
-    rows(all, matrix_);
-  }
+  if (matrix_.size() == ne * np) return;
+  std::vector<uint32_t> all(ne);
+  std::iota(all.begin(), all.end(), 0u);
+  matrix_.assign(ne * np, 0.0f);
+  rows(all, matrix_);
+}
+
+void MonteCarloTransport::columns(std::span<const uint32_t> patches, std::span<float> out) {
+  ensureMatrix();
+  const size_t ne = surfaces_.elements.size(), np = surfaces_.patches.size();
   for (size_t c = 0; c < patches.size(); ++c)
     for (size_t e = 0; e < ne; ++e) out[c * ne + e] = matrix_[e * np + patches[c]];
+}
+
+void MonteCarloTransport::pairs(std::span<const ElementPatch> pairs, std::span<float> out) {
+  ensureMatrix();
+  const size_t np = surfaces_.patches.size();
+  for (size_t i = 0; i < pairs.size(); ++i) out[i] = matrix_[size_t(pairs[i].element) * np + pairs[i].patch];
 }
 
 void MonteCarloTransport::objectsMoved(std::span<const uint32_t>) {

@@ -28,6 +28,7 @@ class MonteCarloTransport final : public Transport {
   void rows(std::span<const uint32_t> elements, std::span<float> out) override;
   // From the rows of every element, computed once and kept (elements x patches floats).
   void columns(std::span<const uint32_t> patches, std::span<float> out) override;
+  void pairs(std::span<const ElementPatch> pairs, std::span<float> out) override;
   void analyticIrradiance(std::span<Rgb> out) override { lights_.analyticIrradiance(out); }
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
   void elementsChanged() override { matrix_.clear(); }
@@ -35,6 +36,8 @@ class MonteCarloTransport final : public Transport {
   void objectsMoved(std::span<const uint32_t>) override;
 
  private:
+  void ensureMatrix();  // every row, computed once
+
   const SurfaceSet& surfaces_;
   int raysPerElement_;
   std::vector<Polygon> patchPolygons_;

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "luxel/scene.h"
 
@@ -27,6 +28,13 @@ class Transport {
 
   // The same form factors by rows: `out` holds elements.size() rows of patchCount() floats.
   virtual void rows(std::span<const uint32_t> elements, std::span<float> out) = 0;
+
+  // The same form factors for any (element, patch) pairs: out[i] = F[pairs[i].element <- pairs[i].patch],
+  // the number columns() and rows() give that pair.
+  struct ElementPatch {
+    uint32_t element, patch;
+  };
+  virtual void pairs(std::span<const ElementPatch> pairs, std::span<float> out) = 0;
 
   // Irradiance at each element from the scene's analytic lights (point, spot, sun, skies),
   // with shadows, averaged over the element.
@@ -48,6 +56,11 @@ class Transport {
   // update what depends on where those objects are, and keep the rest. Throws Error where a
   // backend cannot follow moves.
   virtual void objectsMoved(std::span<const uint32_t> objects) = 0;
+
+  // After objectsMoved: elements whose factors from every patch the last move changed for reasons
+  // of the backend's own besides visibility (CpuTransport: receiver quadratures made denser or
+  // coarser near the moved faces). Solvers that keep factors across moves recompute these.
+  virtual std::vector<uint32_t> receiversRedoneByMove() const { return {}; }
 };
 
 }  // namespace luxel

@@ -27,7 +27,13 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string nameOf(const SolverEntry& e) { return e.description.name + "_" + e.description.backend; }
+// A test name: letters, digits and underscores only ("cross-redistribution" has a dash).
+std::string nameOf(const SolverEntry& e) {
+  std::string name = e.description.name + "_" + e.description.backend;
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+}
 
 // The Cornell box at 200 elements: small enough to solve twice over in a test.
 SurfaceSet smallCornell(const Scene& scene) {

@@ -1,0 +1,330 @@
+// Dynamic radiosity by redistribution: after objects move or lights change, the last solution is
+// corrected instead of solved again. M. van de Hoef, "Real-Time Dynamic Radiosity for High Quality
+// Global Illumination", Utrecht 2013, Sec. 3.1 to 3.3 (shared/seeds/notes/001-dynamic-radiosity.md,
+// sections 2.7 to 2.11); S. E. Chen, "Incremental Radiosity: An Extension of Progressive Radiosity
+// to an Interactive Image Synthesis System", SIGGRAPH 1990; Puech, Sillion and Vedel, "Improving
+// Interaction with Radiosity-based Lighting Simulation Programs", I3D 1990 (light edits).
+//
+// Progressive refinement keeps, for every element, B = E + rho H with H = H0 + sum_p F[e <- p] S_p,
+// S_p the radiosity patch p has shot so far (the area mean of B - B_unshot over its elements).
+// When the factors change from F to F' (a move), the analytic irradiance from H0 to H0' (a move,
+// a light edit) and E, rho to E', rho' (a material edit), the redistribution of the thesis's
+// Eq. 3.1.1 is, for every element,
+//   H' = H + sum_p (F' - F)[e <- p] S_p + (H0' - H0),   B' = E' + rho' H',
+// and B' - B is added to the unshot radiosity too, so that progressive refinement goes on to
+// shoot the difference (negative where light was taken away: Puech's "negative light"). Nothing
+// already shot changes during the redistribution (the thesis's chronological-order rule, L443):
+// every difference is computed from the same S before any is applied. The correction is exact
+// for the factors the transport gives, so after the shooting that follows, the solution is the
+// one a solve from scratch at the new pose reaches, up to its stopping threshold; errors do not
+// build up over frames.
+//
+// Only factors that can have changed are computed again. The methods differ in how they find
+// them, as in the thesis (001 notes, section 2.8 and 2.9):
+//  - incremental (Chen): every patch's column again, the old and the new hemicube of every patch
+//    (O(2|M| + 2|C|) in the thesis's terms).
+//  - cross-redistribution: the moved patches' columns (R_p(M, .)), the moved elements' factors
+//    from the static patches (R_g(C, M), gathered), and of the static-to-static factors (R(C, C))
+//    only those whose light passes through the space the moved objects left or entered: "all
+//    redistributed radiosity passes through the modified geometry in either the new or old
+//    position" (L482). The thesis estimates R(C, C) by cross projection through back hemicubes;
+//    on the CPU we trace those factors exactly instead (notes 7.2, point 4), which removes the
+//    projection's undersampling and the drift that made the thesis reject an incremental
+//    projection.
+// Both keep every factor they have computed, so the columns of static patches that shoot after a
+// move are current: progressive iterations may run between moves without the "remove M, iterate,
+// insert M" wrapper of L843.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/stopwatch.h"
+#include "solve/progressive_solver.h"
+#include "solve/solver_registry.h"
+#include "transport/form_factor_options.h"
+
+namespace luxel {
+
+std::vector<SolverOption> progressiveStopOptions();  // solve/progressive_solver.cpp
+
+namespace {
+
+enum class ChangedFactors {
+  All,             // incremental: every column again
+  ThroughMovers,   // cross-redistribution: only what the moved objects' old and new places touch
+};
+
+struct Sphere {
+  Vec3 centre{0.0f};
+  float radius = -1.0f;  // empty
+};
+
+float polygonRadius(const Polygon& p, Vec3 centre) {
+  float r = 0.0f;
+  for (int i = 0; i < p.count; ++i) r = std::max(r, glm::length(p.v[size_t(i)] - centre));
+  return r;
+}
+
+// Distance from point c to the segment [a, b].
+float segmentDistance(Vec3 a, Vec3 b, Vec3 c) {
+  const Vec3 ab = b - a;
+  const float len2 = glm::dot(ab, ab);
+  const float t = len2 > 0.0f ? std::clamp(glm::dot(c - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+  return glm::length(a + t * ab - c);
+}
+
+class RedistributionSolver final : public ProgressiveSolver {
+ public:
+  RedistributionSolver(const Scene& scene, const RadiositySystem& sys, Transport& transport,
+                       const ProgressiveSettings& s, ChangedFactors changed, const char* method)
+      : ProgressiveSolver(sys, transport, s), scene_(scene), changed_(changed), method_(method) {
+    const SurfaceSet& set = sys.surfaces;
+    patchRadius_.resize(set.patches.size());
+    for (size_t p = 0; p < set.patches.size(); ++p)
+      patchRadius_[p] = polygonRadius(set.patches[p].polygon, set.patches[p].centroid);
+    elementRadius_.resize(set.elements.size());
+    for (size_t e = 0; e < set.elements.size(); ++e)
+      elementRadius_[e] = polygonRadius(set.elements[e].polygon, set.elements[e].centroid);
+    bounds_.resize(scene.objects.size());
+    for (uint32_t o : scene.dynamicObjects()) bounds_[o] = boundsOf(o);
+    remember();
+  }
+
+  bool objectsMoved(std::span<const uint32_t> objects) override {
+    const Stopwatch watch;
+    const SurfaceSet& set = sys_.surfaces;
+    const size_t ne = sys_.elementCount(), np = sys_.patchCount();
+    std::vector<uint8_t> moved(scene_.objects.size(), 0);
+    for (uint32_t o : objects) moved[o] = 1;
+    auto objectOf = [&](uint32_t face) { return scene_.meshes[set.faces[face].mesh].object; };
+    auto isMoved = [&](uint32_t face) {
+      const uint32_t o = objectOf(face);
+      return o != kNoObject && moved[o];
+    };
+    // Every factor that has been used must still be at hand: a column that was computed into
+    // scratch space (the cache was full) cannot be corrected, and then the owner solves afresh.
+    const std::vector<Rgb> shot = patchShot();
+    for (size_t p = 0; p < np; ++p)
+      if (cache_[p].empty() && channelSum(glm::abs(shot[p])) > 0.0) return false;
+
+    std::vector<uint32_t> movedPatches, staticPatches, movedElements;
+    for (uint32_t p = 0; p < np; ++p)
+      if (!cache_[p].empty()) (isMoved(set.patches[p].face) ? movedPatches : staticPatches).push_back(p);
+    for (uint32_t e = 0; e < ne; ++e)
+      if (isMoved(set.elements[e].face)) movedElements.push_back(e);
+    for (uint32_t p = 0; p < np; ++p) patchRadius_[p] = polygonRadius(set.patches[p].polygon, set.patches[p].centroid);
+
+    std::vector<Rgb> deltaH(ne, Rgb(0.0f));
+    uint64_t recomputed = 0;
+    // Whole columns: the moved patches' always, every patch's for the incremental method.
+    std::vector<uint32_t> whole = movedPatches;
+    if (changed_ == ChangedFactors::All) whole.insert(whole.end(), staticPatches.begin(), staticPatches.end());
+    if (!whole.empty()) {
+      std::vector<float> fresh(whole.size() * ne);
+      transport_.columns(whole, fresh);
+      recomputed += fresh.size();
+      for (size_t k = 0; k < whole.size(); ++k) {
+        std::vector<float>& f = cache_[whole[k]];
+        const float* g = fresh.data() + k * ne;
+        const Rgb s = shot[whole[k]];
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 4096), [&](const tbb::blocked_range<size_t>& r) {
+          for (size_t e = r.begin(); e < r.end(); ++e) {
+            deltaH[e] += (g[e] - f[e]) * s;
+            f[e] = g[e];
+          }
+        });
+      }
+    }
+    // Single factors of the static patches, for cross-redistribution.
+    if (changed_ == ChangedFactors::ThroughMovers && !staticPatches.empty()) {
+      std::vector<Sphere> regions;
+      for (uint32_t o : objects) {
+        regions.push_back(bounds_[o]);  // where it was
+        bounds_[o] = boundsOf(o);
+        regions.push_back(bounds_[o]);  // where it is
+      }
+      const std::vector<uint32_t> redone = transport_.receiversRedoneByMove();
+      std::vector<uint8_t> always(ne, 0);
+      for (uint32_t e : movedElements) always[e] = 1;
+      for (uint32_t e : redone) always[e] = 1;
+      std::vector<Transport::ElementPatch> pairs = pairsThrough(staticPatches, regions, always, isMoved);
+      std::vector<float> fresh(pairs.size());
+      transport_.pairs(pairs, fresh);
+      recomputed += pairs.size();
+      for (size_t i = 0; i < pairs.size(); ++i) {
+        float& f = cache_[pairs[i].patch][pairs[i].element];
+        deltaH[pairs[i].element] += (fresh[i] - f) * shot[pairs[i].patch];
+        f = fresh[i];
+      }
+    } else {
+      for (uint32_t o : objects) bounds_[o] = boundsOf(o);
+    }
+    apply(deltaH);
+    factorsRecomputed_ += recomputed;
+    redistributions_ += 1;
+    secondsRedistributing_ += watch.seconds();
+    seconds_ += watch.seconds();
+    return true;
+  }
+
+  bool sourcesChanged() override {
+    const Stopwatch watch;
+    apply(std::vector<Rgb>(sys_.elementCount(), Rgb(0.0f)));
+    redistributions_ += 1;
+    secondsRedistributing_ += watch.seconds();
+    seconds_ += watch.seconds();
+    return true;
+  }
+
+  void restoreState(StateReader& in) override {
+    ProgressiveSolver::restoreState(in);
+    remember();
+  }
+
+  SolveStats stats() const override {
+    SolveStats st = ProgressiveSolver::stats();
+    st.method = method_;
+    st.redistributions = redistributions_;
+    st.factorsRecomputed = factorsRecomputed_;
+    st.secondsRedistribution = secondsRedistributing_;
+    return st;
+  }
+
+ private:
+  // Each patch's shot radiosity S_p: the area mean of B - B_unshot over its elements.
+  std::vector<Rgb> patchShot() const {
+    std::vector<Rgb> shot(sys_.elementCount());
+    for (size_t e = 0; e < shot.size(); ++e) shot[e] = radiosity_[e] - unshot_[e];
+    return sys_.patchMeans(shot);
+  }
+
+  // A sphere round a dynamic object's patches where they are now.
+  Sphere boundsOf(uint32_t object) const {
+    const SurfaceSet& set = sys_.surfaces;
+    Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    bool any = false;
+    for (const Patch& p : set.patches) {
+      if (scene_.meshes[set.faces[p.face].mesh].object != object) continue;
+      for (int i = 0; i < p.polygon.count; ++i) lo = glm::min(lo, p.polygon.v[size_t(i)]), hi = glm::max(hi, p.polygon.v[size_t(i)]);
+      any = true;
+    }
+    if (!any) return {};
+    Sphere s;
+    s.centre = 0.5f * (lo + hi);
+    s.radius = 0.5f * glm::length(hi - lo);
+    return s;
+  }
+
+  // The (static receiver, static patch) pairs whose light can pass through one of `regions`,
+  // plus every pair of the receivers marked `always`. Every ray between an element and a patch
+  // lies in the convex hull of the two polygons, which lies in the capsule round the segment
+  // between their centroids with the larger of their radii; a region the capsule misses cannot
+  // have changed the pair's visibility. Receiver patches are tested first, then their elements.
+  template <typename IsMoved>
+  std::vector<Transport::ElementPatch> pairsThrough(const std::vector<uint32_t>& sources,
+                                                    const std::vector<Sphere>& regions,
+                                                    const std::vector<uint8_t>& always, const IsMoved& isMoved) const {
+    const SurfaceSet& set = sys_.surfaces;
+    const size_t np = sys_.patchCount();
+    std::vector<std::vector<Transport::ElementPatch>> perSource(sources.size());
+    auto near = [&](Vec3 a, Vec3 b, float reach) {
+      for (const Sphere& s : regions)
+        if (s.radius >= 0.0f && segmentDistance(a, b, s.centre) <= s.radius + reach) return true;
+      return false;
+    };
+    tbb::parallel_for(size_t(0), sources.size(), [&](size_t k) {
+      const uint32_t p = sources[k];
+      const Patch& src = set.patches[p];
+      std::vector<Transport::ElementPatch>& out = perSource[k];
+      for (uint32_t q = 0; q < np; ++q) {
+        const Patch& rec = set.patches[q];
+        if (isMoved(rec.face)) {
+          for (uint32_t e : rec.elements) out.push_back({e, p});
+          continue;
+        }
+        // Slack for the rays' offsets from the surfaces.
+        const float slack = 1e-4f * set.sceneExtent;
+        const bool patchNear = near(src.centroid, rec.centroid, std::max(patchRadius_[p], patchRadius_[q]) + slack);
+        for (uint32_t e : rec.elements)
+          if (always[e] || (patchNear && near(src.centroid, set.elements[e].centroid,
+                                              std::max(patchRadius_[p], elementRadius_[e]) + slack)))
+            out.push_back({e, p});
+      }
+    });
+    std::vector<Transport::ElementPatch> all;
+    for (auto& v : perSource) all.insert(all.end(), v.begin(), v.end());
+    return all;
+  }
+
+  // Applies the redistribution: the factor changes' irradiance `deltaH`, and the differences of
+  // analytic irradiance, emission and reflectance since the last update (see the top of the file).
+  void apply(const std::vector<Rgb>& deltaH) {
+    const size_t ne = sys_.elementCount();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t e = r.begin(); e < r.end(); ++e) {
+        const Rgb h = irradiance_[e] + deltaH[e] + (sys_.analytic[e] - analyticUsed_[e]);
+        const Rgb b = sys_.emission[e] + sys_.reflectance[e] * h;
+        unshot_[e] += b - radiosity_[e];
+        radiosity_[e] = b;
+        irradiance_[e] = h;
+      }
+    });
+    // The direct light for display: the analytic lights, and the emitters' first bounce added
+    // again from their current columns when the solution is next read.
+    direct_ = sys_.analytic;
+    std::fill(directAdded_.begin(), directAdded_.end(), 0);
+    patchEmission_ = sys_.patchMeans(sys_.emission);
+    updatePatchUnshot();
+    sourcePower_ = sys_.sourcePower();
+    unshotFraction_ = currentUnshotFraction();
+    done_ = false;
+    remember();
+  }
+
+  // What the state was computed from, for the next update's differences.
+  void remember() { analyticUsed_ = sys_.analytic; }
+
+  const Scene& scene_;
+  const ChangedFactors changed_;
+  const char* method_;
+  std::vector<Rgb> analyticUsed_;
+  std::vector<float> patchRadius_, elementRadius_;
+  std::vector<Sphere> bounds_;  // each dynamic object's patches, where the solution last saw them
+  uint64_t redistributions_ = 0, factorsRecomputed_ = 0;
+  double secondsRedistributing_ = 0.0;
+};
+
+void registerRedistribution(SolverRegistry& registry, const char* method, ChangedFactors changed,
+                            const char* description) {
+  SolverEntry e;
+  e.description = {method, "cpu", description, progressiveStopOptions()};
+  e.description.options.push_back(integerOption("shooters-per-pass", kDefaultShootersPerPass, 1, kMaxShootersPerPass,
+                                                "patches shot together in one pass over the receivers"));
+  for (SolverOption& o : cpuTransportOptions()) e.description.options.push_back(std::move(o));
+  e.make = [method, changed](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
+    ProgressiveSettings s{v.real("unshot"), v.real("time-budget"), uint64_t(v.integer("shot-budget")),
+                          size_t(v.integer("shooters-per-pass")), v.flag("ambient")};
+    return std::make_unique<RedistributionSolver>(r.scene, r.system, r.transport, s, changed, method);
+  };
+  e.converged.set("unshot", 1e-7);
+  registry.add(std::move(e));
+}
+
+}  // namespace
+
+void registerCpuIncremental(SolverRegistry& registry) {
+  registerRedistribution(registry, "incremental", ChangedFactors::All,
+                         "dynamic: progressive refinement that follows moves and light edits by redistribution "
+                         "(Chen 1990): every column of factors again after a move");
+}
+
+void registerCpuCrossRedistribution(SolverRegistry& registry) {
+  registerRedistribution(registry, "cross-redistribution", ChangedFactors::ThroughMovers,
+                         "dynamic: redistribution after van de Hoef 2013: the moved patches' factors, and the static "
+                         "ones whose light passes where the moved objects were or are, traced exactly");
+}
+
+}  // namespace luxel
