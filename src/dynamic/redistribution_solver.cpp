@@ -57,9 +57,12 @@ enum class ChangedFactors {
   ThroughMovers,   // cross-redistribution: only what the moved objects' old and new places touch
 };
 
-struct Sphere {
+// An oriented box round a dynamic object's patches: centre, unit axes, half extents.
+struct Region {
   Vec3 centre{0.0f};
-  float radius = -1.0f;  // empty
+  glm::mat3 axes{1.0f};
+  Vec3 half{-1.0f};  // negative: empty
+  bool empty() const { return half.x < 0.0f; }
 };
 
 float polygonRadius(const Polygon& p, Vec3 centre) {
@@ -68,12 +71,23 @@ float polygonRadius(const Polygon& p, Vec3 centre) {
   return r;
 }
 
-// Distance from point c to the segment [a, b].
-float segmentDistance(Vec3 a, Vec3 b, Vec3 c) {
-  const Vec3 ab = b - a;
-  const float len2 = glm::dot(ab, ab);
-  const float t = len2 > 0.0f ? std::clamp(glm::dot(c - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
-  return glm::length(a + t * ab - c);
+// Whether the segment [a, b] passes within `reach` of the box (the box grown by `reach` along
+// each axis, which holds every point within `reach` of it): the slab test in the box's frame.
+bool segmentNearBox(Vec3 a, Vec3 b, const Region& box, float reach) {
+  const Vec3 p = glm::transpose(box.axes) * (a - box.centre), q = glm::transpose(box.axes) * (b - box.centre);
+  const Vec3 d = q - p, h = box.half + Vec3(reach);
+  float t0 = 0.0f, t1 = 1.0f;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) < 1e-12f) {
+      if (std::abs(p[i]) > h[i]) return false;
+      continue;
+    }
+    float ta = (-h[i] - p[i]) / d[i], tb = (h[i] - p[i]) / d[i];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
 }
 
 class RedistributionSolver final : public ProgressiveSolver {
@@ -140,7 +154,7 @@ class RedistributionSolver final : public ProgressiveSolver {
     }
     // Single factors of the static patches, for cross-redistribution.
     if (changed_ == ChangedFactors::ThroughMovers && !staticPatches.empty()) {
-      std::vector<Sphere> regions;
+      std::vector<Region> regions;
       for (uint32_t o : objects) {
         regions.push_back(bounds_[o]);  // where it was
         bounds_[o] = boundsOf(o);
@@ -201,38 +215,45 @@ class RedistributionSolver final : public ProgressiveSolver {
     return sys_.patchMeans(shot);
   }
 
-  // A sphere round a dynamic object's patches where they are now.
-  Sphere boundsOf(uint32_t object) const {
+  // A box round a dynamic object's patches where they are now, aligned with the object's own
+  // axes (its transform's rotation), so that it stays as tight as the object is in any pose.
+  Region boundsOf(uint32_t object) const {
     const SurfaceSet& set = sys_.surfaces;
+    Region box;
+    const glm::mat3 m(scene_.objects[object].transform);
+    for (int i = 0; i < 3; ++i) box.axes[i] = glm::normalize(m[i]);
+    const glm::mat3 toLocal = glm::transpose(box.axes);
     Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     bool any = false;
     for (const Patch& p : set.patches) {
       if (scene_.meshes[set.faces[p.face].mesh].object != object) continue;
-      for (int i = 0; i < p.polygon.count; ++i) lo = glm::min(lo, p.polygon.v[size_t(i)]), hi = glm::max(hi, p.polygon.v[size_t(i)]);
+      for (int i = 0; i < p.polygon.count; ++i) {
+        const Vec3 x = toLocal * p.polygon.v[size_t(i)];
+        lo = glm::min(lo, x), hi = glm::max(hi, x);
+      }
       any = true;
     }
-    if (!any) return {};
-    Sphere s;
-    s.centre = 0.5f * (lo + hi);
-    s.radius = 0.5f * glm::length(hi - lo);
-    return s;
+    if (!any) return box;
+    box.centre = box.axes * (0.5f * (lo + hi));
+    box.half = 0.5f * (hi - lo);
+    return box;
   }
 
   // The (static receiver, static patch) pairs whose light can pass through one of `regions`,
   // plus every pair of the receivers marked `always`. Every ray between an element and a patch
-  // lies in the convex hull of the two polygons, which lies in the capsule round the segment
-  // between their centroids with the larger of their radii; a region the capsule misses cannot
+  // lies in the convex hull of the two polygons, which lies within the larger of their radii of
+  // the segment between their centroids; a region that segment does not come that near cannot
   // have changed the pair's visibility. Receiver patches are tested first, then their elements.
   template <typename IsMoved>
   std::vector<Transport::ElementPatch> pairsThrough(const std::vector<uint32_t>& sources,
-                                                    const std::vector<Sphere>& regions,
+                                                    const std::vector<Region>& regions,
                                                     const std::vector<uint8_t>& always, const IsMoved& isMoved) const {
     const SurfaceSet& set = sys_.surfaces;
     const size_t np = sys_.patchCount();
     std::vector<std::vector<Transport::ElementPatch>> perSource(sources.size());
     auto near = [&](Vec3 a, Vec3 b, float reach) {
-      for (const Sphere& s : regions)
-        if (s.radius >= 0.0f && segmentDistance(a, b, s.centre) <= s.radius + reach) return true;
+      for (const Region& r : regions)
+        if (!r.empty() && segmentNearBox(a, b, r, reach)) return true;
       return false;
     };
     tbb::parallel_for(size_t(0), sources.size(), [&](size_t k) {
@@ -292,7 +313,7 @@ class RedistributionSolver final : public ProgressiveSolver {
   const char* method_;
   std::vector<Rgb> analyticUsed_;
   std::vector<float> patchRadius_, elementRadius_;
-  std::vector<Sphere> bounds_;  // each dynamic object's patches, where the solution last saw them
+  std::vector<Region> bounds_;  // each dynamic object's patches, where the solution last saw them
   uint64_t redistributions_ = 0, factorsRecomputed_ = 0;
   double secondsRedistributing_ = 0.0;
 };
