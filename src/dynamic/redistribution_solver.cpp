@@ -90,6 +90,27 @@ bool segmentNearBox(Vec3 a, Vec3 b, const Region& box, float reach) {
   return true;
 }
 
+// Whether a ray from a point within `ra` of `a` to a point within `rb` of `b` can cross the box.
+// Every such segment lies in the convex hull of the two balls, the union over t of the balls
+// round a + t (b - a) of radius ra + t (rb - ra) (Minkowski sums of convex sets), so near the
+// small end the reach is small. The box's bounding sphere first finds the window of t where the
+// hull can come near it; the box grown by the largest radius over that window is then tested
+// against that part of the segment.
+bool hullNearBox(Vec3 a, float ra, Vec3 b, float rb, const Region& box) {
+  const Vec3 ab = b - a;
+  const float length2 = glm::dot(ab, ab);
+  if (!(length2 > 0.0f)) return segmentNearBox(a, b, box, std::max(ra, rb));
+  const float reach = glm::length(box.half) + std::max(ra, rb);
+  const float t = std::clamp(glm::dot(box.centre - a, ab) / length2, 0.0f, 1.0f);
+  const Vec3 gap = a + t * ab - box.centre;
+  const float gap2 = glm::dot(gap, gap);
+  if (gap2 > reach * reach) return false;
+  const float w = std::sqrt((reach * reach - gap2) / length2);
+  const float t0 = std::max(0.0f, t - w), t1 = std::min(1.0f, t + w);
+  const float radius = ra + (rb - ra) * (rb > ra ? t1 : t0);
+  return segmentNearBox(a + t0 * ab, a + t1 * ab, box, radius);
+}
+
 class RedistributionSolver final : public ProgressiveSolver {
  public:
   RedistributionSolver(const Scene& scene, const RadiositySystem& sys, Transport& transport,
@@ -241,8 +262,8 @@ class RedistributionSolver final : public ProgressiveSolver {
 
   // The (static receiver, static patch) pairs whose light can pass through one of `regions`,
   // plus every pair of the receivers marked `always`. Every ray between an element and a patch
-  // lies in the convex hull of the two polygons, which lies within the larger of their radii of
-  // the segment between their centroids; a region that segment does not come that near cannot
+  // lies in the convex hull of the two polygons, which lies in the hull of the balls round them
+  // (hullNearBox); a region that hull misses cannot
   // have changed the pair's visibility. Receiver patches are tested first, then their elements.
   template <typename IsMoved>
   std::vector<Transport::ElementPatch> pairsThrough(const std::vector<uint32_t>& sources,
@@ -251,9 +272,9 @@ class RedistributionSolver final : public ProgressiveSolver {
     const SurfaceSet& set = sys_.surfaces;
     const size_t np = sys_.patchCount();
     std::vector<std::vector<Transport::ElementPatch>> perSource(sources.size());
-    auto near = [&](Vec3 a, Vec3 b, float reach) {
+    auto near = [&](Vec3 a, float ra, Vec3 b, float rb) {
       for (const Region& r : regions)
-        if (!r.empty() && segmentNearBox(a, b, r, reach)) return true;
+        if (!r.empty() && hullNearBox(a, ra, b, rb, r)) return true;
       return false;
     };
     tbb::parallel_for(size_t(0), sources.size(), [&](size_t k) {
@@ -268,10 +289,10 @@ class RedistributionSolver final : public ProgressiveSolver {
         }
         // Slack for the rays' offsets from the surfaces.
         const float slack = 1e-4f * set.sceneExtent;
-        const bool patchNear = near(src.centroid, rec.centroid, std::max(patchRadius_[p], patchRadius_[q]) + slack);
+        const bool patchNear = near(rec.centroid, patchRadius_[q] + slack, src.centroid, patchRadius_[p] + slack);
         for (uint32_t e : rec.elements)
-          if (always[e] || (patchNear && near(src.centroid, set.elements[e].centroid,
-                                              std::max(patchRadius_[p], elementRadius_[e]) + slack)))
+          if (always[e] ||
+              (patchNear && near(set.elements[e].centroid, elementRadius_[e] + slack, src.centroid, patchRadius_[p] + slack)))
             out.push_back({e, p});
       }
     });

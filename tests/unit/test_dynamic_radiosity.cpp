@@ -75,12 +75,18 @@ TEST(DynamicRadiosity, CrossRedistributionRecomputesOnlyWhatTheMoveTouches) {
   Session incremental(scene, DiscretiseOptions{}, solverOptions("incremental"));
   Session cross(scene, DiscretiseOptions{}, solverOptions("cross-redistribution"));
   incremental.solve(), cross.solve();
-  const glm::mat4 pose = boxPose(scene, 10.0f);
+  // A frame of the seed's rotation: a degree about the box's vertical axis.
+  const glm::mat4 pose = boxPose(scene, 1.0f);
   incremental.placeObject(theBox(scene), pose);
   cross.placeObject(theBox(scene), pose);
   const Solution a = incremental.solve(), b = cross.solve();
+  const double share = double(b.stats.factorsRecomputed) / double(a.stats.factorsRecomputed);
+  std::printf("a one-degree turn: cross-redistribution recomputed %llu factors, incremental %llu (%.0f%%)\n",
+              (unsigned long long)b.stats.factorsRecomputed, (unsigned long long)a.stats.factorsRecomputed, 100 * share);
   EXPECT_LT(nrmse(cross, a, b), kConvergedAgreement);
-  EXPECT_LT(b.stats.factorsRecomputed, a.stats.factorsRecomputed);
+  // The box fills the middle of a small room, and its bounds with the patches' own size reach most
+  // pairs: 85% of the factors when this was written; all of them would mean no culling at all.
+  EXPECT_LT(share, 0.9);
 }
 
 TEST(DynamicRadiosity, AnIdentityMoveChangesNothing) {
