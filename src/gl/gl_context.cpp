@@ -3,6 +3,8 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <map>
+#include <mutex>
 #include <vector>
 
 #include <fmt/format.h>
@@ -49,9 +51,19 @@ EGLDisplay openDisplay(EGLenum platform, void* native, const char* name, std::st
   return d;
 }
 
+// How many live Contexts use each display. EGL displays are per device, shared by every context
+// on it, and eglTerminate is not counted: terminating one session's display would destroy the
+// contexts of every other session of the process.
+std::mutex displayMutex;
+std::map<void*, int>& displayUsers() {
+  static std::map<void*, int> users;
+  return users;
+}
+
 }  // namespace
 
 Context::Context(MessageSink sink) : sink_(std::move(sink)) {
+  const std::lock_guard lock(displayMutex);
   std::string why;
   if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base"))
     throw Error("OpenGL: EGL has no EGL_EXT_platform_base, so no headless display can be opened");
@@ -94,9 +106,10 @@ Context::Context(MessageSink sink) : sink_(std::move(sink)) {
         why += fmt::format("; {}: no OpenGL 4.5 core context ({})", name, eglErrorName(eglGetError()));
       }
     }
-    if (display != display_) eglTerminate(display);
+    if (display != display_ && displayUsers()[display] == 0) eglTerminate(display);
   }
   if (!context_) throw Error("OpenGL: no headless 4.5 core context could be made" + why);
+  ++displayUsers()[display_];
   if (epoxy_has_gl_extension("GL_KHR_debug") || epoxy_gl_version() >= 43) {
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
@@ -114,9 +127,18 @@ Context::Context(BorrowCurrent) : platform_("borrowed") {
 Context::~Context() {
   auto display = static_cast<EGLDisplay>(display_);
   if (!display) return;
-  eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  const std::lock_guard lock(displayMutex);
+  if (eglGetCurrentContext() == static_cast<EGLContext>(context_))
+    eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(display, static_cast<EGLContext>(context_));
-  eglTerminate(display);
+  if (--displayUsers()[display_] == 0) eglTerminate(display);
+}
+
+void Context::makeCurrent() {
+  if (!display_) return;  // borrowed: the caller keeps it current
+  if (eglGetCurrentContext() == static_cast<EGLContext>(context_)) return;
+  if (!eglMakeCurrent(static_cast<EGLDisplay>(display_), EGL_NO_SURFACE, EGL_NO_SURFACE, static_cast<EGLContext>(context_)))
+    throw Error(fmt::format("OpenGL: the session's context could not be made current ({})", eglErrorName(eglGetError())));
 }
 
 std::string Context::renderer() const { return reinterpret_cast<const char*>(glGetString(GL_RENDERER)); }

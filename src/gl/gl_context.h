@@ -26,6 +26,10 @@ class Context {
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
+  // Makes this context current on the calling thread, where another (a second session's) may be;
+  // a borrowed context is left to its owner. Throws luxel::Error when EGL refuses.
+  void makeCurrent();
+
   std::string renderer() const;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
   // Whether the renderer rasterises on the CPU (Mesa's llvmpipe or softpipe, SwiftShader).
   bool softwareRasteriser() const;

@@ -28,12 +28,13 @@ void addAll(std::vector<SolverOption>& to, std::vector<SolverOption> from) {
 
 }  // namespace
 
-void registerGlProgressive(SolverRegistry& registry) {
+namespace {
+
+// GL progressive refinement, and the same solver following moves and edits by redistribution.
+SolverEntry glProgressiveEntry(const char* method, bool followChanges, const char* description) {
   const gl::GlProgressiveSettings d;
   SolverEntry e;
-  e.description = {"progressive", "gl",
-                   "progressive refinement resident on the GPU: ID or depth hemicubes per shooter (seeds 001, 003)",
-                   progressiveStopOptions()};
+  e.description = {method, "gl", description, progressiveStopOptions()};
   addAll(e.description.options,
          {integerOption("shooters-per-pass", 0, 0, kMaxShootersPerPass,
                         "patches shot together in one pass (0: 8, or 1 on a software rasteriser, where it is faster)"),
@@ -44,8 +45,9 @@ void registerGlProgressive(SolverRegistry& registry) {
           choiceOption("hemicube-visibility", "item", {"item", "distance"},
                        "a shooter sees a point by face id (seed 001) or by depth (seed 003)")});
   addAll(e.description.options, analyticLightOptions());
-  e.make = [](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
+  e.make = [followChanges](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
     gl::GlProgressiveSettings s;
+    s.followChanges = followChanges;
     s.resolution = hemicubeResolution(v);
     s.samplesPerSide = v.integer("hemicubes-per-side");
     s.emitterSamplesPerSide = v.integer("emitter-hemicubes-per-side");
@@ -65,7 +67,21 @@ void registerGlProgressive(SolverRegistry& registry) {
   // patches at 300 elements (measured figures: docs/algorithms.md, "Solvers").
   e.accuracy.halfShadow = 0.08;
   e.accuracy.cornell = 0.03;
-  registry.add(std::move(e));
+  return e;
+}
+
+}  // namespace
+
+void registerGlProgressive(SolverRegistry& registry) {
+  registry.add(glProgressiveEntry(
+      "progressive", false, "progressive refinement resident on the GPU: ID or depth hemicubes per shooter (seeds 001, 003)"));
+}
+
+void registerGlIncremental(SolverRegistry& registry) {
+  registry.add(glProgressiveEntry("incremental", true,
+                                  "dynamic: GL progressive refinement that follows moves and light edits by "
+                                  "redistribution (Chen 1990; seed 001 Sec. 4.4): every patch reshoots what it shot, "
+                                  "from the old and the new geometry"));
 }
 
 void registerGlGather(SolverRegistry& registry) {

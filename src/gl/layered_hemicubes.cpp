@@ -130,6 +130,10 @@ void LayeredHemicubes::faceItems(const SurfaceSet& surfaces, std::vector<Polygon
   }
 }
 
+void LayeredHemicubes::setPolygons(std::span<const Polygon> polygons, std::span<const uint32_t> items) {
+  impl_->mesh = std::make_unique<ItemMesh>(polygons, items);
+}
+
 std::vector<uint32_t> LayeredHemicubes::neighbourItems(const SurfaceSet& surfaces) {
   // Corners meet where their positions agree to a millionth of the scene (a hash of the rounded
   // position); faces meeting at a corner are neighbours.

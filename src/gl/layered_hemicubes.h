@@ -32,6 +32,8 @@ class LayeredHemicubes {
   // at SHOOTER_BINDING (records marked inactive are drawn off screen). Radiosity reads the
   // per-item colours (vec4, index item - 1) bound at PATCH_RADIOSITY_BINDING.
   void render(int first, int count);
+  // Replaces the polygons drawn (after objects moved), keeping the targets.
+  void setPolygons(std::span<const Polygon> polygons, std::span<const uint32_t> items);
   // Binds the item layers to ITEM_TEXTURE_UNIT and the distance or radiosity layers to
   // DISTANCE_TEXTURE_UNIT.
   void bindTextures() const;

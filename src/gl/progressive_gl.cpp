@@ -37,7 +37,7 @@ layout(std430, binding = SOLVER_STATE_BINDING) buffer SolverState {
 layout(std430, binding = ELEMENT_STATE_BINDING) buffer ElementStates { GpuElementState states[]; };
 )";
 
-// 1. Unshot power per patch: one thread per patch over its elements.
+// 1. Unshot power per patch: one thread per patch over its elements, summed per channel.
 const char* kPowerCompute = R"(
 layout(local_size_x = POWER_GROUP) in;
 uniform uint patchCount;
@@ -45,13 +45,14 @@ void main() {
   uint p = gl_GlobalInvocationID.x;
   if (p >= patchCount) return;
   uvec4 ids = patches[p].ids;
-  float sum = 0.0;
+  vec3 sum = vec3(0.0);
   for (uint i = ids.x; i < ids.x + ids.y; ++i) {
     uint e = patchElements[i];
-    vec3 u = states[e].unshot.rgb;
-    sum += elements[e].normalArea.w * (u.r + u.g + u.b);
+    sum += elements[e].normalArea.w * states[e].unshot.rgb;
   }
-  patchStates[p].power = sum;
+  // Its magnitude: after a redistribution the unshot radiosity can be negative ("negative
+  // light", which must be shot as well).
+  patchStates[p].power = abs(sum.r) + abs(sum.g) + abs(sum.b);
 }
 )";
 
@@ -63,6 +64,9 @@ const char* kSelectCompute = R"(
 layout(local_size_x = SELECT_GROUP) in;
 uniform uint patchCount, batch, shotLimit, samplesPerSide;
 uniform bool emittersOnly;
+// A patch's hemicubes turned the same at every shot (followChanges), so that the factors they
+// measure are a function of the geometry alone and a redistribution cancels them exactly.
+uniform bool fixedTurns;
 float candidatePower(uint p) {
   if (emittersOnly && (patchStates[p].shot != 0u || dot(patches[p].emission.rgb, vec3(1.0)) <= 0.0)) return 0.0;
   return patchStates[p].power;
@@ -141,7 +145,7 @@ void main() {
       // Turned about the normal by a hashed angle (001's random rotation): with the scene's edges
       // and the pixel grid aligned, aliasing at an opening repeated in every hemicube and left
       // the room of the indirect-light scene 10-15% dark at 64 pixels; turned, it averages out.
-      s.normal = vec4(P.normalArea.xyz, hemicubeTurn(p, j, shotsBefore));
+      s.normal = vec4(P.normalArea.xyz, hemicubeTurn(p, j, fixedTurns ? 0x5EEDu : shotsBefore));
       s.unshot = vec4(sUnshot[k], 0.0);
       s.emission = vec4(patchStates[p].shot == 0u ? P.emission.rgb : vec3(0.0), 0.0);
       s.ids = uvec4(p, 1u, 0u, 0u);
@@ -170,6 +174,7 @@ layout(binding = DISTANCE_TEXTURE_UNIT) uniform sampler2DArray distances;
 layout(std430, binding = FACE_NEIGHBOUR_BINDING) readonly buffer FaceNeighbours { uint faceNeighbours[]; };
 uniform uint elementCount, samples;
 uniform int resolution, visibility;  // visibility 0: item ids, 1: distances
+uniform bool redistributing;         // shots that move light already shot: no shooter's unshot is spent
 uniform float nearPlane, farPlane;
 
 bool isNeighbour(uint face, uint item) {
@@ -260,7 +265,8 @@ void main() {
     dh += F * s.unshot.rgb;
     dd += F * s.emission.rgb;
   }
-  if (!shooter && dh == vec3(0.0)) return;
+  if (redistributing) shooter = false;
+  if (!shooter && dh == vec3(0.0) && dd == vec3(0.0)) return;
   GpuElementState st = states[e];
   const vec3 db = el.reflectance.rgb * dh;
   st.radiosity.rgb += db;
@@ -271,13 +277,93 @@ void main() {
 }
 )";
 
+// Redistribution (followChanges), van de Hoef 2013 Sec. 3.1 and 4.4, Chen 1990: progressive
+// refinement keeps B = E + rho H, H the analytic irradiance plus what every patch has shot
+// through its factors. After a move every patch shoots what it has shot again, negated, from
+// where everything stood (the old geometry still in the buffers and the hemicubes' mesh), and
+// again, positive, from where everything stands: H moves by sum_p (F' - F) S_p, with the same
+// hemicube turns in both passes so that a pair the move did not touch cancels. The emission a
+// shot emitter's first shot carried moves the direct light the same way. What the new H means
+// for B and the unshot radiosity (and any change of analytic light, emission or reflectance) is
+// the rebase pass's; progressive shooting then spends the difference, negative light included.
+
+// a. Per patch: the area mean of the radiosity its elements have shot (B - unshot), and the
+// emission its first shot carried (zero when it has not shot). Read before anything changes.
+const char* kAmountsCompute = R"(
+layout(local_size_x = POWER_GROUP) in;
+layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) writeonly buffer Amounts { vec4 amounts[]; };
+uniform uint patchCount;
+void main() {
+  uint p = gl_GlobalInvocationID.x;
+  if (p >= patchCount) return;
+  GpuPatch P = patches[p];
+  vec3 sum = vec3(0.0);
+  for (uint i = P.ids.x; i < P.ids.x + P.ids.y; ++i) {
+    uint e = patchElements[i];
+    sum += elements[e].normalArea.w * (states[e].radiosity.rgb - states[e].unshot.rgb);
+  }
+  amounts[2u * p] = vec4(P.normalArea.w > 0.0 ? sum / P.normalArea.w : vec3(0.0), 0.0);
+  amounts[2u * p + 1u] = vec4(patchStates[p].shot != 0u ? P.emission.rgb : vec3(0.0), 0.0);
+}
+)";
+
+// b. The shooters of one redistribution pass: patches list[first .. first + count), k x k
+// hemicubes each, shooting sign times their amounts. The turns depend on the patch and the
+// sample only, so the negative and the positive pass draw the same hemicubes.
+const char* kRedistributeCompute = R"(
+layout(local_size_x = POWER_GROUP) in;
+layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer Amounts { vec4 amounts[]; };
+layout(std430, binding = REDISTRIBUTION_LIST_BINDING) readonly buffer List { uint list[]; };
+uniform uint first, count, samplesPerSide;
+uniform float sign, offset;
+uniform bool emissionOnly;  // only the direct light a first shot carried
+void main() {
+  const uint r = gl_GlobalInvocationID.x, samples = samplesPerSide * samplesPerSide;
+  if (r >= count * samples) return;
+  const uint k = r / samples, j = r % samples, p = list[first + k];
+  GpuPatch P = patches[p];
+  const float ks = float(samplesPerSide);
+  vec3 x = polygonPoint(P.corners, int(P.corners[0].w), (float(j % samplesPerSide) + 0.5) / ks,
+                        (float(j / samplesPerSide) + 0.5) / ks);
+  GpuShooter s;
+  s.eye = vec4(x + offset * P.normalArea.xyz, 0.0);
+  s.normal = vec4(P.normalArea.xyz, hemicubeTurn(p, j, 0x5EEDu));
+  s.unshot = vec4(emissionOnly ? vec3(0.0) : sign * amounts[2u * p].rgb, 0.0);
+  s.emission = vec4(sign * amounts[2u * p + 1u].rgb, 0.0);
+  s.ids = uvec4(p, 1u, 0u, 0u);
+  shooters[r] = s;
+  if (r == 0u) state.chosen = count;
+}
+)";
+
+// c. Rebase: each element's irradiance moves by the analytic light's change, and its radiosity
+// becomes E + rho H with the (new) emission and reflectance; the difference is unshot.
+const char* kRebaseCompute = R"(
+layout(local_size_x = RECONSTRUCT_GROUP) in;
+layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer Inputs { vec4 inputs[]; };  // E', rho', dH0
+uniform uint elementCount;
+void main() {
+  const uint e = gl_GlobalInvocationID.x;
+  if (e >= elementCount) return;
+  GpuElementState st = states[e];
+  const vec3 emission = inputs[3u * e].rgb, reflectance = inputs[3u * e + 1u].rgb, dh = inputs[3u * e + 2u].rgb;
+  st.irradiance.rgb += dh;
+  st.direct.rgb += dh;
+  const vec3 b = emission + reflectance * st.irradiance.rgb;
+  st.unshot.rgb += b - st.radiosity.rgb;
+  st.radiosity.rgb = b;
+  states[e] = st;
+}
+)";
+
 // The GL objects of one solve, released on every path out (exceptions included).
 struct Buffers {
   GLuint elements = 0, patches = 0, patchElements = 0, patchStates = 0, shooters = 0, state = 0, elementStates = 0;
   GLuint faceNeighbours = 0;
+  GLuint amounts = 0, list = 0, rebase = 0;  // redistribution only
   ~Buffers() {
-    const GLuint all[] = {elements,      patches,          patchElements, patchStates, shooters, state,
-                          elementStates, faceNeighbours};
+    const GLuint all[] = {elements,      patches,        patchElements, patchStates, shooters, state,
+                          elementStates, faceNeighbours, amounts,       list,        rebase};
     glDeleteBuffers(GLsizei(std::size(all)), all);
   }
   void bind() const {
@@ -303,20 +389,15 @@ class GlProgressiveSolver final : public Solver {
     const SurfaceSet& set = sys.surfaces;
     const size_t ne = sys.elementCount(), np = sys.patchCount();
 
-    // Inputs, once.
-    std::vector<GpuElement> elements(ne);
+    // Inputs, once (again after a move, with followChanges).
+    const std::vector<GpuElement> elements = elementRecords();
     std::vector<GpuElementState> states(ne);
     for (size_t e = 0; e < ne; ++e) {
-      const Element& el = set.elements[e];
-      GpuElement& g = elements[e];
-      for (int c = 0; c < 4; ++c) g.corners[c] = glm::vec4(el.polygon.v[size_t(c)], 0.0f);
-      g.corners[0].w = float(el.polygon.count);
-      g.normalArea = glm::vec4(el.normal, sys.area[e]);
-      g.reflectance = glm::vec4(sys.reflectance[e], 0.0f);
-      g.ids = glm::uvec4(LayeredHemicubes::itemOfFace(set, el.face), el.patch, el.face, 0u);
       const Rgb b = sys.emission[e] + sys.reflectance[e] * sys.analytic[e];
       states[e] = {glm::vec4(b, 0.0f), glm::vec4(b, 0.0f), glm::vec4(sys.analytic[e], 0.0f), glm::vec4(sys.analytic[e], 0.0f)};
     }
+    analyticUsed_ = sys.analytic;
+    patchEmissionUsed_ = sys.patchMeans(sys.emission);
     const GpuPatches patches = gpuPatches(sys);
 
     const float extent = set.sceneExtent > 0.0f ? set.sceneExtent : 1.0f;
@@ -324,7 +405,10 @@ class GlProgressiveSolver final : public Solver {
     batch_ = int(std::min<size_t>(size_t(o.shootersPerPass), std::max<size_t>(np, 1)));
     // Emitters first, each with its own k_e x k_e hemicubes, as many per pass as fit the layers of
     // a regular pass (at least one).
-    emitterSide_ = o.emitterSamplesPerSide > 0 ? o.emitterSamplesPerSide : o.samplesPerSide;
+    // Following changes, every shot of a patch uses the same hemicubes (same number, same turns),
+    // which a redistribution draws again: an emitter's first shot with more of them than its later
+    // shots would leave the difference behind at every move.
+    emitterSide_ = o.emitterSamplesPerSide > 0 && !o.followChanges ? o.emitterSamplesPerSide : o.samplesPerSide;
     emitterSamples_ = emitterSide_ * emitterSide_;
     emitterBatch_ = std::clamp(batch_ * samples_ / emitterSamples_, 1, batch_);
     for (const GpuPatch& p : patches.patches) emitters_ += p.emission.r + p.emission.g + p.emission.b > 0.0f ? 1 : 0;
@@ -363,7 +447,10 @@ class GlProgressiveSolver final : public Solver {
                  o.shotBudget ? GLuint(std::min<uint64_t>(o.shotBudget, 0xFFFFFFFFu)) : 0xFFFFFFFFu);
     sourcePower_ = sys.sourcePower();
     glUniform1f(uniform(*select_, "stopPower"), float(o.unshotThreshold * sourcePower_));
-    glUniform1f(uniform(*select_, "offset"), o.offset * extent);
+    offset_ = o.offset * extent;
+    glUniform1f(uniform(*select_, "offset"), offset_);
+    stopPowerUniform_ = uniform(*select_, "stopPower");
+    glUniform1i(uniform(*select_, "fixedTurns"), o.followChanges);
     selectBatch_ = uniform(*select_, "batch"), selectSide_ = uniform(*select_, "samplesPerSide"),
     selectEmitters_ = uniform(*select_, "emittersOnly");
     reconstruct_->use();
@@ -373,6 +460,20 @@ class GlProgressiveSolver final : public Solver {
     glUniform1f(uniform(*reconstruct_, "nearPlane"), hemicubes_->nearPlane());
     glUniform1f(uniform(*reconstruct_, "farPlane"), hemicubes_->farPlane());
     reconstructSamples_ = uniform(*reconstruct_, "samples");
+    reconstructRedistributing_ = uniform(*reconstruct_, "redistributing");
+    glUniform1i(reconstructRedistributing_, 0);
+    if (o.followChanges) {
+      amounts_ = std::make_unique<ShaderProgram>("redistribution amounts", preamble + kAmountsCompute);
+      redistribute_ = std::make_unique<ShaderProgram>("redistribution shooters", preamble + kRedistributeCompute);
+      rebase_ = std::make_unique<ShaderProgram>("redistribution rebase", preamble + kRebaseCompute);
+      amounts_->use();
+      glUniform1ui(uniform(*amounts_, "patchCount"), GLuint(np));
+      redistribute_->use();
+      glUniform1f(uniform(*redistribute_, "offset"), offset_);
+      rebase_->use();
+      glUniform1ui(uniform(*rebase_, "elementCount"), GLuint(ne));
+      buf_.amounts = storageBuffer(nullptr, std::max(2 * np, 3 * ne) * sizeof(glm::vec4));
+    }
     Context::check("setting up GPU progressive refinement");
     setupSeconds_ = watch.seconds();
   }
@@ -447,10 +548,51 @@ class GlProgressiveSolver final : public Solver {
     in.value(seconds_), in.value(done_);
   }
 
+  bool objectsMoved(std::span<const uint32_t>) override {
+    if (!o_.followChanges) return false;
+    const Stopwatch watch;
+    std::vector<uint32_t> emitters, others;
+    const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
+    for (uint32_t p = 0; p < sys_.patchCount(); ++p) (channelSum(emission[p]) > 0.0 ? emitters : others).push_back(p);
+    computeAmounts();
+    redistribute(-1.0f, emitters, others);  // from where everything was: the buffers and mesh still say so
+    uploadGeometry();
+    redistribute(1.0f, emitters, others);   // from where everything is
+    rebase();
+    changed(watch);
+    return true;
+  }
+
+  bool sourcesChanged() override {
+    if (!o_.followChanges) return false;
+    const Stopwatch watch;
+    // The direct light of emitters that have shot and whose emission changed: what their first
+    // shot carried, moved from the old emission to the new (the scattered light follows by
+    // rebase and shooting, as for any change).
+    const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
+    std::vector<uint32_t> changedEmitters;
+    for (uint32_t p = 0; p < sys_.patchCount(); ++p)
+      if (emission[p] != patchEmissionUsed_[p]) changedEmitters.push_back(p);
+    if (!changedEmitters.empty()) {
+      computeAmounts();
+      redistribute(-1.0f, changedEmitters, {}, /*emissionOnly=*/true);
+    }
+    uploadGeometry();
+    if (!changedEmitters.empty()) {
+      computeAmounts();
+      redistribute(1.0f, changedEmitters, {}, /*emissionOnly=*/true);
+    }
+    rebase();
+    changed(watch);
+    return true;
+  }
+
   SolveStats stats() const override {
     SolveStats st;
-    st.method = "progressive";
+    st.method = o_.followChanges ? "incremental" : "progressive";
     st.backend = "gl";
+    st.redistributions = redistributions_;
+    st.secondsRedistribution = secondsRedistributing_;
     st.device = context_.renderer();
     st.shots = shots_;
     const uint64_t emitterShots = std::min<uint64_t>(emitterShots_, shots_);
@@ -462,6 +604,121 @@ class GlProgressiveSolver final : public Solver {
   }
 
  private:
+  // The elements as the GPU reads them, where the surfaces say they are now.
+  std::vector<GpuElement> elementRecords() const {
+    const SurfaceSet& set = sys_.surfaces;
+    std::vector<GpuElement> elements(sys_.elementCount());
+    for (size_t e = 0; e < elements.size(); ++e) {
+      const Element& el = set.elements[e];
+      GpuElement& g = elements[e];
+      for (int c = 0; c < 4; ++c) g.corners[c] = glm::vec4(el.polygon.v[size_t(c)], 0.0f);
+      g.corners[0].w = float(el.polygon.count);
+      g.normalArea = glm::vec4(el.normal, sys_.area[e]);
+      g.reflectance = glm::vec4(sys_.reflectance[e], 0.0f);
+      g.ids = glm::uvec4(LayeredHemicubes::itemOfFace(set, el.face), el.patch, el.face, 0u);
+    }
+    return elements;
+  }
+
+  // Redistribution (see the shaders above). Each patch's shot radiosity and first-shot emission,
+  // before anything changes.
+  void computeAmounts() {
+    buf_.bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
+    amounts_->use();
+    glDispatchCompute(groups(sys_.patchCount(), kPowerGroup), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+
+  // Every patch in `emitters` (with the emitters' k_e x k_e hemicubes) and `others` shoots `sign`
+  // times its amounts, batch by batch, without spending anyone's unshot radiosity.
+  void redistribute(float sign, const std::vector<uint32_t>& emitters, const std::vector<uint32_t>& others,
+                    bool emissionOnly = false) {
+    std::vector<uint32_t> list = emitters;
+    list.insert(list.end(), others.begin(), others.end());
+    if (list.empty()) return;
+    if (listCapacity_ < list.size()) {
+      glDeleteBuffers(1, &buf_.list);
+      buf_.list = storageBuffer(nullptr, list.size() * sizeof(uint32_t));
+      listCapacity_ = list.size();
+    }
+    glNamedBufferSubData(buf_.list, 0, GLsizeiptr(list.size() * sizeof(uint32_t)), list.data());
+    auto uniform = [](const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id(), name); };
+    const struct {
+      size_t first, count;
+      int side, batch;
+    } groupsOf[2] = {{0, emitters.size(), emitterSide_, emitterBatch_}, {emitters.size(), others.size(), o_.samplesPerSide, batch_}};
+    for (const auto& g : groupsOf) {
+      for (size_t done = 0; done < g.count; done += size_t(g.batch)) {
+        const int count = int(std::min(size_t(g.batch), g.count - done)), samples = g.side * g.side;
+        buf_.bind();
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionListBinding, buf_.list);
+        redistribute_->use();
+        glUniform1ui(uniform(*redistribute_, "first"), GLuint(g.first + done));
+        glUniform1ui(uniform(*redistribute_, "count"), GLuint(count));
+        glUniform1ui(uniform(*redistribute_, "samplesPerSide"), GLuint(g.side));
+        glUniform1f(uniform(*redistribute_, "sign"), sign);
+        glUniform1i(uniform(*redistribute_, "emissionOnly"), emissionOnly);
+        glDispatchCompute(groups(size_t(count * samples), kPowerGroup), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        hemicubes_->render(0, count * samples);
+        hemicubes_->bindTextures();
+        reconstruct_->use();
+        glUniform1ui(reconstructSamples_, GLuint(samples));
+        glUniform1i(reconstructRedistributing_, 1);
+        glDispatchCompute(groups(sys_.elementCount(), kReconstructGroup), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        glUniform1i(reconstructRedistributing_, 0);
+      }
+    }
+  }
+
+  // The surfaces' current geometry, reflectance and emission into the buffers and the mesh.
+  void uploadGeometry() {
+    const std::vector<GpuElement> elements = elementRecords();
+    glNamedBufferSubData(buf_.elements, 0, GLsizeiptr(elements.size() * sizeof(GpuElement)), elements.data());
+    const GpuPatches patches = gpuPatches(sys_);
+    glNamedBufferSubData(buf_.patches, 0, GLsizeiptr(patches.patches.size() * sizeof(GpuPatch)), patches.patches.data());
+    std::vector<Polygon> facePolygons;
+    std::vector<uint32_t> faceItems;
+    LayeredHemicubes::faceItems(sys_.surfaces, facePolygons, faceItems);
+    hemicubes_->setPolygons(facePolygons, faceItems);
+    const std::vector<uint32_t> neighbours = LayeredHemicubes::neighbourItems(sys_.surfaces);
+    glDeleteBuffers(1, &buf_.faceNeighbours);
+    buf_.faceNeighbours = storageBuffer(neighbours.data(), neighbours.size() * sizeof(uint32_t));
+  }
+
+  // Irradiance by the analytic light's change, radiosity to E + rho H, the difference unshot.
+  void rebase() {
+    const size_t ne = sys_.elementCount();
+    std::vector<glm::vec4> inputs(3 * ne);
+    for (size_t e = 0; e < ne; ++e)
+      inputs[3 * e] = glm::vec4(sys_.emission[e], 0.0f), inputs[3 * e + 1] = glm::vec4(sys_.reflectance[e], 0.0f),
+      inputs[3 * e + 2] = glm::vec4(sys_.analytic[e] - analyticUsed_[e], 0.0f);
+    glNamedBufferSubData(buf_.amounts, 0, GLsizeiptr(inputs.size() * sizeof(glm::vec4)), inputs.data());
+    buf_.bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
+    rebase_->use();
+    glDispatchCompute(groups(ne, kReconstructGroup), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+
+  // After a redistribution: new stopping power, and shooting goes on.
+  void changed(const Stopwatch& watch) {
+    analyticUsed_ = sys_.analytic;
+    patchEmissionUsed_ = sys_.patchMeans(sys_.emission);
+    sourcePower_ = sys_.sourcePower();
+    select_->use();
+    glUniform1f(stopPowerUniform_, float(o_.unshotThreshold * sourcePower_));
+    done_ = false;
+    glFinish();  // the redistribution's GPU work belongs to its time
+    Context::check("GPU redistribution");
+    ++redistributions_;
+    secondsRedistributing_ += watch.seconds();
+    seconds_ += watch.seconds();
+  }
+
   // Power, then selection of `shooters` patches with k x k hemicubes each (0 shooters: only the
   // total, for the final state).
   void choose(int shooters, int side, bool emittersOnly) {
@@ -499,6 +756,13 @@ class GlProgressiveSolver final : public Solver {
   std::unique_ptr<LayeredHemicubes> hemicubes_;
   std::unique_ptr<ShaderProgram> power_, select_, reconstruct_;
   GLint selectBatch_ = -1, selectSide_ = -1, selectEmitters_ = -1, reconstructSamples_ = -1;
+  GLint stopPowerUniform_ = -1, reconstructRedistributing_ = -1;
+  std::unique_ptr<ShaderProgram> amounts_, redistribute_, rebase_;  // followChanges only
+  float offset_ = 0.0f;
+  size_t listCapacity_ = 0;
+  std::vector<Rgb> analyticUsed_, patchEmissionUsed_;
+  uint64_t redistributions_ = 0;
+  double secondsRedistributing_ = 0.0;
   int samples_ = 0, batch_ = 0, emitterSide_ = 0, emitterSamples_ = 0, emitterBatch_ = 0;
   size_t emitters_ = 0;
   bool emittersApart_ = false, emittersShot_ = false, done_ = false;

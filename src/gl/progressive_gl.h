@@ -12,7 +12,8 @@
 //      that it had to subdivide near the shooter) times the share of the k x k hemicubes that
 //      see the element: by its face id in the item layer (001's ID hemicube, four nearest
 //      pixels), or by distance in the depth layer (003).
-// The CPU reads a few bytes every few passes to learn whether to stop.
+// The CPU reads a few bytes every few passes to learn whether to stop. With followChanges, a
+// move or an edit is followed by redistribution instead of a new solve (progressive_gl.cpp).
 #pragma once
 
 #include <memory>
@@ -41,6 +42,10 @@ struct GlProgressiveSettings {
   int passesPerCheck = 4;       // passes between read-backs of the convergence state
   float nearPlane = 1e-4f;      // relative to the scene extent
   float offset = 1e-4f;         // hemicube centres lifted off the patch, relative to the extent
+  // Follow moves, light and material edits by redistribution (the incremental method of seed
+  // 001, section 4.4: every patch shoots what it has shot again, negated from where everything
+  // was and from where everything is), instead of asking to be replaced.
+  bool followChanges = false;
   // Stopping rules and display, as the CPU's progressive solver.
   double unshotThreshold = 1e-3;
   double timeBudget = 0.0;

@@ -40,6 +40,11 @@ constexpr int kPatchRadiosityBinding = 7;  // vec4[]: radiosity per patch, that 
 // uint[]: per face f, [items[f], items[f + 1]) index the ids of the faces that share a corner
 // with it (LayeredHemicubes::neighbourItems)
 constexpr int kFaceNeighbourBinding = 8;
+// Redistribution after a move or a light edit (progressive_gl.cpp, the incremental method): per
+// patch the radiosity it has shot and the emission its first shot carried (two vec4s), and the
+// list of patches a redistribution pass shoots again.
+constexpr int kRedistributionAmountBinding = 9;
+constexpr int kRedistributionListBinding = 10;
 constexpr int kDistanceTextureUnit = 1;    // R32F distances (or RGBA32F radiosity) of layered hemicubes
 constexpr int kGatherGroup = 256;          // one work group integrates one element's hemicubes
 // GPU gathering (gather_gl.cpp) reuses the numbers its passes leave free: deltas, per-element
@@ -116,6 +121,8 @@ inline std::string glslPreamble() {
       "#define ELEMENT_STATE_BINDING {}\n"
       "#define PATCH_RADIOSITY_BINDING {}\n"
       "#define FACE_NEIGHBOUR_BINDING {}\n"
+      "#define REDISTRIBUTION_AMOUNT_BINDING {}\n"
+      "#define REDISTRIBUTION_LIST_BINDING {}\n"
       "#define GATHER_GROUP {}\n"
       "#define GATHER_DELTA_BINDING {}\n"
       "#define GATHER_ELEMENT_BINDING {}\n"
@@ -133,7 +140,7 @@ inline std::string glslPreamble() {
       "struct GpuGatherElement {{ vec4 emissionArea; vec4 reflectance; vec4 analytic; }};\n",
       kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup,
       kElementBinding, kPatchBinding, kPatchElementBinding, kPatchStateBinding, kShooterBinding,
-      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kGatherGroup, kGatherDeltaBinding,
+      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kGatherGroup, kGatherDeltaBinding,
       kGatherElementBinding, kGatherResidualBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
       kReconstructGroup, kMaxShootersPerPass);
 }

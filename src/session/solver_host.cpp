@@ -119,7 +119,19 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
   }
 }
 
-SolverHost::~SolverHost() = default;
+SolverHost::~SolverHost() {
+  // GL solvers delete their buffers and programs in their own context, which another session
+  // may have made not current.
+  try {
+    useContext();
+  } catch (const Error&) {
+  }
+  solver_.reset();
+}
+
+void SolverHost::useContext() {
+  if (glContext_) glContext_->makeCurrent();
+}
 
 void SolverHost::computeAnalytic() {
   const Stopwatch watch;
@@ -136,6 +148,7 @@ void SolverHost::retire() {
 }
 
 void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
+  useContext();
   if (objects.empty()) return;
   transport_->objectsMoved(objects);
   computeAnalytic();
@@ -148,6 +161,7 @@ void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
 }
 
 void SolverHost::sourcesChanged() {
+  useContext();
   computeAnalytic();
   system_->refresh(analytic_);
   checkpointKey_.reset(), finalCheckpointWritten_ = false;
@@ -158,6 +172,7 @@ void SolverHost::sourcesChanged() {
 }
 
 void SolverHost::makeSolver(bool analyticIsCurrent) {
+  useContext();
   checkpointKey_.reset(), finalCheckpointWritten_ = false;
   solver_.reset();
   system_.reset();
@@ -210,6 +225,7 @@ uint64_t SolverHost::checkpointKey() {
 }
 
 void SolverHost::resumeFrom(const std::filesystem::path& path) {
+  useContext();
   const std::vector<std::byte> payload = readCheckpointFile(path, checkpointKey());
   StateReader in(payload, fmt::format("checkpoint {}: the solver's state does not match this solve", path.string()));
   solver_->restoreState(in);
@@ -222,12 +238,14 @@ void SolverHost::checkpoint(bool now) {
   if (cp.path.empty() || finalCheckpointWritten_ || (!now && sinceCheckpoint_.seconds() < cp.intervalSeconds))
     return;
   StateWriter out;
+  useContext();
   solver_->saveState(out);
   writeCheckpointFile(cp.path, checkpointKey(), out.bytes());
   sinceCheckpoint_.restart();
 }
 
 bool SolverHost::step(const StepLimit& limit, const ProgressCallback& progress) {
+  useContext();
   const Stopwatch watch;
   while (true) {
     StepLimit left = limit;
@@ -273,6 +291,7 @@ SolveStats SolverHost::stats() const {
 }
 
 Solution SolverHost::solution() {
+  useContext();
   Solution sol = solver_->solution();
   sol.stats = stats();
   // Energy balance, in the mean of the three channels: what enters the system (emission from each

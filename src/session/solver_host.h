@@ -84,6 +84,9 @@ class SolverHost {
   const SolverEntry* entry_ = nullptr;
   std::unique_ptr<SolverOptionValues> values_;
   SolverSettings settings_;  // what the solver was given, for the checkpoints' key
+  // Makes the GL context current (a no-op on the CPU, or for a borrowed one): every call that
+  // reaches a GL solver starts with it, so that sessions in one thread can take turns.
+  void useContext();
   std::unique_ptr<gl::Context> ownContext_;  // declared before what uses it: destroyed after
   gl::Context* glContext_ = nullptr;
   std::unique_ptr<Transport> ownTransport_;

@@ -10,6 +10,7 @@ void registerCpuIncremental(SolverRegistry&);          // dynamic/redistribution
 void registerCpuCrossRedistribution(SolverRegistry&);  // dynamic/redistribution_solver.cpp
 void registerGlProgressive(SolverRegistry&);   // gl/gl_solvers.cpp
 void registerGlGather(SolverRegistry&);        // gl/gl_solvers.cpp
+void registerGlIncremental(SolverRegistry&);   // gl/gl_solvers.cpp
 
 void registerBuiltinSolvers(SolverRegistry& registry) {
   registerCpuProgressive(registry);
@@ -19,6 +20,7 @@ void registerBuiltinSolvers(SolverRegistry& registry) {
   registerCpuCrossRedistribution(registry);
   registerGlProgressive(registry);
   registerGlGather(registry);
+  registerGlIncremental(registry);
 }
 
 }  // namespace luxel
