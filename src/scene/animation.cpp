@@ -1,10 +1,10 @@
 // Animation (luxel/animation.h): poses of spinning and keyframed objects and lights at a time.
 // Rotations between keys are spherical linear interpolation (Shoemake, "Animating rotation with
 // quaternion curves", SIGGRAPH 1985).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "luxel/error.h"
@@ -93,7 +93,10 @@ void checkMotion(const Motion& m, const std::string& what) {
     if (i > 0 && !(k.time > m.keyframes[i - 1].time))
       throw Error(fmt::format("{}: time {:g} is not after the previous key's ({:g})", key, k.time,
                               m.keyframes[i - 1].time));
-    if (!finite(k.translate)) throw Error(fmt::format("{}: translation is not finite", key));
+    if (!finite(k.translate) ||
+        glm::any(glm::greaterThan(glm::abs(k.translate), glm::vec3(kMaxCoordinate))))
+      throw Error(fmt::format("{}: translation is not finite or beyond {:g} scene units", key,
+                              kMaxCoordinate));
     const glm::vec4 q(k.rotate.x, k.rotate.y, k.rotate.z, k.rotate.w);
     if (!std::isfinite(glm::dot(q, q)) || std::abs(glm::length(q) - 1.0f) > 1e-3f)
       throw Error(fmt::format("{}: rotation is not a unit quaternion", key));
@@ -201,6 +204,17 @@ void Scene::validateAnimation() const {
         !std::isfinite(a.restIntensity))
       throw Error(fmt::format("{}: its rest pose is not finite", what));
     checkMotion(a.motion, what);
+    // Colour and intensity are linear between keys, so the keys bound every value between them.
+    for (size_t i = 0; i < a.motion.keyframes.size(); ++i) {
+      const Keyframe& k = a.motion.keyframes[i];
+      const glm::vec3 color = k.color.value_or(a.restColor);
+      const float intensity = k.intensity.value_or(a.restIntensity);
+      if (intensity * std::max({color.r, color.g, color.b}) > kMaxRadiance)
+        throw Error(fmt::format(
+            "{}: keyframe {}: intensity {:g} times colour is over the limit of {:g} (the light "
+            "would overflow in float)",
+            what, i, intensity, kMaxRadiance));
+    }
   }
 }
 

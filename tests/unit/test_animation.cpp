@@ -228,6 +228,14 @@ TEST(Animation, ValidationNamesWhatIsWrong) {
   EXPECT_NE(e.find("axis is not a unit vector"), std::string::npos) << e;
   e = errorFor([](Scene& s) { s.animation.objects[0].object = 7; });
   EXPECT_NE(e.find("object 7, which does not exist"), std::string::npos) << e;
+  e = errorFor([](Scene& s) {
+    s.lights.push_back(Light{.name = "lamp"});
+    s.animation.lights.push_back(
+        LightAnimation{.light = 0, .motion = {.keyframes = {Keyframe{.time = 0, .intensity = 1e16f}}}});
+  });
+  EXPECT_NE(e.find("light 'lamp': animation: keyframe 0: intensity 1e+16 times colour is over the limit"),
+            std::string::npos)
+      << e;
   e = errorFor([](Scene& s) { s.animation.objects.push_back(s.animation.objects[0]); });
   EXPECT_NE(e.find("has two"), std::string::npos) << e;
 }
