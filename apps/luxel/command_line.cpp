@@ -23,21 +23,17 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   render->add_option("-o,--output", ra.outputs, "Output image(s): .exr (linear radiance) or .png (tone-mapped); repeat -o for more")
       ->required()
       ->allow_extra_args(false);
-  render->add_option("--camera", ra.camera, "A named camera of the scene");
-  render->add_option("--eye", ra.eye, "Camera position X,Y,Z");
-  render->add_option("--target", ra.target, "Point the camera looks at X,Y,Z");
-  render->add_option("--up", ra.up, "Camera up vector X,Y,Z");
-  render->add_option("--fov", ra.fov, "Vertical field of view in degrees")->check(finiteRange(0.01, 179.0));
-  render->add_option("--size", ra.size, "Image size WxH")->capture_default_str();
-  render->add_option("--spp", ra.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+  addViewOptions(*render, ra);
   addSolveOptions(*render, ra.solve);
   render->add_option("--threads", ra.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   render->add_flag("-q,--quiet", ra.quiet, "Print nothing but errors");
   render->add_option("--stats", ra.statsPath, "Write statistics as JSON");
   render->add_option("--progress-trace", ra.tracePath, "Write every progress report, timed, as tab-separated lines");
   render->add_option("--mode", ra.mode, "hq (exact direct light per pixel), radiosity (the seeds' display) or lightmap (bake lightmaps and show them as an engine would)")->capture_default_str();
-  render->add_option("--tonemap", ra.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
-  render->add_option("--exposure", ra.exposure, "PNG exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));
+
+  CLI::App* animate = line->animateCommand =
+      app.add_subcommand("animate", "Render a scene's animation frame by frame (images or a video), following its moves");
+  addAnimateOptions(*animate, line->animate);
 
   BakeArgs& ka = line->bake;
   CLI::App* bake = line->bakeCommand = app.add_subcommand("bake", "Solve a scene and write it as glTF binary with the lighting baked in");
@@ -77,11 +73,13 @@ std::unique_ptr<CommandLine> makeCommandLine() {
 void parseCommandLine(CommandLine& line, int argc, const char* const* argv) {
   line.app.parse(argc, argv);
   if (*line.renderCommand) checkRenderArgs(line.render);
+  if (*line.animateCommand) checkAnimateArgs(line.animate);
   if (*line.bakeCommand) checkBakeArgs(line.bake);
 }
 
 int runCommand(const CommandLine& line) {
   if (*line.renderCommand) return runRender(line.render);
+  if (*line.animateCommand) return runAnimate(line.animate);
   if (*line.solversCommand) return listSolvers(line.solversJson);
   if (*line.benchCommand) return runBench(line.bench);
   if (*line.bakeCommand) return runBake(line.bake);

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "animate_command.h"
 #include "bake_command.h"
 #include "bench_command.h"
 #include "render_command.h"
@@ -15,10 +16,12 @@ namespace luxel::cli {
 struct CommandLine {
   CLI::App app{"luxel: radiosity global illumination"};
   RenderArgs render;
+  AnimateArgs animate;
   BakeArgs bake;
   BenchArgs bench;
   bool solversJson = false;
   CLI::App* renderCommand = nullptr;
+  CLI::App* animateCommand = nullptr;
   CLI::App* bakeCommand = nullptr;
   CLI::App* benchCommand = nullptr;
   CLI::App* solversCommand = nullptr;

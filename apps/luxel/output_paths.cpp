@@ -21,13 +21,13 @@ namespace {
 // plus at most this many bytes.
 constexpr size_t kTemporarySuffixBytes = 1 + 5 + 20 + 1 + 20;
 
+}  // namespace
+
 std::string lowerExtension(const fs::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return ext;
 }
-
-}  // namespace
 
 void checkOutputPaths(const std::vector<OutputPath>& outputs) {
   std::vector<std::pair<fs::path, const OutputPath*>> seen;

@@ -2,6 +2,7 @@
 // after a long solve and with some outputs already written, is checked at the start instead.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -17,5 +18,8 @@ struct OutputPath {
 // not exist or cannot be written, it names a folder or something other than a regular file, its
 // name is too long for the temporary file written beside it, or two outputs name one file.
 void checkOutputPaths(const std::vector<OutputPath>& outputs);
+
+// The extension of `path` in lower case, with its dot: ".png".
+std::string lowerExtension(const std::filesystem::path& path);
 
 }  // namespace luxel::cli

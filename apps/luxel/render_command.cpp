@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -25,7 +26,7 @@
 namespace luxel::cli {
 namespace {
 
-Camera cameraFor(const Scene& scene, const RenderArgs& a) {
+Camera cameraFor(const Scene& scene, const ViewArgs& a) {
   Camera cam = chooseCamera(scene, a.camera, a.fov);
   if (a.eye) cam.eye = parseVec3(*a.eye, "eye");
   if (a.target) cam.target = parseVec3(*a.target, "target");
@@ -46,6 +47,16 @@ double meanLuminance(const Image& img) {
 
 }  // namespace
 
+RenderOptions renderOptionsFor(const Scene& scene, const ViewArgs& a) {
+  RenderOptions ro;
+  ro.camera = cameraFor(scene, a);
+  std::tie(ro.width, ro.height) = parseSize(a.size);
+  ro.samplesPerPixel = a.spp;
+  ro.mode = parseRenderMode(a.mode);
+  validateRenderOptions(ro);
+  return ro;
+}
+
 Vec3 parseVec3(const std::string& text, const char* what) {
   Vec3 v;
   char c1 = 0, c2 = 0;
@@ -65,13 +76,29 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
-void checkRenderArgs(const RenderArgs& a) {
+void addViewOptions(CLI::App& c, ViewArgs& a) {
+  c.add_option("--camera", a.camera, "A named camera of the scene");
+  c.add_option("--eye", a.eye, "Camera position X,Y,Z");
+  c.add_option("--target", a.target, "Point the camera looks at X,Y,Z");
+  c.add_option("--up", a.up, "Camera up vector X,Y,Z");
+  c.add_option("--fov", a.fov, "Vertical field of view in degrees")->check(finiteRange(0.01, 179.0));
+  c.add_option("--size", a.size, "Image size WxH")->capture_default_str();
+  c.add_option("--spp", a.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+  c.add_option("--tonemap", a.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
+  c.add_option("--exposure", a.exposure, "PNG exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));
+}
+
+void checkViewArgs(const ViewArgs& a) {
   parseSize(a.size);
   if (a.eye) parseVec3(*a.eye, "eye");
   if (a.target) parseVec3(*a.target, "target");
   if (a.up) parseVec3(*a.up, "up");
   if (a.mode != "lightmap") parseRenderMode(a.mode);
   parseToneCurve(a.toneCurve);
+}
+
+void checkRenderArgs(const RenderArgs& a) {
+  checkViewArgs(a);
   checkSolveArgs(a.solve);
 }
 
@@ -96,14 +123,11 @@ int runRender(const RenderArgs& a) {
   if (!a.quiet)
     for (const std::string& w : scene.warnings) std::cerr << "luxel: warning: " << w << "\n";
 
-  RenderOptions ro;
-  ro.camera = cameraFor(scene, a);
-  ro.width = width, ro.height = height;
-  ro.samplesPerPixel = a.spp;
   // "lightmap": bake lightmaps and show them as an engine would (luxel::renderLightmapped).
   const bool lightmapped = a.mode == "lightmap";
-  ro.mode = lightmapped ? RenderOptions::Mode::Radiosity : parseRenderMode(a.mode);
-  validateRenderOptions(ro);  // before the solve, which can take a while
+  ViewArgs view = a;
+  if (lightmapped) view.mode = "radiosity";
+  const RenderOptions ro = renderOptionsFor(scene, view);  // checked before the solve, which can take a while
   ToneMap tm;
   tm.curve = parseToneCurve(a.toneCurve);
   tm.exposure = a.exposure;

@@ -1,4 +1,5 @@
-// `luxel render SCENE -o OUT.exr|OUT.png [...]`: solves a scene and renders an image of it.
+// `luxel render SCENE -o OUT.exr|OUT.png [...]`: solves a scene and renders an image of it; and the
+// view options that `luxel animate` shares with it.
 #pragma once
 
 #include <optional>
@@ -6,28 +7,45 @@
 #include <utility>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
+#include "luxel/render.h"
 #include "luxel/scene.h"
 #include "solve_args.h"
 
 namespace luxel::cli {
 
-struct RenderArgs {
-  std::string scene;
-  std::vector<std::string> outputs;
+// How an image is made from a solution, shared by render and animate: camera, size, samples,
+// mode, tone mapping.
+struct ViewArgs {
   std::string camera;
   std::optional<std::string> eye, target, up;
   float fov = 0.0f;
   std::string size = "512x512";
   int spp = 16;
+  std::string mode = "hq";
+  std::string toneCurve = "filmic";
+  float exposure = 0.0f;
+};
+
+struct RenderArgs : ViewArgs {
+  std::string scene;
+  std::vector<std::string> outputs;
   SolveArgs solve;
   int threads = 0;
   bool quiet = false;
   std::string statsPath;
   std::string tracePath;
-  std::string mode = "hq";
-  std::string toneCurve = "filmic";
-  float exposure = 0.0f;
 };
+
+// Adds --camera, --eye, --target, --up, --fov, --size, --spp, --tonemap and --exposure (each
+// command adds its own --mode, whose choices differ).
+void addViewOptions(CLI::App& command, ViewArgs& args);
+// Checks the view options that need no scene (the mode only when it is hq or radiosity): throws Error.
+void checkViewArgs(const ViewArgs& args);
+// Render options for `scene` (mode hq or radiosity): the camera of --camera (else the scene's
+// default) with --eye, --target, --up and --fov applied, checked by validateRenderOptions.
+RenderOptions renderOptionsFor(const Scene& scene, const ViewArgs& args);
 
 // "X,Y,Z" for --eye, --target and --up (`what`); throws Error naming the option.
 Vec3 parseVec3(const std::string& text, const char* what);

@@ -13,6 +13,8 @@
 
 #include <glm/glm.hpp>
 
+#include "luxel/animation.h"
+
 namespace luxel {
 
 using Vec2 = glm::vec2;
@@ -141,6 +143,7 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Camera> cameras;
   Vec3 up{0.0f, 1.0f, 0.0f};  // the zenith, for skies
+  Animation animation;        // what moves with time (luxel/animation.h); empty: a still scene
   std::vector<std::string> warnings;  // what loading repaired (clamped albedo, ...), for the caller to show
 
   size_t faceCount() const;
@@ -151,6 +154,10 @@ struct Scene {
   // The parts of validate() for materials and lights alone (an edit of either checks only these).
   void validateMaterials() const;
   void validateLights() const;
+  // The part of validate() for the animation: every animated object exists and is dynamic, every
+  // animated light exists, and every motion is finite with unit axes and rotations, positive
+  // scales and strictly increasing key times.
+  void validateAnimation() const;
   const Camera* findCamera(const std::string& name) const;
   int findMaterial(const std::string& name) const;  // -1 when absent
   int findObject(const std::string& name) const;    // -1 when absent

@@ -102,6 +102,7 @@ void Scene::validate() const {
     if (mesh.object != kNoObject && mesh.object >= objects.size())
       throw Error(fmt::format("scene '{}': mesh '{}': object index {} out of range ({} objects)", name, mesh.name,
                               mesh.object, objects.size()));
+  validateAnimation();
 }
 
 

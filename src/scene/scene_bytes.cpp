@@ -15,13 +15,20 @@ static_assert(sizeof(Object) == 168, "Object changed: update scene_bytes.cpp");
 static_assert(sizeof(Mesh) == 192, "Mesh changed: update scene_bytes.cpp");
 static_assert(sizeof(Light) == 96, "Light changed: update scene_bytes.cpp");
 static_assert(sizeof(Camera) == 72, "Camera changed: update scene_bytes.cpp");
-static_assert(sizeof(Scene) == 216, "Scene changed: update scene_bytes.cpp");
+static_assert(sizeof(Motion) == 72, "Motion changed: update scene_bytes.cpp");
+static_assert(sizeof(ObjectAnimation) == 144, "ObjectAnimation changed: update scene_bytes.cpp");
+static_assert(sizeof(LightAnimation) == 120, "LightAnimation changed: update scene_bytes.cpp");
+static_assert(sizeof(Scene) == 264, "Scene changed: update scene_bytes.cpp");
 
 void put(StateWriter& out, const std::string& s) { out.array(std::span<const char>(s)); }
 void get(StateReader& in, std::string& s) {
   s.resize(size_t(in.arrayLength(StateReader::kAnyLength, 1)));
   in.raw(s.data(), s.size());
 }
+
+// A keyframe is plain data (its optionals included), so a path is written as one array.
+void put(StateWriter& out, const Motion& m) { out.value(m.spin), out.array(m.keyframes), out.value(m.loop); }
+void get(StateReader& in, Motion& m) { in.value(m.spin), in.array(m.keyframes), in.value(m.loop); }
 
 }  // namespace
 
@@ -56,6 +63,13 @@ std::vector<std::byte> sceneBytes(const Scene& scene) {
   out.value(scene.up);
   out.value(uint64_t(scene.warnings.size()));
   for (const std::string& w : scene.warnings) put(out, w);
+  out.value(uint64_t(scene.animation.objects.size()));
+  for (const ObjectAnimation& a : scene.animation.objects) out.value(a.object), out.value(a.rest), put(out, a.motion);
+  out.value(uint64_t(scene.animation.lights.size()));
+  for (const LightAnimation& a : scene.animation.lights) {
+    out.value(a.light), out.value(a.restPosition), out.value(a.restDirection), out.value(a.restColor);
+    out.value(a.restIntensity), put(out, a.motion);
+  }
   return out.bytes();
 }
 
@@ -94,6 +108,13 @@ Scene sceneFromBytes(std::span<const std::byte> bytes) {
   in.value(scene.up);
   scene.warnings.resize(count());
   for (std::string& w : scene.warnings) get(in, w);
+  scene.animation.objects.resize(count());
+  for (ObjectAnimation& a : scene.animation.objects) in.value(a.object), in.value(a.rest), get(in, a.motion);
+  scene.animation.lights.resize(count());
+  for (LightAnimation& a : scene.animation.lights) {
+    in.value(a.light), in.value(a.restPosition), in.value(a.restDirection), in.value(a.restColor);
+    in.value(a.restIntensity), get(in, a.motion);
+  }
   in.end();
   return scene;
 }

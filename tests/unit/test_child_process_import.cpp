@@ -56,6 +56,14 @@ Scene everyField() {
   s.cameras.push_back(Camera{.name = "cam", .eye = {1, 1, 1}, .target = {0, 0.5f, 0}, .up = {0, 0, 1}, .fovY = 30});
   s.up = {0, 0, 1};
   s.warnings = {"one", "two"};
+  s.animation.objects.push_back(ObjectAnimation{
+      .object = 0, .rest = glm::mat4(4.0f), .motion = {.spin = Spin{.axis = {0, 0, 1}, .pivot = {1, 2, 3}, .degreesPerSecond = 45}}});
+  s.animation.lights.push_back(LightAnimation{
+      .light = 0, .restPosition = {1, 2, 3}, .restDirection = {0, 0, -1}, .restColor = {1, 0.5f, 0.25f}, .restIntensity = 7,
+      .motion = {.keyframes = {Keyframe{.time = 1, .translate = {1, 0, 0}, .rotate = glm::quat(0, 1, 0, 0), .scale = 2,
+                                        .color = Rgb(0.5f), .intensity = 3},
+                               Keyframe{.time = 2}},
+                 .loop = true}});
   return s;
 }
 
@@ -78,6 +86,16 @@ void expectSame(const Scene& a, const Scene& b) {
   EXPECT_EQ(b.cameras[0].fovY, 30.0f);
   EXPECT_EQ(b.up, Vec3(0, 0, 1));
   EXPECT_EQ(b.warnings, a.warnings);
+  ASSERT_EQ(b.animation.objects.size(), 1u);
+  EXPECT_EQ(b.animation.objects[0].rest, glm::mat4(4.0f));
+  ASSERT_TRUE(b.animation.objects[0].motion.spin);
+  EXPECT_EQ(b.animation.objects[0].motion.spin->degreesPerSecond, 45.0);
+  ASSERT_EQ(b.animation.lights.size(), 1u);
+  EXPECT_EQ(b.animation.lights[0].restIntensity, 7.0f);
+  ASSERT_EQ(b.animation.lights[0].motion.keyframes.size(), 2u);
+  EXPECT_EQ(b.animation.lights[0].motion.keyframes[0].intensity, std::optional<float>(3.0f));
+  EXPECT_FALSE(b.animation.lights[0].motion.keyframes[1].color);
+  EXPECT_TRUE(b.animation.lights[0].motion.loop);
 }
 
 TEST(ChildProcessImport, TheSceneComesBackWhole) {

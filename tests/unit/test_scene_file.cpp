@@ -376,3 +376,116 @@ TEST(SceneFileErrors, BadJsonGivesBytePosition) {
               {"invalid JSON at byte 24", "line 1, column 24"});
   expectError("json-empty", "", {"invalid JSON"});
 }
+
+// ---- animation (luxel/animation.h) -------------------------------------------------------------
+
+namespace {
+Vec3 at(const glm::mat4& m, Vec3 p) { return Vec3(m * glm::vec4(p, 1.0f)); }
+}  // namespace
+
+TEST(SceneFile, AnimatesMeshesAndLights) {
+  Scene s = loadWithQuad("animation", R"({
+    "meshes": [
+      { "file": "models/quad.obj", "name": "spinner", "translate": [1, 0, 0],
+        "animation": { "spin": { "axis": [0, 2, 0], "degreesPerSecond": 45 } } },
+      { "file": "models/quad.obj", "name": "mover",
+        "animation": { "keyframes": [ { "time": 0 },
+          { "time": 2, "translate": [2, 0, 0], "rotate": { "quaternion": [0, 0, 1, 1] }, "scale": 3 } ],
+          "loop": true } } ],
+    "lights": [
+      { "type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0],
+        "animation": { "keyframes": [ { "time": 0, "intensity": 1 },
+                                      { "time": 1, "intensity": 3, "color": [1, 0, 0] } ] } },
+      { "type": "directional", "direction": [0, -1, 0],
+        "animation": { "spin": { "axis": [1, 0, 0], "degreesPerSecond": 90 } } } ] })");
+  s.validate();
+  ASSERT_EQ(s.objects.size(), 2u);
+  // Animated objects are dynamic without saying so.
+  EXPECT_TRUE(s.objects[0].dynamic);
+  EXPECT_TRUE(s.objects[1].dynamic);
+  ASSERT_EQ(s.animation.objects.size(), 2u);
+  // The spin's pivot defaults to the object's origin, (1, 0, 0): after 2 s (90 degrees) it stays,
+  // and (2, 0, 0) turns to (1, 0, -1).
+  const glm::mat4 spun = luxel::objectTransformAt(s, 0, 2.0) * glm::inverse(s.objects[0].transform);
+  expectVec(at(spun, Vec3(1, 0, 0)), Vec3(1, 0, 0));
+  expectVec(at(spun, Vec3(2, 0, 0)), Vec3(1, 0, -1));
+  // The path, half way (t = 1, and t = 3 a period later): moved (1, 0, 0), scaled 2, turned 45
+  // degrees about z (the quaternion is 90 degrees about z, normalised).
+  const float r = std::sqrt(2.0f);
+  for (double t : {1.0, 3.0}) expectVec(at(luxel::objectTransformAt(s, 1, t), Vec3(1, 0, 0)), Vec3(1 + r, r, 0));
+  // The spot's intensity and colour half way through its keys.
+  const Light spot = luxel::lightAt(s, 0, 0.5);
+  EXPECT_FLOAT_EQ(spot.intensity, 2.0f);
+  expectVec(spot.color, Rgb(1, 0.5f, 0.5f));
+  // The sun turns 90 degrees about x in a second: from straight down to along -z.
+  expectVec(luxel::lightAt(s, 1, 1.0).direction, Vec3(0, 0, -1));
+}
+
+TEST(SceneFile, ObjectsOverrideABuiltinsAnimation) {
+  if (!luxel::isBuiltinScene("cornell-low")) GTEST_SKIP() << "no built-in scene 'cornell-low'";
+  Scene s = loadWithQuad("animation-builtin", R"({ "builtin": "cornell-low",
+      "objects": { "box": { "animation": { "spin": { "axis": [1, 0, 0], "degreesPerSecond": 10 } } } } })");
+  ASSERT_EQ(s.animation.objects.size(), 1u);
+  ASSERT_TRUE(s.animation.objects[0].motion.spin);
+  expectVec(s.animation.objects[0].motion.spin->axis, Vec3(1, 0, 0));
+  expectVec(s.animation.objects[0].motion.spin->pivot, Vec3(0.275f));  // the box's centre
+  Scene still = loadWithQuad("animation-null", R"({ "builtin": "cornell-low", "objects": { "box": { "animation": null } } })");
+  EXPECT_TRUE(still.animation.empty());
+  EXPECT_TRUE(still.objects[0].dynamic);
+}
+
+TEST(SceneFileErrors, Animations) {
+  const std::string quad = R"("file": "models/quad.obj", "name": "q")";
+  auto mesh = [&](const std::string& animation) { return R"({ "meshes": [ { )" + quad + R"(, "animation": )" + animation + " } ] }"; };
+  const std::string spin = R"({ "spin": { "axis": [0, 1, 0], "degreesPerSecond": 30 } })";
+  expectError("anim-key", mesh(R"({ "spinn": {} })"), {"/meshes/0/animation/spinn", "unknown key 'spinn'"});
+  expectError("anim-spin-key", mesh(R"({ "spin": { "axis": [0, 1, 0], "rate": 3 } })"),
+              {"/meshes/0/animation/spin/rate", "unknown key 'rate'", "degreesPerSecond"});
+  expectError("anim-both", mesh(R"({ "spin": {}, "keyframes": [] })"), {"/meshes/0/animation", "exactly one of"});
+  expectError("anim-neither", mesh("{}"), {"/meshes/0/animation", "exactly one of"});
+  expectError("anim-rate", mesh(R"({ "spin": { "axis": [0, 1, 0] } })"), {"/meshes/0/animation/spin", "needs 'degreesPerSecond'"});
+  expectError("anim-axis", mesh(R"({ "spin": { "axis": [0, 0, 0], "degreesPerSecond": 1 } })"),
+              {"/meshes/0/animation/spin/axis", "must not be zero"});
+  expectError("anim-spin-loop", mesh(R"({ "spin": { "axis": [0, 1, 0], "degreesPerSecond": 1 }, "loop": true })"),
+              {"/meshes/0/animation/loop", "keyframes"});
+  expectError("anim-empty", mesh(R"({ "keyframes": [] })"), {"/meshes/0/animation/keyframes", "at least one"});
+  expectError("anim-time", mesh(R"({ "keyframes": [ { "translate": [0, 0, 0] } ] })"),
+              {"/meshes/0/animation/keyframes/0", "needs 'time'"});
+  expectError("anim-order", mesh(R"({ "keyframes": [ { "time": 0 }, { "time": 2 }, { "time": 2 } ] })"),
+              {"/meshes/0/animation/keyframes/2/time", "not after the previous keyframe's (2)"});
+  expectError("anim-scale", mesh(R"({ "keyframes": [ { "time": 0, "scale": -2 } ] })"),
+              {"/meshes/0/animation/keyframes/0/scale", "must be positive"});
+  expectError("anim-scale-vec", mesh(R"({ "keyframes": [ { "time": 0, "scale": [1, 2, 1] } ] })"),
+              {"/meshes/0/animation/keyframes/0/scale", "expected a number"});
+  expectError("anim-huge", mesh(R"({ "keyframes": [ { "time": 1e300 } ] })"),
+              {"/meshes/0/animation/keyframes/0/time", "out of range"});
+  // JSON has no NaN: the parser stops at it.
+  expectError("anim-nan", mesh(R"({ "spin": { "axis": [0, 1, 0], "degreesPerSecond": NaN } })"), {"invalid JSON at byte"});
+  expectError("anim-quaternion", mesh(R"({ "keyframes": [ { "time": 0, "rotate": { "quaternion": [0, 0, 0, 0] } } ] })"),
+              {"/meshes/0/animation/keyframes/0/rotate/quaternion", "must not be zero"});
+  expectError("anim-colour", mesh(R"({ "keyframes": [ { "time": 0, "color": 1 } ] })"),
+              {"/meshes/0/animation/keyframes/0/color", "only a light"});
+  expectError("anim-static",
+              R"({ "meshes": [ { )" + quad + R"(, "dynamic": false, "animation": )" + spin + " } ] }",
+              {"/meshes/0/animation", "object 'q' is animated, so it must be dynamic"});
+  // Lights: what a light of the type cannot do.
+  expectError("anim-sky", R"({ "lights": [ { "type": "sky", "animation": )" + spin + " } ] }",
+              {"/lights/0/animation/spin", "a sky has no position or direction"});
+  expectError("anim-sun-move", R"({ "lights": [ { "type": "directional", "direction": [0, -1, 0],
+      "animation": { "keyframes": [ { "time": 0, "translate": [1, 0, 0] } ] } } ] })",
+              {"/lights/0/animation/keyframes/0/translate", "no position"});
+  expectError("anim-light-scale", R"({ "lights": [ { "type": "point", "position": [0, 1, 0],
+      "animation": { "keyframes": [ { "time": 0, "scale": 2 } ] } } ] })",
+              {"/lights/0/animation/keyframes/0/scale", "no size"});
+  expectError("anim-light-intensity", R"({ "lights": [ { "type": "point", "position": [0, 1, 0],
+      "animation": { "keyframes": [ { "time": 0, "intensity": -1 } ] } } ] })",
+              {"/lights/0/animation/keyframes/0/intensity", "negative"});
+  // /objects: names that exist, and an animated object stays dynamic.
+  expectError("objects-name", R"({ "meshes": [ { )" + quad + R"( } ], "objects": { "crate": { "dynamic": true } } })",
+              {"/objects/crate", "no object named 'crate'", "'q'"});
+  expectError("objects-key", R"({ "meshes": [ { )" + quad + R"( } ], "objects": { "q": { "spin": {} } } })",
+              {"/objects/q/spin", "unknown key 'spin'"});
+  if (luxel::isBuiltinScene("cornell-low"))
+    expectError("objects-static", R"({ "builtin": "cornell-low", "objects": { "box": { "dynamic": false } } })",
+                {"/objects/box/dynamic", "object 'box' is animated", "\"animation\": null"});
+}

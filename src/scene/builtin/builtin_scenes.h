@@ -23,13 +23,18 @@ Scene cieCube(float rho = 0.5f, float flux = 10000.0f);
 
 // The test scenes of the seed papers, with their element counts exactly (docs/seed-scenes.md;
 // Mesh::elementGrids fixes them, whatever the element budget). In every scene seed 001's moving
-// box is the one dynamic object (Object::dynamic), its origin at the box's centre.
+// box is the one dynamic object (Object::dynamic), its origin at the box's centre, and it spins
+// about the vertical through that centre at kSeedBoxDegreesPerSecond (Scene::animation; `luxel
+// animate`).
 //
 // Seed 001 (van de Hoef 2013, Sec. 5.1): a closed Cornell box 0.55 m a side, the light 1 mm below
 // the ceiling facing down, a white 0.165 x 0.385 x 0.165 m box floating at the centre.
 // cornell-large: 10,254 static elements, 918 on the box; light 0.161 x 0.188 m, radiance
 // (8.5, 6, 2). cornell-small: the same counts, the light a third as long and wide, 9 times the
 // radiance. cornell-low: cornell-large's geometry with 2,734 static elements and 270 on the box.
+// The thesis gives no rate for its "rotating box"; 30 degrees a second is one degree a frame at
+// 30 frames a second, a full turn in 12 s.
+inline constexpr double kSeedBoxDegreesPerSecond = 30.0;
 Scene cornellLarge();
 Scene cornellSmall();
 Scene cornellLow();

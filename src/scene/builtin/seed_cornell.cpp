@@ -110,6 +110,7 @@ Scene seedCornell(const char* name, const CornellGrids& g, float lightScale) {
                 g.boxHeight, g.boxSide);
   s.meshes.push_back(std::move(box));
   makeDynamicObject(s, s.meshes.back(), "box", Vec3(0.5f * L));
+  spinAboutVertical(s, s.meshes.back().object, kSeedBoxDegreesPerSecond);
 
   // The room is closed, so the camera stands inside it, high in the front left corner, looking
   // down across the box (seen from the front wall's centre, the box would fill the picture).

@@ -61,4 +61,12 @@ void makeDynamicObject(Scene& scene, Mesh& mesh, const std::string& name, Vec3 c
   scene.objects.push_back(Object{.name = name, .transform = glm::translate(glm::mat4(1.0f), centre), .dynamic = true});
 }
 
+void spinAboutVertical(Scene& scene, uint32_t object, double degreesPerSecond) {
+  const glm::mat4& rest = scene.objects[object].transform;
+  scene.animation.objects.push_back(ObjectAnimation{
+      .object = object,
+      .rest = rest,
+      .motion = {.spin = Spin{.axis = Vec3(0, 1, 0), .pivot = Vec3(rest[3]), .degreesPerSecond = degreesPerSecond}}});
+}
+
 }  // namespace luxel::builtin

@@ -30,4 +30,8 @@ void addOutwardBox(Mesh& mesh, Vec3 centre, Vec3 size, float yawDegrees, int nx,
 // origin is `centre` (so that turning the object turns the mesh about it): seed 001's moving box.
 void makeDynamicObject(Scene& scene, Mesh& mesh, const std::string& name, Vec3 centre);
 
+// Gives dynamic object `object` a spin about the vertical line through its origin, from the pose it
+// has now: seed 001's rotating box.
+void spinAboutVertical(Scene& scene, uint32_t object, double degreesPerSecond);
+
 }  // namespace luxel::builtin

@@ -90,6 +90,7 @@ Scene indirectLight() {
   Mesh& box = mesh("box");
   addOutwardBox(box, Vec3(1.3f, 1.1f, 2.0f), Vec3(0.6f, 0.9f, 0.7f), 25.0f, 6, 9, 7);
   makeDynamicObject(s, box, "box", Vec3(1.3f, 1.1f, 2.0f));
+  spinAboutVertical(s, box.object, kSeedBoxDegreesPerSecond);
 
   // The sun behind the building (towards -x, and a little towards the front), 49 degrees high:
   // it travels towards +x, so it can never shine in through a window facing +x.

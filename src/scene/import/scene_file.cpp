@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
 #include "luxel/error.h"
@@ -96,11 +97,14 @@ class Reader {
     }
   }
 
-  float number(const Json& j, const std::string& ptr) const {
+  float number(const Json& j, const std::string& ptr) const { return float(real(j, ptr)); }
+
+  // A number kept in double, for times (seconds over a long animation).
+  double real(const Json& j, const std::string& ptr) const {
     expectType(j, ptr, j.is_number(), "a number");
     double v = j.get<double>();
     if (!std::isfinite(v) || std::fabs(v) > 3.0e38) fail(ptr, "number out of range");
-    return float(v);
+    return v;
   }
 
   float nonNegative(const Json& j, const std::string& ptr) const {
@@ -159,7 +163,7 @@ class SceneFileLoader {
 
   Scene load(const Json& doc) {
     in_.object(doc, "");
-    in_.keys(doc, "", {"name", "builtin", "up", "meshes", "materials", "lights", "cameras"});
+    in_.keys(doc, "", {"name", "builtin", "up", "meshes", "objects", "materials", "lights", "cameras"});
 
     if (auto it = doc.find("builtin"); it != doc.end()) loadBuiltin(*it, "/builtin");
     scene_.name = name_;
@@ -179,6 +183,10 @@ class SceneFileLoader {
         }
       }
     }
+    if (auto it = doc.find("objects"); it != doc.end()) {
+      const Json& objects = in_.object(*it, "/objects");
+      for (const auto& [name, spec] : objects.items()) applyObject(name, spec, Reader::child("/objects", name));
+    }
     if (auto it = doc.find("materials"); it != doc.end()) {
       const Json& materials = in_.object(*it, "/materials");
       for (const auto& [name, spec] : materials.items())
@@ -194,8 +202,11 @@ class SceneFileLoader {
     }
     if (auto it = doc.find("lights"); it != doc.end()) {
       const Json& lights = in_.array(*it, "/lights");
-      for (size_t i = 0; i < lights.size(); ++i)
-        scene_.lights.push_back(readLight(lights[i], Reader::child("/lights", i), i));
+      for (size_t i = 0; i < lights.size(); ++i) {
+        const std::string ptr = Reader::child("/lights", i);
+        scene_.lights.push_back(readLight(lights[i], ptr, i));
+        if (auto a = lights[i].find("animation"); a != lights[i].end()) animateLight(*a, Reader::child(ptr, "animation"));
+      }
     }
     if (auto it = doc.find("cameras"); it != doc.end()) {
       const Json& cameras = in_.array(*it, "/cameras");
@@ -243,7 +254,7 @@ class SceneFileLoader {
   // Returns the material to assign to all of the file's meshes, when the entry names one.
   std::optional<MaterialAssignment> addMeshFile(const Json& j, const std::string& ptr) {
     in_.object(j, ptr);
-    in_.keys(j, ptr, {"file", "name", "dynamic", "translate", "rotate", "scale", "material"});
+    in_.keys(j, ptr, {"file", "name", "dynamic", "translate", "rotate", "scale", "material", "animation"});
     if (!j.contains("file")) in_.fail(ptr, "missing key 'file'");
     fs::path file = resolve(in_.string(j["file"], Reader::child(ptr, "file")));
     Scene part;
@@ -256,12 +267,23 @@ class SceneFileLoader {
     for (Mesh& mesh : part.meshes) transformMesh(mesh, m);
     for (Light& light : part.lights) transformLight(light, m);
     for (Camera& cam : part.cameras) transformCamera(cam, m);
-    // Named or dynamic: the whole file is one object, placed by the entry's transform. Otherwise
-    // the file's own objects (its nodes) stay, placed by the entry's transform times their own.
-    if (j.contains("name") || j.contains("dynamic")) {
+    // Named, dynamic or animated: the whole file is one object, placed by the entry's transform.
+    // Otherwise the file's own objects (its nodes) stay, placed by the entry's transform times
+    // their own.
+    std::optional<ObjectAnimation> animation;
+    if (j.contains("name") || j.contains("dynamic") || j.contains("animation")) {
       Object object{.name = file.stem().string(), .transform = m};
       if (auto it = j.find("name"); it != j.end()) object.name = in_.string(*it, Reader::child(ptr, "name"));
       if (auto it = j.find("dynamic"); it != j.end()) object.dynamic = in_.boolean(*it, Reader::child(ptr, "dynamic"));
+      if (auto it = j.find("animation"); it != j.end()) {
+        // Only a dynamic object moves; an animated one is dynamic unless the entry says otherwise.
+        if (j.contains("dynamic") && !object.dynamic)
+          in_.fail(Reader::child(ptr, "animation"), fmt::format("object '{}' is animated, so it must be dynamic "
+                                                                "(its 'dynamic' is false)", object.name));
+        object.dynamic = true;
+        animation = ObjectAnimation{.object = uint32_t(scene_.objects.size()), .rest = m,
+                                    .motion = readMotion(*it, Reader::child(ptr, "animation"), MotionOf::Object, Vec3(m[3]))};
+      }
       if (object.dynamic && glm::determinant(glm::mat3(m)) < 0.0f)
         in_.fail(ptr, "a dynamic object must not be mirrored (its moves are rotations, translations and scales)");
       part.objects = {object};
@@ -270,6 +292,7 @@ class SceneFileLoader {
       for (Object& o : part.objects) o.transform = m * o.transform;
     }
     merge(std::move(part));
+    if (animation) scene_.animation.objects.push_back(std::move(*animation));
 
     if (!j.contains("material")) return std::nullopt;
     MaterialAssignment a;
@@ -295,7 +318,8 @@ class SceneFileLoader {
   }
 
   // [x, y, z] Euler angles in degrees, applied about X, then Y, then Z (fixed axes); or
-  // {"axis": [x, y, z], "angle": degrees}, counter-clockwise looking down the axis.
+  // {"axis": [x, y, z], "angle": degrees}, counter-clockwise looking down the axis; or
+  // {"quaternion": [x, y, z, w]} (glTF's order), normalised.
   glm::mat4 readRotation(const Json& j, const std::string& ptr) const {
     if (j.is_array()) {
       Vec3 e = in_.vec3(j, ptr);
@@ -306,12 +330,146 @@ class SceneFileLoader {
       return r;
     }
     in_.expectType(j, ptr, j.is_object(),
-                   "[x, y, z] degrees or {\"axis\": [x, y, z], \"angle\": degrees}");
-    in_.keys(j, ptr, {"axis", "angle"});
+                   "[x, y, z] degrees, {\"axis\": [x, y, z], \"angle\": degrees} or {\"quaternion\": [x, y, z, w]}");
+    in_.keys(j, ptr, {"axis", "angle", "quaternion"});
+    if (auto it = j.find("quaternion"); it != j.end()) {
+      const std::string p = Reader::child(ptr, "quaternion");
+      if (j.size() != 1) in_.fail(ptr, "give either 'quaternion' or 'axis' and 'angle'");
+      in_.expectType(*it, p, it->is_array() && it->size() == 4, "an array of 4 numbers [x, y, z, w]");
+      glm::dvec4 xyzw;
+      for (int c = 0; c < 4; ++c) xyzw[c] = in_.real((*it)[c], Reader::child(p, c));
+      const double length = glm::length(xyzw);  // in double: float squares of 3e38 overflow
+      if (!(length > 1e-12)) in_.fail(p, "quaternion must not be zero");
+      xyzw /= length;
+      return glm::mat4_cast(glm::quat(float(xyzw.w), float(xyzw.x), float(xyzw.y), float(xyzw.z)));
+    }
     if (!j.contains("axis") || !j.contains("angle")) in_.fail(ptr, "needs both 'axis' and 'angle'");
     Vec3 axis = in_.direction(j["axis"], Reader::child(ptr, "axis"));
     float angle = in_.number(j["angle"], Reader::child(ptr, "angle"));
     return glm::rotate(glm::mat4(1.0f), radians(angle), axis);
+  }
+
+  // What a motion moves, for the keys it may use: an object has a size to scale and no colour; a
+  // light has a colour and intensity, a position unless it is directional or a sky, and a
+  // direction to turn unless it is a sky.
+  enum class MotionOf { Object, PositionedLight, DirectionalLight, Sky };
+
+  // {"spin": {...}} or {"keyframes": [...], "loop": bool}; see docs/scene-format.md. `origin` is
+  // where the thing stands at rest: a spin's default pivot.
+  Motion readMotion(const Json& j, const std::string& ptr, MotionOf what, Vec3 origin) const {
+    in_.object(j, ptr);
+    in_.keys(j, ptr, {"spin", "keyframes", "loop"});
+    const bool spin = j.contains("spin"), keys = j.contains("keyframes");
+    if (spin == keys) in_.fail(ptr, "needs exactly one of 'spin' and 'keyframes'");
+    Motion m;
+    if (spin) {
+      if (j.contains("loop")) in_.fail(Reader::child(ptr, "loop"), "'loop' belongs to 'keyframes' (a spin never ends)");
+      const std::string p = Reader::child(ptr, "spin");
+      if (what == MotionOf::Sky) in_.fail(p, "a sky has no position or direction to turn");
+      const Json& sj = in_.object(j["spin"], p);
+      in_.keys(sj, p, {"axis", "degreesPerSecond", "pivot"});
+      for (const char* key : {"axis", "degreesPerSecond"})
+        if (!sj.contains(key)) in_.fail(p, fmt::format("a spin needs '{}'", key));
+      Spin s{.axis = in_.direction(sj["axis"], Reader::child(p, "axis")),
+             .pivot = origin,
+             .degreesPerSecond = in_.real(sj["degreesPerSecond"], Reader::child(p, "degreesPerSecond"))};
+      if (auto it = sj.find("pivot"); it != sj.end()) s.pivot = in_.vec3(*it, Reader::child(p, "pivot"));
+      m.spin = s;
+      return m;
+    }
+    const std::string p = Reader::child(ptr, "keyframes");
+    const Json& keyframes = in_.array(j["keyframes"], p);
+    if (keyframes.empty()) in_.fail(p, "needs at least one keyframe");
+    for (size_t i = 0; i < keyframes.size(); ++i) m.keyframes.push_back(readKeyframe(keyframes[i], Reader::child(p, i), what));
+    for (size_t i = 1; i < m.keyframes.size(); ++i)
+      if (!(m.keyframes[i].time > m.keyframes[i - 1].time))
+        in_.fail(Reader::child(Reader::child(p, i), "time"),
+                 fmt::format("time {:g} is not after the previous keyframe's ({:g}): times must increase",
+                             m.keyframes[i].time, m.keyframes[i - 1].time));
+    if (auto it = j.find("loop"); it != j.end()) m.loop = in_.boolean(*it, Reader::child(ptr, "loop"));
+    return m;
+  }
+
+  Keyframe readKeyframe(const Json& j, const std::string& ptr, MotionOf what) const {
+    in_.object(j, ptr);
+    in_.keys(j, ptr, {"time", "translate", "rotate", "scale", "color", "intensity"});
+    if (!j.contains("time")) in_.fail(ptr, "a keyframe needs 'time' (seconds)");
+    Keyframe k{.time = in_.real(j["time"], Reader::child(ptr, "time"))};
+    const bool light = what != MotionOf::Object;
+    auto refuse = [&](const char* key, bool refused, const char* why) {
+      if (refused && j.contains(key)) in_.fail(Reader::child(ptr, key), why);
+    };
+    refuse("translate", what == MotionOf::DirectionalLight || what == MotionOf::Sky,
+           "a directional light or a sky has no position to move");
+    refuse("rotate", what == MotionOf::Sky, "a sky has no direction to turn");
+    refuse("scale", light, "a light has no size to scale");
+    refuse("color", !light, "only a light's keyframes have a colour (an object's colour is its material's)");
+    refuse("intensity", !light, "only a light's keyframes have an intensity");
+    if (auto it = j.find("translate"); it != j.end()) k.translate = in_.vec3(*it, Reader::child(ptr, "translate"));
+    if (auto it = j.find("rotate"); it != j.end())
+      k.rotate = glm::normalize(glm::quat_cast(glm::mat3(readRotation(*it, Reader::child(ptr, "rotate")))));
+    if (auto it = j.find("scale"); it != j.end()) {
+      const std::string p = Reader::child(ptr, "scale");
+      k.scale = in_.number(*it, p);  // one number: a move keeps the object's shape
+      if (!(k.scale > 0.0f)) in_.fail(p, fmt::format("scale must be positive, got {:g}", k.scale));
+    }
+    if (auto it = j.find("color"); it != j.end()) k.color = in_.color(*it, Reader::child(ptr, "color"));
+    if (auto it = j.find("intensity"); it != j.end()) k.intensity = in_.nonNegative(*it, Reader::child(ptr, "intensity"));
+    return k;
+  }
+
+  // /objects/NAME: settings for the objects of that name already in the scene (from the built-in
+  // scene or the mesh files): "dynamic", and "animation" (null removes one).
+  void applyObject(const std::string& name, const Json& spec, const std::string& ptr) {
+    in_.object(spec, ptr);
+    in_.keys(spec, ptr, {"dynamic", "animation"});
+    std::vector<uint32_t> targets;
+    for (uint32_t o = 0; o < scene_.objects.size(); ++o)
+      if (scene_.objects[o].name == name) targets.push_back(o);
+    if (targets.empty()) {
+      std::string names;
+      for (const Object& o : scene_.objects) names += (names.empty() ? "'" : ", '") + o.name + "'";
+      in_.fail(ptr, fmt::format("no object named '{}' (the scene's objects: {})", name, names.empty() ? "none" : names));
+    }
+    for (uint32_t o : targets) {
+      Object& object = scene_.objects[o];
+      if (auto it = spec.find("dynamic"); it != spec.end()) object.dynamic = in_.boolean(*it, Reader::child(ptr, "dynamic"));
+      auto& animations = scene_.animation.objects;
+      if (auto it = spec.find("animation"); it != spec.end()) {
+        std::erase_if(animations, [o](const ObjectAnimation& a) { return a.object == o; });
+        if (it->is_null()) continue;
+        const std::string p = Reader::child(ptr, "animation");
+        if (spec.contains("dynamic") && !object.dynamic)
+          in_.fail(p, fmt::format("object '{}' is animated, so it must be dynamic (its 'dynamic' is false)", name));
+        if (glm::determinant(glm::mat3(object.transform)) < 0.0f)
+          in_.fail(p, fmt::format("object '{}' is mirrored, and a moving object must not be (its moves are rotations, "
+                                  "translations and scales)",
+                                  name));
+        object.dynamic = true;
+        animations.push_back(ObjectAnimation{
+            .object = o, .rest = object.transform,
+            .motion = readMotion(*it, p, MotionOf::Object, Vec3(object.transform[3]))});
+      }
+      const bool animated = std::any_of(animations.begin(), animations.end(), [o](const ObjectAnimation& a) { return a.object == o; });
+      if (animated && !object.dynamic)
+        in_.fail(Reader::child(ptr, "dynamic"), fmt::format("object '{}' is animated, so it must be dynamic (give "
+                                                            "\"animation\": null to stop it)",
+                                                            name));
+    }
+  }
+
+  // The animation of the light just added.
+  void animateLight(const Json& j, const std::string& ptr) {
+    const Light& light = scene_.lights.back();
+    MotionOf what = MotionOf::PositionedLight;
+    if (light.type == Light::Type::Directional) what = MotionOf::DirectionalLight;
+    if (light.type == Light::Type::Sky || light.type == Light::Type::CieOvercastSky) what = MotionOf::Sky;
+    scene_.animation.lights.push_back(LightAnimation{.light = uint32_t(scene_.lights.size() - 1),
+                                                     .restPosition = light.position,
+                                                     .restDirection = light.direction,
+                                                     .restColor = light.color,
+                                                     .restIntensity = light.intensity,
+                                                     .motion = readMotion(j, ptr, what, light.position)});
   }
 
   // Appends another scene's contents. Materials keep their names even when another file has a
@@ -415,21 +573,21 @@ class SceneFileLoader {
     Light light;
     if (type == "point") {
       light.type = Light::Type::Point;
-      in_.keys(j, ptr, {"type", "name", "color", "intensity", "position"});
+      in_.keys(j, ptr, {"type", "name", "color", "intensity", "position", "animation"});
     } else if (type == "spot") {
       light.type = Light::Type::Spot;
       in_.keys(j, ptr,
                {"type", "name", "color", "intensity", "position", "direction", "target",
-                "innerConeAngle", "outerConeAngle"});
+                "innerConeAngle", "outerConeAngle", "animation"});
     } else if (type == "directional") {
       light.type = Light::Type::Directional;
-      in_.keys(j, ptr, {"type", "name", "color", "intensity", "direction", "angularRadius"});
+      in_.keys(j, ptr, {"type", "name", "color", "intensity", "direction", "angularRadius", "animation"});
     } else if (type == "sky") {
       light.type = Light::Type::Sky;
-      in_.keys(j, ptr, {"type", "name", "color", "intensity"});
+      in_.keys(j, ptr, {"type", "name", "color", "intensity", "animation"});
     } else if (type == "cie-overcast") {
       light.type = Light::Type::CieOvercastSky;
-      in_.keys(j, ptr, {"type", "name", "color", "intensity"});
+      in_.keys(j, ptr, {"type", "name", "color", "intensity", "animation"});
     } else {
       in_.fail(typePtr, fmt::format("unknown light type '{}' (expected point, spot, directional, "
                                     "sky, cie-overcast)",
