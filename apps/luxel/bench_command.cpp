@@ -1,9 +1,11 @@
 #include "bench_command.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include <fmt/format.h>
@@ -96,7 +98,163 @@ void printRow(const CaseResult& r) {
   std::cout.flush();
 }
 
+nlohmann::json machineJson(const Machine& m) {
+  return {{"cpu", m.cpuModel}, {"hardware_threads", m.cores}, {"threads", m.threads}, {"memory_bytes", m.memoryBytes}, {"os", m.os}};
+}
+
+// ---- the dynamic suite ------------------------------------------------------------------------
+
+constexpr const char* kDynamicMotion =
+    "the box turns about the vertical axis through its centre at 30 degrees/s, 30 frames/s: 1 degree a frame";
+
+bool wanted(const std::vector<std::string>& only, const std::string& value) {
+  return only.empty() || std::find(only.begin(), only.end(), value) != only.end();
+}
+
+std::string optionalNumber(std::optional<double> v, const char* format) {
+  return v ? fmt::format(fmt::runtime(format), *v) : std::string("-");
+}
+
+void printDynamicHeader() {
+  std::cout << fmt::format("{:<38} {:>6} {:>6} {:>6} {:>9} {:>9} {:>8} {:>9} {:>9} {:>9} | {:>7} {:>7} {:>9}\n", "case",
+                           "elems", "moving", "frames", "ms median", "ms p95", "speed-up", "error med", "error max",
+                           "settled", "seed ms", "seed x", "seed err");
+}
+
+void printDynamicRow(const DynamicResult& r, std::optional<double> speedup, double seedSpeedup) {
+  const DynamicCase& c = r.benchCase;
+  const bool haveError = !r.errors.empty();
+  std::cout << fmt::format(
+      "{:<38} {:>6} {:>6} {:>6} {:>9.1f} {:>9.1f} {:>8} {:>9} {:>9} {:>9} | {:>7g} {:>7} {:>9.5f}\n", c.name(), r.elements,
+      r.movingElements, r.frames, r.msMedian, r.msP95, optionalNumber(speedup, "{:.1f}x"),
+      haveError ? fmt::format("{:.5f}", r.errorMedian) : "-", haveError ? fmt::format("{:.5f}", r.errorMax) : "-",
+      r.settleErrors.empty() ? "-" : fmt::format("{:.5f}", r.settleErrors.back()), c.seedMs,
+      fmt::format("{:.1f}x", seedSpeedup), c.seedError);
+  if (!r.device.empty()) std::cout << "    (" << r.device << ")\n";
+  std::cout.flush();
+}
+
+nlohmann::json dynamicCaseJson(const DynamicResult& r, std::optional<double> speedup) {
+  const DynamicCase& c = r.benchCase;
+  const bool haveError = !r.errors.empty();
+  nlohmann::json j = {
+      {"name", c.name()},
+      {"scene", c.scene},
+      {"method", c.method},
+      {"backend", c.backend},
+      {"device", r.device},
+      {"frames", r.frames},
+      {"ms_per_frame", {{"median", r.msMedian}, {"p95", r.msP95}}},
+      {"error", haveError ? nlohmann::json{{"median", r.errorMedian}, {"max", r.errorMax}} : nlohmann::json(nullptr)},
+      {"speedup_over_progressive", speedup ? nlohmann::json(*speedup) : nlohmann::json(nullptr)},
+      {"elements", r.elements},
+      {"moving_elements", r.movingElements},
+      {"factors_recomputed_per_frame", r.factorsPerFrame ? nlohmann::json(*r.factorsPerFrame) : nlohmann::json(nullptr)},
+      {"shots_per_frame", r.shotsPerFrame},
+      {"seed_gtx670_ms", c.seedMs},
+      {"seed_error", c.seedError},
+      {"settle_error", r.settleErrors},
+      {"error_frames", r.errorFrames},
+      {"errors", r.errors},
+      {"frame_ms", r.frameMs},
+      {"first_solve_seconds", r.firstSolveSeconds},
+      {"reference_seconds", r.referenceSeconds},
+  };
+  return j;
+}
+
+int runDynamicBench(const BenchArgs& a, const Options& options, const Machine& m) {
+  DynamicOptions o;
+  o.frames = a.frames;
+  o.glFrames = a.glFrames;
+  o.reference = options.reference;
+  o.cacheDir = options.cacheDir;
+  const std::string errorFrames = a.frames <= kEveryFrameErrorUpTo
+                                      ? "every frame"
+                                      : fmt::format("every {}th frame and each case's last", o.errorStride);
+  if (!a.quiet) {
+    std::cout << fmt::format("{}; {} moving frames per case{}, the first {} not timed; every method stops at {:g} "
+                             "unshot, no ambient term\n",
+                             kDynamicMotion, a.frames,
+                             a.glFrames > 0 ? fmt::format(" ({} on GL)", std::min(a.frames, a.glFrames))
+                                            : " (GL: on a GPU only, unless --gl-frames)",
+                             o.untimedFrames, o.unshot);
+    if (o.reference)
+      std::cout << fmt::format("error: NRMSE at {} against progressive on the CPU from scratch to {:g} unshot at the same "
+                               "pose and elements; settled: {} frames after the motion stops; references in {}\n",
+                               errorFrames, o.referenceUnshot, o.settleFrames, options.cacheDir);
+    std::cout << "seed: 001 Table 5.2a (ms per frame, GTX 670; seed x: its progressive / this) and Table 5.1 (NRMSE "
+                 "against a high-quality gather)\n";
+    printDynamicHeader();
+  }
+  nlohmann::json cases = nlohmann::json::array();
+  std::map<std::string, double> progressiveMs;  // scene/backend -> median
+  std::map<std::string, double> seedProgressiveMs;
+  for (const DynamicCase& c : dynamicCases())
+    if (c.method == "progressive") seedProgressiveMs[c.scene] = c.seedMs;
+  int ran = 0, skipped = 0;
+  for (const DynamicCase& c : dynamicCases()) {
+    if (!wanted(a.scenes, c.scene) || !wanted(a.backends, c.backend)) continue;
+    if (!a.filter.empty() && c.name().find(a.filter) == std::string::npos) continue;
+    ++ran;
+    DynamicResult r;
+    try {
+      r = runDynamicCase(c, o);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      std::cout << fmt::format("{:<38} skipped: {}\n", c.name(), e.what());
+      cases.push_back({{"name", c.name()}, {"scene", c.scene}, {"method", c.method}, {"backend", c.backend}, {"skipped", e.what()}});
+      ++skipped;
+      continue;
+    }
+    const std::string key = c.scene + "/" + c.backend;
+    if (c.method == "progressive") progressiveMs[key] = r.msMedian;
+    std::optional<double> speedup;
+    if (auto p = progressiveMs.find(key); p != progressiveMs.end() && r.msMedian > 0) speedup = p->second / r.msMedian;
+    if (!a.quiet) printDynamicRow(r, speedup, seedProgressiveMs[c.scene] / c.seedMs);
+    cases.push_back(dynamicCaseJson(r, speedup));
+  }
+  if (ran == 0) throw Error(fmt::format("no case of suite 'dynamic' matches the scenes, backends and --case given"));
+  if (skipped == ran) throw Error(fmt::format("every case of suite 'dynamic' that ran ({}) was skipped; nothing measured", ran));
+
+  if (!a.jsonPath.empty()) {
+    nlohmann::json j = {
+        {"suite", "dynamic"},
+        {"description", "seed 001's dynamic radiosity: the four scenes' box turning, frame by frame"},
+        {"motion", kDynamicMotion},
+        {"degrees_per_frame", kDynamicDegreesPerFrame},
+        {"frames", a.frames},
+        {"untimed_frames", o.untimedFrames},
+        {"unshot", o.unshot},
+        {"reference", o.reference ? fmt::format("progressive on the CPU from scratch to {:g} unshot, same pose and elements",
+                                                o.referenceUnshot)
+                                  : "none"},
+        {"error_frames", o.reference ? errorFrames : "none"},
+        {"settle_frames", o.settleFrames},
+        {"machine", machineJson(m)},
+        {"commit", m.commit},
+        {"date", m.date},
+        {"cases", cases},
+    };
+    writeTextAtomically(a.jsonPath, j.dump(2) + "\n");
+    if (!a.quiet) std::cout << "luxel: wrote " << a.jsonPath << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
+
+void checkBenchArgs(const BenchArgs& a) {
+  if (a.list) return;
+  if (a.suite == kDynamicSuiteName) {
+    if (a.runsGiven) throw Error("--runs does not apply to the dynamic suite: its frames are its runs (--frames N)");
+    if (a.reference != "cpu")
+      throw Error("--reference does not apply to the dynamic suite: its references are progressive solves on the CPU");
+  } else if (a.dynamicOptionGiven) {
+    throw Error(fmt::format("--frames, --gl-frames, --scenes and --backends belong to the dynamic suite, not '{}'", a.suite));
+  }
+}
 
 int runBench(const BenchArgs& a) {
   if (a.list) {
@@ -104,9 +262,12 @@ int runBench(const BenchArgs& a) {
       std::cout << s.name << ": " << s.description << "\n";
       for (const Case& c : s.cases) std::cout << "  " << c.name << "  [" << c.setting << "]\n";
     }
+    std::cout << kDynamicSuiteName << ": seed 001's four scenes with the box turning, " << kDynamicMotion << "\n";
+    for (const DynamicCase& c : dynamicCases()) std::cout << "  " << c.name() << "\n";
     return 0;
   }
-  const Suite& suite = findSuite(a.suite);
+  const bool dynamic = a.suite == kDynamicSuiteName;
+  const Suite* suitePtr = dynamic ? nullptr : &findSuite(a.suite);
   if (!a.jsonPath.empty()) checkOutputPaths({{"--json", a.jsonPath, {}}});
   std::unique_ptr<tbb::global_control> limit;
   if (a.threads > 0)
@@ -121,9 +282,12 @@ int runBench(const BenchArgs& a) {
   options.hardwareLimit = !a.noLimit;
 
   const Machine m = describeMachine(threads);
-  if (!a.quiet) {
-    std::cout << fmt::format("luxel bench {}: {} ({} hardware threads, {} used), {}, commit {}, {}\n", suite.name,
+  if (!a.quiet)
+    std::cout << fmt::format("luxel bench {}: {} ({} hardware threads, {} used), {}, commit {}, {}\n", a.suite,
                              m.cpuModel, m.cores, m.threads, m.os, m.commit.empty() ? "unknown" : m.commit, m.date);
+  if (dynamic) return runDynamicBench(a, options, m);
+  const Suite& suite = *suitePtr;
+  if (!a.quiet) {
     std::cout << fmt::format("{} runs per case; times are medians; {} references in {}\n", a.runs, a.reference,
                              options.cacheDir);
     printHeader();
@@ -157,8 +321,7 @@ int runBench(const BenchArgs& a) {
         {"description", suite.description},
         {"runs", a.runs},
         {"reference", a.noReference ? "none" : a.reference},
-        {"machine", {{"cpu", m.cpuModel}, {"hardware_threads", m.cores}, {"threads", m.threads},
-                     {"memory_bytes", m.memoryBytes}, {"os", m.os}}},
+        {"machine", machineJson(m)},
         {"commit", m.commit},
         {"date", m.date},
         {"cases", cases},

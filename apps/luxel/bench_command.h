@@ -1,8 +1,10 @@
 // `luxel bench [SUITE] [--runs N] [--json FILE]`: runs a benchmark suite, prints a table and
-// writes the results with the machine, commit and date as JSON.
+// writes the results with the machine, commit and date as JSON. `luxel bench dynamic [--frames N]`
+// runs seed 001's moving box frame by frame instead (bench.h, runDynamicCase).
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace luxel::cli {
 
@@ -18,7 +20,18 @@ struct BenchArgs {
   bool list = false;
   int threads = 0;
   bool quiet = false;
+  // The dynamic suite's own options (an error with any other suite): moving frames per case, GL
+  // cases' frames (0: all on a GPU, none on a software rasteriser), and which scenes and backends
+  // run (empty: all).
+  int frames = 100;
+  int glFrames = 0;
+  std::vector<std::string> scenes;
+  std::vector<std::string> backends;
+  bool runsGiven = false, dynamicOptionGiven = false;  // set by parseCommandLine
 };
+
+// Checks the suite-specific options: --runs with the dynamic suite, or its options with another.
+void checkBenchArgs(const BenchArgs& args);
 
 int runBench(const BenchArgs& args);
 

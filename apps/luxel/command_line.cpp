@@ -48,8 +48,21 @@ std::unique_ptr<CommandLine> makeCommandLine() {
 
   BenchArgs& ba = line->bench;
   CLI::App* bench = line->benchCommand = app.add_subcommand("bench", "Run a benchmark suite: timings, throughput, memory and error");
-  bench->add_option("suite", ba.suite, "Suite: seeds, shader, scenes, hierarchical, core, gl or quick (--list shows the cases)")->capture_default_str();
-  bench->add_option("--runs", ba.runs, "Timed runs per case")->check(CLI::Range(1, 1000))->capture_default_str();
+  bench->add_option("suite", ba.suite, "Suite: seeds, shader, scenes, hierarchical, core, gl, quick or dynamic (--list shows the cases)")->capture_default_str();
+  bench->add_option("--runs", ba.runs, "Timed runs per case (not dynamic: its frames are its runs)")->check(CLI::Range(1, 1000))->capture_default_str();
+  bench->add_option("--frames", ba.frames, "dynamic: moving frames per case, the box turning 1 degree a frame")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  bench->add_option("--gl-frames", ba.glFrames, "dynamic: moving frames of the GL cases (default: --frames on a GPU, none on a software rasteriser such as llvmpipe)")
+      ->check(CLI::Range(1, 100000));
+  bench->add_option("--scenes", ba.scenes, "dynamic: only these scenes (indirect-light, cornell-large, cornell-small, cornell-low)")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(CLI::IsMember({"indirect-light", "cornell-large", "cornell-small", "cornell-low"}));
+  bench->add_option("--backends", ba.backends, "dynamic: only these backends (cpu, gl; default both, GL skipped without a context)")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(CLI::IsMember({"cpu", "gl"}));
   bench->add_option("--json", ba.jsonPath, "Write the results as JSON");
   bench->add_option("--case", ba.filter, "Only cases whose name contains this");
   bench->add_option("--cache", ba.cacheDir, "Folder for reference solutions (default ~/.cache/luxel/references)");
@@ -75,6 +88,12 @@ void parseCommandLine(CommandLine& line, int argc, const char* const* argv) {
   if (*line.renderCommand) checkRenderArgs(line.render);
   if (*line.animateCommand) checkAnimateArgs(line.animate);
   if (*line.bakeCommand) checkBakeArgs(line.bake);
+  if (*line.benchCommand) {
+    CLI::App& b = *line.benchCommand;
+    line.bench.runsGiven = b.count("--runs") > 0;
+    line.bench.dynamicOptionGiven = b.count("--frames") + b.count("--gl-frames") + b.count("--scenes") + b.count("--backends") > 0;
+    checkBenchArgs(line.bench);
+  }
 }
 
 int runCommand(const CommandLine& line) {

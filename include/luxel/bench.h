@@ -108,6 +108,69 @@ struct CaseResult {
 
 CaseResult runCase(const Case& benchCase, const Options& options);
 
+// `luxel bench dynamic`: seed 001's dynamic radiosity (issue 15). In each of 001's four scenes
+// the box turns about the vertical axis through its centre at 30 degrees a second, shown at 30
+// frames a second: frame k stands at dynamicPose(rest, k) = rest * rotate(k degrees, y). Each
+// frame moves the box (Session::placeObject) and solves to the method's stopping rule; its
+// error is against a converged solve from scratch at the same pose, on the same elements.
+inline constexpr const char* kDynamicSuiteName = "dynamic";  // not in suites(): its cases are frame sequences
+
+struct DynamicCase {
+  std::string scene;    // a built-in seed-001 scene
+  std::string method;   // "progressive" (from scratch every frame), "incremental", "cross-redistribution"
+  std::string backend;  // "cpu" or "gl"
+  double seedMs = 0.0;     // 001 Table 5.2a, GTX 670, ms per frame of the same scene and method
+  double seedError = 0.0;  // 001 Table 5.1, NRMSE against a high-quality gather
+  std::string name() const { return scene + "/" + method + "/" + backend; }
+};
+
+// Per scene: progressive on the CPU first (the speed-ups are against it), then incremental and
+// cross-redistribution on the CPU, then progressive on GL.
+const std::vector<DynamicCase>& dynamicCases();
+glm::mat4 dynamicPose(const glm::mat4& rest, int frame);
+inline constexpr double kDynamicDegreesPerFrame = 1.0;  // 30 degrees/s at 30 frames/s
+
+struct DynamicOptions {
+  int frames = 100;  // moving frames per case
+  // GL cases' moving frames (at most `frames`); 0: `frames` on a GPU, and none on a software
+  // rasteriser (the case throws, saying so): Mesa's llvmpipe takes seconds a frame.
+  int glFrames = 0;
+  int untimedFrames = 3;  // the first frames, left out of the times (001, L1146: "the first 1 to 3")
+  int settleFrames = 4;   // after the motion stops: frames with no move, each with its error
+  // Frames whose error is measured: every frame when `frames` <= kEveryFrameErrorUpTo, else
+  // every errorStride-th frame; a case's last moving frame always.
+  int errorStride = 10;
+  double unshot = 1e-3;           // every method's stopping rule
+  double referenceUnshot = 1e-6;  // the references: progressive on the CPU, from scratch
+  bool reference = true;          // false: no error column
+  std::string cacheDir;           // references are cached here, as the static suites' are
+  ProgressCallback progress;
+};
+inline constexpr int kEveryFrameErrorUpTo = 20;
+
+struct DynamicResult {
+  DynamicCase benchCase;
+  std::string device;  // the GL renderer (GL cases)
+  int frames = 0;      // moving frames run
+  size_t elements = 0, movingElements = 0;
+  double firstSolveSeconds = 0.0;  // making the session, and its solve at pose 0 (dynamic methods), before the frames
+  std::vector<double> frameMs;     // every moving frame: placeObject and the solve to its stopping rule
+  double msMedian = 0.0, msP95 = 0.0;  // over the frames after the untimed ones
+  double shotsPerFrame = 0.0;          // median over the timed frames
+  // Median over the timed frames of SolveStats::factorsRecomputed's growth; dynamic methods only
+  // (progressive computes every column it shoots with).
+  std::optional<double> factorsPerFrame;
+  std::vector<int> errorFrames;  // 1-based frame numbers
+  std::vector<double> errors;    // NRMSE at those frames (empty without references)
+  double errorMedian = 0.0, errorMax = 0.0;
+  std::vector<double> settleErrors;  // one per settle frame
+  double referenceSeconds = 0.0;     // solving references (0 when all came from the cache)
+};
+
+// Runs one case. Throws Error when a GL context cannot be made or the scene has no dynamic object
+// (the bench command reports the case skipped, with the reason).
+DynamicResult runDynamicCase(const DynamicCase& benchCase, const DynamicOptions& options);
+
 // The machine and build a result belongs to.
 struct Machine {
   std::string cpuModel;

@@ -211,6 +211,7 @@ const Suite& findSuite(const std::string& name) {
     if (s.name == name) return s;
     names.push_back(s.name);
   }
+  names.push_back(kDynamicSuiteName);  // luxel bench dynamic: runDynamicCase
   throw Error(fmt::format("unknown benchmark suite '{}' (known: {})", name, fmt::join(names, ", ")));
 }
 

@@ -143,12 +143,13 @@ void Context::makeCurrent() {
 
 std::string Context::renderer() const { return reinterpret_cast<const char*>(glGetString(GL_RENDERER)); }
 
-bool Context::softwareRasteriser() const {
-  const std::string r = renderer();
+bool isSoftwareRasteriser(const std::string& renderer) {
   for (const char* name : {"llvmpipe", "softpipe", "SwiftShader"})
-    if (r.find(name) != std::string::npos) return true;
+    if (renderer.find(name) != std::string::npos) return true;
   return false;
 }
+
+bool Context::softwareRasteriser() const { return isSoftwareRasteriser(renderer()); }
 std::string Context::version() const { return reinterpret_cast<const char*>(glGetString(GL_VERSION)); }
 
 void Context::check(const char* what) {

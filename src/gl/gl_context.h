@@ -9,6 +9,10 @@
 
 namespace luxel::gl {
 
+// Whether a GL_RENDERER string names a rasteriser that runs on the CPU (Mesa's llvmpipe or
+// softpipe, SwiftShader).
+bool isSoftwareRasteriser(const std::string& renderer);
+
 class Context {
  public:
   // Where driver messages (KHR_debug) go; empty: dropped. The library never prints.
