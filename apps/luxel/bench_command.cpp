@@ -163,6 +163,46 @@ nlohmann::json dynamicCaseJson(const DynamicResult& r, std::optional<double> spe
   return j;
 }
 
+// Issue 15's targets for a cross-redistribution case; null where this run cannot say (no
+// reference, or no progressive case to compare with).
+nlohmann::json dynamicTargetJson(const DynamicResult& r, std::optional<double> speedup, double seedSpeedup) {
+  const DynamicCase& c = r.benchCase;
+  const bool haveError = !r.errors.empty();
+  auto orNull = [](bool known, auto value) { return known ? nlohmann::json(value) : nlohmann::json(nullptr); };
+  const double settled = r.settleErrors.empty() ? 0.0 : r.settleErrors.back();
+  return {
+      {"scene", c.scene},
+      {"backend", c.backend},
+      {"p95_ms", r.msP95},
+      {"seed_ms", c.seedMs},
+      {"error_max", orNull(haveError, r.errorMax)},
+      {"seed_error", c.seedError},
+      {"time_met", orNull(haveError, r.msP95 <= c.seedMs && r.errorMax <= c.seedError)},
+      {"speedup", orNull(speedup.has_value(), speedup.value_or(0.0))},
+      {"seed_speedup", seedSpeedup},
+      {"speedup_met", orNull(speedup.has_value(), speedup.value_or(0.0) >= seedSpeedup)},
+      {"settle_error", orNull(!r.settleErrors.empty(), settled)},
+      {"settle_met", orNull(!r.settleErrors.empty(), settled <= 0.01)},
+  };
+}
+
+std::string dynamicTargetLine(const nlohmann::json& t) {
+  auto verdict = [](const nlohmann::json& met) {
+    return met.is_null() ? std::string("unknown") : met.get<bool>() ? std::string("met") : std::string("not met");
+  };
+  std::string line = fmt::format("{}/{}: p95 {:.1f} ms <= {:g} ms", t["scene"].get<std::string>(), t["backend"].get<std::string>(),
+                                 t["p95_ms"].get<double>(), t["seed_ms"].get<double>());
+  if (!t["error_max"].is_null())
+    line += fmt::format(" at error {:.5f} <= {:.5f}", t["error_max"].get<double>(), t["seed_error"].get<double>());
+  line += ": " + verdict(t["time_met"]);
+  if (!t["speedup"].is_null())
+    line += fmt::format("; speed-up {:.1f}x >= {:.1f}x", t["speedup"].get<double>(), t["seed_speedup"].get<double>());
+  line += ": " + verdict(t["speedup_met"]);
+  if (!t["settle_error"].is_null()) line += fmt::format("; settled to {:.5f} <= 0.01", t["settle_error"].get<double>());
+  line += ": " + verdict(t["settle_met"]);
+  return line;
+}
+
 int runDynamicBench(const BenchArgs& a, const Options& options, const Machine& m) {
   DynamicOptions o;
   o.frames = a.frames;
@@ -192,6 +232,8 @@ int runDynamicBench(const BenchArgs& a, const Options& options, const Machine& m
   std::map<std::string, double> seedProgressiveMs;
   for (const DynamicCase& c : dynamicCases())
     if (c.method == "progressive") seedProgressiveMs[c.scene] = c.seedMs;
+  nlohmann::json targets = nlohmann::json::array();
+  std::vector<std::string> targetLines;
   int ran = 0, skipped = 0;
   for (const DynamicCase& c : dynamicCases()) {
     if (!wanted(a.scenes, c.scene) || !wanted(a.backends, c.backend)) continue;
@@ -214,9 +256,19 @@ int runDynamicBench(const BenchArgs& a, const Options& options, const Machine& m
     if (auto p = progressiveMs.find(key); p != progressiveMs.end() && r.msMedian > 0) speedup = p->second / r.msMedian;
     if (!a.quiet) printDynamicRow(r, speedup, seedProgressiveMs[c.scene] / c.seedMs);
     cases.push_back(dynamicCaseJson(r, speedup));
+    if (c.method == "cross-redistribution") {
+      nlohmann::json t = dynamicTargetJson(r, speedup, seedProgressiveMs[c.scene] / c.seedMs);
+      targetLines.push_back(dynamicTargetLine(t));
+      targets.push_back(std::move(t));
+    }
   }
   if (ran == 0) throw Error(fmt::format("no case of suite 'dynamic' matches the scenes, backends and --case given"));
   if (skipped == ran) throw Error(fmt::format("every case of suite 'dynamic' that ran ({}) was skipped; nothing measured", ran));
+  if (!a.quiet && !targetLines.empty()) {
+    std::cout << "issue 15's targets for cross-redistribution: p95 at most 001's GTX 670 figure at an error at most "
+                 "001's; speed-up over progressive at least 001's; within 1% once the motion stops\n";
+    for (const std::string& line : targetLines) std::cout << "  " << line << "\n";
+  }
 
   if (!a.jsonPath.empty()) {
     nlohmann::json j = {
@@ -236,6 +288,7 @@ int runDynamicBench(const BenchArgs& a, const Options& options, const Machine& m
         {"commit", m.commit},
         {"date", m.date},
         {"cases", cases},
+        {"targets", targets},
     };
     writeTextAtomically(a.jsonPath, j.dump(2) + "\n");
     if (!a.quiet) std::cout << "luxel: wrote " << a.jsonPath << "\n";

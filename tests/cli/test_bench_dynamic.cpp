@@ -75,6 +75,15 @@ TEST(BenchDynamicCli, FiveFramesOfCornellLowWriteEveryField) {
   }
   // Cross-redistribution recomputes only what the box's old and new places touch; incremental
   // every patch's column (counts, not times: deterministic).
+  // Issue 15's targets, judged on the cross-redistribution case (the verdicts are timings: only
+  // their presence is checked, and the figures they compare).
+  ASSERT_EQ(j["targets"].size(), 1u);
+  const auto& t = j["targets"][0];
+  EXPECT_EQ(t["scene"], "cornell-low");
+  EXPECT_EQ(t["seed_ms"].get<double>(), 7.0);
+  EXPECT_EQ(t["seed_speedup"].get<double>(), 7.0);  // 49 / 7
+  EXPECT_TRUE(t["time_met"].is_boolean() && t["speedup_met"].is_boolean());
+  EXPECT_EQ(t["settle_met"], t["settle_error"].get<double>() <= 0.01);
   ASSERT_EQ(factors.size(), 2u);
   EXPECT_GT(factors["cross-redistribution"], 0.0);
   EXPECT_LT(factors["cross-redistribution"], factors["incremental"]);
