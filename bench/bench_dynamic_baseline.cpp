@@ -1,5 +1,5 @@
 // The baseline of `luxel bench dynamic`: what a progressive solve from scratch costs per frame of
-// seed 001's turning box (1 degree a frame, to 1e-3 unshot, no ambient term), done two ways:
+// seed 001's spinning box (1 degree a frame, to 1e-3 unshot, no ambient term), done two ways:
 //  - ProgressiveNewSession: a new Session of the scene with the box at the frame's pose
 //    (discretisation, BVH, transport, solve), which traces the one-level BVH;
 //  - ProgressiveRestartInSession: one Session whose placeObject restarts the solver, which after
@@ -29,11 +29,10 @@ SessionOptions frameOptions() {
 void ProgressiveNewSession(benchmark::State& state) {
   const Scene scene = loadScene(sceneName(state.range(0)));
   const uint32_t box = scene.dynamicObjects().at(0);
-  const glm::mat4 rest = scene.objects[box].transform;
   int frame = 0;
   for (auto _ : state) {
     Scene there = scene;
-    there.placeObject(box, bench::dynamicPose(rest, ++frame));
+    there.placeObject(box, bench::dynamicPose(scene, ++frame));
     Session session(std::move(there), DiscretiseOptions{}, frameOptions());
     while (session.step()) {
     }
@@ -44,12 +43,11 @@ void ProgressiveNewSession(benchmark::State& state) {
 void ProgressiveRestartInSession(benchmark::State& state) {
   const Scene scene = loadScene(sceneName(state.range(0)));
   const uint32_t box = scene.dynamicObjects().at(0);
-  const glm::mat4 rest = scene.objects[box].transform;
   Session session(scene, DiscretiseOptions{}, frameOptions());
   int frame = 0;
-  session.placeObject(box, bench::dynamicPose(rest, ++frame));  // the two-level BVH from here on
+  session.placeObject(box, bench::dynamicPose(scene, ++frame));  // the two-level BVH from here on
   for (auto _ : state) {
-    session.placeObject(box, bench::dynamicPose(rest, ++frame));
+    session.placeObject(box, bench::dynamicPose(scene, ++frame));
     while (session.step()) {
     }
   }

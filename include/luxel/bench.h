@@ -108,11 +108,11 @@ struct CaseResult {
 
 CaseResult runCase(const Case& benchCase, const Options& options);
 
-// `luxel bench dynamic`: seed 001's dynamic radiosity (issue 15). In each of 001's four scenes
-// the box turns about the vertical axis through its centre at 30 degrees a second, shown at 30
-// frames a second: frame k stands at dynamicPose(rest, k) = rest * rotate(k degrees, y). Each
-// frame moves the box (Session::placeObject) and solves to the method's stopping rule; its
-// error is against a converged solve from scratch at the same pose, on the same elements.
+// `luxel bench dynamic`: seed 001's dynamic radiosity (issue 15). Each of 001's four scenes is
+// played as it animates itself (Scene::animation: the box spins about the vertical through its
+// centre at 30 degrees a second), at 30 frames a second: frame k is the pose at k / 30 s, one
+// degree a frame. Each frame moves the box (Session::placeObject) and solves to the method's
+// stopping rule; its error is against a converged solve from scratch at the same pose.
 inline constexpr const char* kDynamicSuiteName = "dynamic";  // not in suites(): its cases are frame sequences
 
 struct DynamicCase {
@@ -125,10 +125,13 @@ struct DynamicCase {
 };
 
 // Per scene: progressive on the CPU first (the speed-ups are against it), then incremental and
-// cross-redistribution on the CPU, then progressive on GL.
+// cross-redistribution on the CPU, then progressive and incremental on GL.
 const std::vector<DynamicCase>& dynamicCases();
-glm::mat4 dynamicPose(const glm::mat4& rest, int frame);
-inline constexpr double kDynamicDegreesPerFrame = 1.0;  // 30 degrees/s at 30 frames/s
+inline constexpr double kDynamicFramesPerSecond = 30.0;
+// The world transform of the scene's first dynamic object at frame k: its animation at time
+// k / kDynamicFramesPerSecond. Throws Error when the scene has no dynamic object or does not
+// animate it.
+glm::mat4 dynamicPose(const Scene& scene, int frame);
 
 struct DynamicOptions {
   int frames = 100;  // moving frames per case
@@ -152,13 +155,14 @@ struct DynamicResult {
   DynamicCase benchCase;
   std::string device;  // the GL renderer (GL cases)
   int frames = 0;      // moving frames run
+  double degreesPerFrame = 0.0;  // the box's turn a frame (its animation's spin rate / frames per second)
   size_t elements = 0, movingElements = 0;
   double firstSolveSeconds = 0.0;  // making the session, and its solve at pose 0 (dynamic methods), before the frames
   std::vector<double> frameMs;     // every moving frame: placeObject and the solve to its stopping rule
   double msMedian = 0.0, msP95 = 0.0;  // over the frames after the untimed ones
   double shotsPerFrame = 0.0;          // median over the timed frames
-  // Median over the timed frames of SolveStats::factorsRecomputed's growth; dynamic methods only
-  // (progressive computes every column it shoots with).
+  // Median over the timed frames of SolveStats::factorsRecomputed's growth; dynamic methods on
+  // the CPU only (progressive computes every column it shoots with; GL counts no factors).
   std::optional<double> factorsPerFrame;
   std::vector<int> errorFrames;  // 1-based frame numbers
   std::vector<double> errors;    // NRMSE at those frames (empty without references)

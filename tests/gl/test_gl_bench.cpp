@@ -74,45 +74,53 @@ TEST(GlBench, TheGlSuiteHasOnlyGlCases) {
   for (const auto& c : luxel::bench::findSuite("seeds").cases) EXPECT_EQ(c.solve.backend, "cpu") << c.name;
 }
 
-// `luxel bench dynamic`'s GL case: progressive restarted in one session's context every frame.
-// On a software rasteriser it runs only when asked for frames (seconds a frame), and says why
-// otherwise; a GPU machine runs it unchanged with every frame.
-TEST(GlBench, DynamicProgressiveCaseFollowsTheBoxOnGl) {
+// `luxel bench dynamic`'s GL cases: progressive restarted in one session's context every frame,
+// and incremental following the box. On a software rasteriser they run only when asked for
+// frames (seconds a frame), and say why otherwise; a GPU machine runs them unchanged, every frame.
+TEST(GlBench, DynamicCasesFollowTheBoxOnGl) {
   std::string why;
   const auto context = luxel::test::glContextOr(why);
-  const luxel::bench::DynamicCase c{"cornell-low", "progressive", "gl", 49, 0.0149107};
   luxel::bench::DynamicOptions o;
   o.frames = 2;
   o.untimedFrames = 1;
   o.settleFrames = 1;
   o.cacheDir = (std::filesystem::temp_directory_path() / "luxel-gl-dynamic-refs").string();
+  const luxel::bench::DynamicCase progressive{"cornell-low", "progressive", "gl", 49, 0.0149107};
+  const luxel::bench::DynamicCase incremental{"cornell-low", "incremental", "gl", 14, 0.0197874};
   if (!context) {
-    EXPECT_THROW(luxel::bench::runDynamicCase(c, o), luxel::Error);
+    EXPECT_THROW(luxel::bench::runDynamicCase(progressive, o), luxel::Error);
     GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
   }
   // Read before the cases run: each makes its own context current, and this one is then not.
   const std::string renderer = context->renderer();
   if (context->softwareRasteriser()) {
     try {
-      luxel::bench::runDynamicCase(c, o);
+      luxel::bench::runDynamicCase(progressive, o);
       ADD_FAILURE() << "a software rasteriser ran the GL case without --gl-frames";
     } catch (const luxel::Error& e) {
       EXPECT_NE(std::string(e.what()).find("--gl-frames"), std::string::npos) << e.what();
     }
     o.glFrames = 2;
   }
-  const luxel::bench::DynamicResult r = luxel::bench::runDynamicCase(c, o);
-  EXPECT_EQ(r.device, renderer);
-  EXPECT_EQ(r.frames, 2);
-  ASSERT_EQ(r.frameMs.size(), 2u);
-  EXPECT_GT(r.msMedian, 0.0);
-  EXPECT_EQ(r.msMedian, r.frameMs[1]);  // the first frame is not timed
-  EXPECT_GT(r.shotsPerFrame, 10.0);     // a solve from scratch: cornell-low has 71 patches
-  ASSERT_EQ(r.errors.size(), 2u);
-  // Against the CPU's converged solution: the hemicubes' own error (0.0066 at 3e-3 unshot in the
-  // gl suite, docs/performance.md) and what 1e-3 leaves unshot.
-  for (double e : r.errors) EXPECT_LT(e, 0.02);
-  ASSERT_EQ(r.settleErrors.size(), 1u);
+  for (const luxel::bench::DynamicCase& c : {progressive, incremental}) {
+    SCOPED_TRACE(c.name());
+    const luxel::bench::DynamicResult r = luxel::bench::runDynamicCase(c, o);
+    EXPECT_EQ(r.device, renderer);
+    EXPECT_EQ(r.frames, 2);
+    ASSERT_EQ(r.frameMs.size(), 2u);
+    EXPECT_GT(r.msMedian, 0.0);
+    EXPECT_EQ(r.msMedian, r.frameMs[1]);  // the first frame is not timed
+    // A solve from scratch shoots hundreds of times (cornell-low has 71 patches); a 1-degree
+    // turn followed by redistribution, a few.
+    if (c.method == "progressive") EXPECT_GT(r.shotsPerFrame, 71.0);
+    else EXPECT_LT(r.shotsPerFrame, 71.0);
+    ASSERT_EQ(r.errors.size(), 2u);
+    // Against the CPU's converged solution: the hemicubes' own error (0.0066 at 3e-3 unshot in the
+    // gl suite, docs/performance.md; 0.008-0.011 in the dynamic suite on llvmpipe) and what 1e-3
+    // leaves unshot.
+    for (double e : r.errors) EXPECT_LT(e, 0.02);
+    ASSERT_EQ(r.settleErrors.size(), 1u);
+  }
   std::error_code ec;
   std::filesystem::remove_all(o.cacheDir, ec);
 }
