@@ -34,8 +34,9 @@ shift
 for f in /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json /usr/share/glvnd/egl_vendor.d/10_nvidia.json; do
   [ -f "$f" ] && export __EGL_VENDOR_LIBRARY_FILENAMES="$f" && break
 done
+# The loader's --library-path reaches the program and what it opens (the NVIDIA EGL driver), not
+# its children: the machine's own programs (a shell, git) keep the machine's own libc.
 path="$here/lib:/usr/local/nvidia/lib64:/usr/local/nvidia/lib:/usr/lib/x86_64-linux-gnu"
-export LD_LIBRARY_PATH="$path"
 exec "$here/lib/ld-linux-x86-64.so.2" --library-path "$path" "$here/bin/$program" "$@"
 EOF
 chmod +x "$work/run"
