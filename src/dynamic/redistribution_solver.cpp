@@ -49,6 +49,7 @@
 namespace luxel {
 
 std::vector<SolverOption> progressiveStopOptions();  // solve/progressive_solver.cpp
+SolverOption settleOption();
 
 namespace {
 
@@ -114,8 +115,9 @@ bool hullNearBox(Vec3 a, float ra, Vec3 b, float rb, const Region& box) {
 class RedistributionSolver final : public ProgressiveSolver {
  public:
   RedistributionSolver(const Scene& scene, const RadiositySystem& sys, Transport& transport,
-                       const ProgressiveSettings& s, ChangedFactors changed, const char* method)
-      : ProgressiveSolver(sys, transport, s), scene_(scene), changed_(changed), method_(method) {
+                       const ProgressiveSettings& s, double settleThreshold, ChangedFactors changed, const char* method)
+      : ProgressiveSolver(sys, transport, s), scene_(scene), changed_(changed), method_(method),
+        settleThreshold_(settleThreshold) {
     const SurfaceSet& set = sys.surfaces;
     patchRadius_.resize(set.patches.size());
     for (size_t p = 0; p < set.patches.size(); ++p)
@@ -203,6 +205,17 @@ class RedistributionSolver final : public ProgressiveSolver {
     secondsRedistributing_ += watch.seconds();
     seconds_ += watch.seconds();
     return true;
+  }
+
+  // A frame after a change stops at the unshot threshold; asked to step again with nothing
+  // changed (the motion has stopped), the solver goes on a decade at a time down to the settle
+  // threshold, so that a still scene converges while it is shown.
+  bool step(const StepLimit& limit, const ProgressCallback& progress) override {
+    if (done_ && threshold_ > settleThreshold_ && unshotFraction_ > settleThreshold_ && !budgetSpent()) {
+      threshold_ = std::max(settleThreshold_, threshold_ * 0.1);
+      done_ = false;
+    }
+    return ProgressiveSolver::step(limit, progress);
   }
 
   bool sourcesChanged() override {
@@ -323,7 +336,12 @@ class RedistributionSolver final : public ProgressiveSolver {
     sourcePower_ = sys_.sourcePower();
     unshotFraction_ = currentUnshotFraction();
     done_ = false;
+    threshold_ = s_.unshotThreshold;
     remember();
+  }
+
+  bool budgetSpent() const {
+    return (s_.shotBudget && shots_ >= s_.shotBudget) || (s_.timeBudget > 0.0 && seconds_ >= s_.timeBudget);
   }
 
   // What the state was computed from, for the next update's differences.
@@ -332,6 +350,7 @@ class RedistributionSolver final : public ProgressiveSolver {
   const Scene& scene_;
   const ChangedFactors changed_;
   const char* method_;
+  const double settleThreshold_;
   std::vector<Rgb> analyticUsed_;
   std::vector<float> patchRadius_, elementRadius_;
   std::vector<Region> bounds_;  // each dynamic object's patches, where the solution last saw them
@@ -345,17 +364,25 @@ void registerRedistribution(SolverRegistry& registry, const char* method, Change
   e.description = {method, "cpu", description, progressiveStopOptions()};
   e.description.options.push_back(integerOption("shooters-per-pass", kDefaultShootersPerPass, 1, kMaxShootersPerPass,
                                                 "patches shot together in one pass over the receivers"));
+  e.description.options.push_back(settleOption());
   for (SolverOption& o : cpuTransportOptions()) e.description.options.push_back(std::move(o));
   e.make = [method, changed](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
     ProgressiveSettings s{v.real("unshot"), v.real("time-budget"), uint64_t(v.integer("shot-budget")),
                           size_t(v.integer("shooters-per-pass")), v.flag("ambient")};
-    return std::make_unique<RedistributionSolver>(r.scene, r.system, r.transport, s, changed, method);
+    return std::make_unique<RedistributionSolver>(r.scene, r.system, r.transport, s, v.real("settle-unshot"), changed,
+                                                  method);
   };
   e.converged.set("unshot", 1e-7);
   registry.add(std::move(e));
 }
 
 }  // namespace
+
+// The dynamic solvers' idle refinement (shared with GL incremental, gl/gl_solvers.cpp).
+SolverOption settleOption() {
+  return realOption("settle-unshot", 1e-5, 1e-12, 1.0,
+                    "with nothing moving, each further step goes a decade below --unshot, down to this");
+}
 
 void registerCpuIncremental(SolverRegistry& registry) {
   registerRedistribution(registry, "incremental", ChangedFactors::All,

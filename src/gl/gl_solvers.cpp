@@ -13,6 +13,7 @@ namespace luxel {
 
 std::vector<SolverOption> progressiveStopOptions();  // solve/progressive_solver.cpp
 std::vector<SolverOption> gatherStopOptions();       // solve/gather_solver.cpp
+SolverOption settleOption();                          // dynamic/redistribution_solver.cpp
 
 namespace {
 
@@ -44,10 +45,12 @@ SolverEntry glProgressiveEntry(const char* method, bool followChanges, const cha
                         "k x k hemicubes for an emitting patch's first shot (0: as other shooters)"),
           choiceOption("hemicube-visibility", "item", {"item", "distance"},
                        "a shooter sees a point by face id (seed 001) or by depth (seed 003)")});
+  if (followChanges) e.description.options.push_back(settleOption());
   addAll(e.description.options, analyticLightOptions());
   e.make = [followChanges](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
     gl::GlProgressiveSettings s;
     s.followChanges = followChanges;
+    if (followChanges) s.settleThreshold = v.real("settle-unshot");
     s.resolution = hemicubeResolution(v);
     s.samplesPerSide = v.integer("hemicubes-per-side");
     s.emitterSamplesPerSide = v.integer("emitter-hemicubes-per-side");

@@ -416,8 +416,17 @@ class GlProgressiveSolver final : public Solver {
     std::vector<Polygon> facePolygons;
     std::vector<uint32_t> faceItems;
     LayeredHemicubes::faceItems(set, facePolygons, faceItems);
-    // Room for a regular pass or an emitters' pass, whichever needs more hemicubes.
-    const int capacity = std::max(batch_ * samples_, emittersApart_ ? emitterBatch_ * emitterSamples_ : 0);
+    // Room for a regular pass or an emitters' pass, whichever needs more hemicubes; following
+    // changes, for a redistribution pass of as many patches as the layers allow (up to
+    // kMaxShootersPerPass): every patch shoots in a redistribution, in no particular order, so
+    // the largest batch costs least.
+    int capacity = std::max(batch_ * samples_, emittersApart_ ? emitterBatch_ * emitterSamples_ : 0);
+    if (o.followChanges) {
+      GLint maxLayers = 0;
+      glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+      redistributionBatch_ = std::clamp(int(maxLayers) / (5 * samples_), 1, kMaxShootersPerPass);
+      capacity = std::max(capacity, redistributionBatch_ * samples_);
+    }
     hemicubes_ = std::make_unique<LayeredHemicubes>(facePolygons, faceItems,
                                                     LayeredHemicubes::Content::ItemsAndDistances, o.resolution,
                                                     capacity, o.nearPlane * extent, 2.0f * extent);
@@ -480,6 +489,13 @@ class GlProgressiveSolver final : public Solver {
 
   bool step(const StepLimit& limit, const ProgressCallback& progress) override {
     const Stopwatch watch;
+    // Following changes, a step with nothing changed since the solve stopped goes a decade
+    // further (see settleThreshold).
+    if (o_.followChanges && done_ && threshold_ > o_.settleThreshold && unshotFraction_ > o_.settleThreshold &&
+        !(o_.shotBudget && shots_ >= o_.shotBudget) && !(o_.timeBudget > 0.0 && seconds_ >= o_.timeBudget)) {
+      setThreshold(std::max(o_.settleThreshold, threshold_ * 0.1));
+      done_ = false;
+    }
     if (emittersApart_ && !emittersShot_) {
       for (size_t shot = 0; shot < emitters_; shot += size_t(emitterBatch_)) shoot(emitterBatch_, emitterSide_, true);
       emitterShots_ = readState().shots;
@@ -503,7 +519,7 @@ class GlProgressiveSolver final : public Solver {
         break;
       }
       const double shown =
-          std::clamp(std::log(std::max(unshotFraction_, 1e-30)) / std::log(o_.unshotThreshold), 0.0, 1.0);
+          std::clamp(std::log(std::max(unshotFraction_, 1e-30)) / std::log(threshold_), 0.0, 1.0);
       if (throttle_.due(shown))
         reportProgress(progress, "solve", shown, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
     }
@@ -647,7 +663,8 @@ class GlProgressiveSolver final : public Solver {
     const struct {
       size_t first, count;
       int side, batch;
-    } groupsOf[2] = {{0, emitters.size(), emitterSide_, emitterBatch_}, {emitters.size(), others.size(), o_.samplesPerSide, batch_}};
+    } groupsOf[2] = {{0, emitters.size(), emitterSide_, redistributionBatch_},
+                     {emitters.size(), others.size(), o_.samplesPerSide, redistributionBatch_}};
     for (const auto& g : groupsOf) {
       for (size_t done = 0; done < g.count; done += size_t(g.batch)) {
         const int count = int(std::min(size_t(g.batch), g.count - done)), samples = g.side * g.side;
@@ -709,14 +726,20 @@ class GlProgressiveSolver final : public Solver {
     analyticUsed_ = sys_.analytic;
     patchEmissionUsed_ = sys_.patchMeans(sys_.emission);
     sourcePower_ = sys_.sourcePower();
-    select_->use();
-    glUniform1f(stopPowerUniform_, float(o_.unshotThreshold * sourcePower_));
+    setThreshold(o_.unshotThreshold);
     done_ = false;
     glFinish();  // the redistribution's GPU work belongs to its time
     Context::check("GPU redistribution");
     ++redistributions_;
     secondsRedistributing_ += watch.seconds();
     seconds_ += watch.seconds();
+  }
+
+  // The unshot fraction the GPU stops shooting at.
+  void setThreshold(double threshold) {
+    threshold_ = threshold;
+    select_->use();
+    glUniform1f(stopPowerUniform_, float(threshold_ * sourcePower_));
   }
 
   // Power, then selection of `shooters` patches with k x k hemicubes each (0 shooters: only the
@@ -759,6 +782,8 @@ class GlProgressiveSolver final : public Solver {
   GLint stopPowerUniform_ = -1, reconstructRedistributing_ = -1;
   std::unique_ptr<ShaderProgram> amounts_, redistribute_, rebase_;  // followChanges only
   float offset_ = 0.0f;
+  int redistributionBatch_ = 0;
+  double threshold_ = o_.unshotThreshold;
   size_t listCapacity_ = 0;
   std::vector<Rgb> analyticUsed_, patchEmissionUsed_;
   uint64_t redistributions_ = 0;

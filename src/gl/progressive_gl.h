@@ -46,6 +46,9 @@ struct GlProgressiveSettings {
   // 001, section 4.4: every patch shoots what it has shot again, negated from where everything
   // was and from where everything is), instead of asking to be replaced.
   bool followChanges = false;
+  // Following changes: with nothing moving, each further step goes a decade below the unshot
+  // threshold, down to this (the CPU's dynamic solvers do the same).
+  double settleThreshold = 1e-5;
   // Stopping rules and display, as the CPU's progressive solver.
   double unshotThreshold = 1e-3;
   double timeBudget = 0.0;

@@ -112,13 +112,13 @@ void ProgressiveSolver::addDirect(uint32_t p, const std::vector<float>& f) {
 void ProgressiveSolver::shootOnePass(const ProgressCallback& progress, double secondsSpent) {
   const size_t np = sys_.patchCount();
   // unshotFraction_ and ranked_ are current: set by the constructor or the previous pass.
-  if (unshotFraction_ <= s_.unshotThreshold || (s_.shotBudget && shots_ >= s_.shotBudget) ||
+  if (unshotFraction_ <= threshold_ || (s_.shotBudget && shots_ >= s_.shotBudget) ||
       (s_.timeBudget > 0.0 && secondsSpent >= s_.timeBudget)) {
     done_ = true;
     return;
   }
   // Progress is logarithmic in the unshot fraction: each decade takes about as long.
-  const double fraction = std::clamp(std::log(unshotFraction_) / std::log(s_.unshotThreshold), 0.0, 1.0);
+  const double fraction = std::clamp(std::log(unshotFraction_) / std::log(threshold_), 0.0, 1.0);
   if (throttle_.due(fraction))
     reportProgress(progress, "solve", fraction, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
 

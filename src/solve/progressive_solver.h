@@ -90,6 +90,7 @@ class ProgressiveSolver : public Solver {
   double seconds_ = 0.0, formFactorSeconds_ = 0.0;
   uint64_t shots_ = 0;
   bool done_ = false;
+  double threshold_ = s_.unshotThreshold;  // the unshot fraction it stops at (dynamic solvers lower it when idle)
 };
 
 
