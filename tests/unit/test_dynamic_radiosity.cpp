@@ -35,6 +35,18 @@ SessionOptions solverOptions(const std::string& method, double unshot = 1e-7) {
 
 uint32_t theBox(const Scene& scene) { return scene.dynamicObjects().at(0); }
 
+// A seed scene cut by an element budget instead of its prescribed grids, for tests that must run
+// many frames in seconds.
+Scene withoutElementGrids(Scene scene) {
+  for (Mesh& m : scene.meshes) m.elementGrids.clear();
+  return scene;
+}
+DiscretiseOptions budgetOf(size_t elements) {
+  DiscretiseOptions d;
+  d.elementBudget = elements;
+  return d;
+}
+
 glm::mat4 boxPose(const Scene& scene, float degrees, Vec3 shift = Vec3(0.0f)) {
   const glm::mat4 rest = scene.objects[theBox(scene)].transform;
   return glm::translate(glm::mat4(1.0f), shift) * rest * glm::rotate(glm::mat4(1.0f), glm::radians(degrees), Vec3(0, 1, 0));
@@ -155,10 +167,8 @@ TEST(DynamicRadiosity, ABoxMovedIntoTheLightShadowsTheFloorAndGivesItBack) {
 // the error against from scratch stays bounded and does not grow with the frames. On a coarse cut
 // of cornell-low (its element grids dropped for a budget of 500) so that the test takes seconds.
 TEST(DynamicRadiosity, AThousandSmallRandomMovesDoNotDrift) {
-  Scene scene = builtin::cornellLow();
-  for (Mesh& m : scene.meshes) m.elementGrids.clear();
-  DiscretiseOptions coarse;
-  coarse.elementBudget = 500;
+  const Scene scene = withoutElementGrids(builtin::cornellLow());
+  const DiscretiseOptions coarse = budgetOf(500);
   const uint32_t box = theBox(scene);
   const glm::mat4 rest = scene.objects[box].transform;
   Session s(scene, coarse, solverOptions("cross-redistribution", 1e-3));
@@ -194,10 +204,8 @@ TEST(DynamicRadiosity, AThousandSmallRandomMovesDoNotDrift) {
 // settle-unshot): the "within 1% of converged within 4 frames" on the indirect-light
 // room, whose albedo of 0.9 leaves a frame stopped at 1e-3 unshot about 2% from converged.
 TEST(DynamicRadiosity, AStillSceneKeepsConvergingFrameByFrame) {
-  Scene scene = builtin::indirectLight();
-  for (Mesh& m : scene.meshes) m.elementGrids.clear();
-  DiscretiseOptions coarse;
-  coarse.elementBudget = 800;
+  const Scene scene = withoutElementGrids(builtin::indirectLight());
+  const DiscretiseOptions coarse = budgetOf(800);
   const uint32_t box = theBox(scene);
   const glm::mat4 pose = boxPose(scene, 5.0f);
   Scene there = scene;
