@@ -207,7 +207,9 @@ int runAnimate(const AnimateArgs& a) {
   if (a.error) atRest = scene;
   nowDoing(fmt::format("solving scene '{}' ({})", sceneName, solveSize(a.solve)),
            solveSizeHint(a.solve, false));
-  Session session(std::move(scene), discretiseOptions(a.solve), {solveOptions(a.solve)});
+  SolveOptions solve = solveOptions(a.solve);
+  solve.followsChanges = true;  // auto: a solver that corrects its solution frame to frame
+  Session session(std::move(scene), discretiseOptions(a.solve), {solve});
   std::optional<TemporaryFolder> frames;
   if (video) frames.emplace();
 

@@ -32,6 +32,10 @@ struct SolveOptions {
   // A registered method (luxel solvers lists them), or "auto": progressive up to 5,000 patches,
   // the face-cluster hierarchy above (solve/method_choice.h, docs/algorithms.md).
   std::string method = "auto";
+  // The session will move objects and edit lights (an animation, a viewer): "auto" then picks the
+  // dynamic solver where it would pick progressive (cross-redistribution on the CPU, incremental
+  // on GL), which corrects its solution after each change instead of solving again.
+  bool followsChanges = false;
   // "cpu" (Embree + TBB), "gl" (OpenGL 4.5 through EGL, headless), or "auto": gl when a context
   // can be made and the method runs there, the CPU otherwise (with a warning in
   // SolveStats::warnings).

@@ -19,7 +19,7 @@ namespace luxel {
 namespace {
 
 SolveOptions withMethodChosen(SolveOptions options, const SurfaceSet& surfaces) {
-  options.method = chooseMethod(options.method, options.backend, surfaces.patches.size());
+  options.method = chooseMethod(options.method, options.backend, surfaces.patches.size(), options.followsChanges);
   return options;
 }
 

@@ -2,10 +2,11 @@
 
 namespace luxel {
 
-std::string chooseMethod(const std::string& method, const std::string& backend, size_t patches) {
+std::string chooseMethod(const std::string& method, const std::string& backend, size_t patches, bool followsChanges) {
   if (method != "auto") return method;
-  if (backend == "gl") return "progressive";
-  return patches > kHierarchicalPatches ? "hierarchical" : "progressive";
+  if (backend == "gl") return followsChanges ? "incremental" : "progressive";
+  if (patches > kHierarchicalPatches) return "hierarchical";
+  return followsChanges ? "cross-redistribution" : "progressive";
 }
 
 }  // namespace luxel

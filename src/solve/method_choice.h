@@ -13,10 +13,13 @@ namespace luxel {
 inline constexpr size_t kHierarchicalPatches = 5000;
 
 // The methods `auto` chooses between.
-inline constexpr const char* kAutoMethods[] = {"progressive", "hierarchical"};
+inline constexpr const char* kAutoMethods[] = {"progressive", "hierarchical", "cross-redistribution", "incremental"};
 
 // `method` itself unless it is "auto"; then progressive on the GL backend (the hierarchy runs on
-// the CPU only) or at most kHierarchicalPatches patches, hierarchical above.
-std::string chooseMethod(const std::string& method, const std::string& backend, size_t patches);
+// the CPU only) or at most kHierarchicalPatches patches, hierarchical above. For a session that
+// will follow moves and edits (`followsChanges`: an animation, a viewer), the dynamic solver in
+// progressive's place: cross-redistribution on the CPU, incremental on GL.
+std::string chooseMethod(const std::string& method, const std::string& backend, size_t patches,
+                         bool followsChanges = false);
 
 }  // namespace luxel
