@@ -16,6 +16,8 @@ packages=(
   clang libclang-rt-14-dev
   # Mesa: its EGL driver and llvmpipe give a headless OpenGL 4.5 context with no GPU (tests/gl)
   libegl-mesa0 libgl1-mesa-dri
+  # `luxel view`: GLFW windows and input, Dear ImGui panels; Xvfb (xvfb-run, xauth) runs its window tests
+  libglfw3-dev libimgui-dev xvfb xauth
   # `luxel animate -o movie.mp4` runs ffmpeg to encode the frames (its test skips without it)
   ffmpeg
 )

@@ -77,6 +77,10 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   bench->add_option("--threads", ba.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   bench->add_flag("-q,--quiet", ba.quiet, "Print nothing but errors");
 
+  CLI::App* view = line->viewCommand =
+      app.add_subcommand("view", "Walk through a scene while it solves; move lights and objects and watch the light follow");
+  addViewerOptions(*view, line->view);
+
   CLI::App* solvers = line->solversCommand = app.add_subcommand("solvers", "List the registered solvers, each with its options and defaults");
   solvers->add_flag("--json", line->solversJson, "Print the list as JSON");
 
@@ -88,6 +92,7 @@ void parseCommandLine(CommandLine& line, int argc, const char* const* argv) {
   if (*line.renderCommand) checkRenderArgs(line.render);
   if (*line.animateCommand) checkAnimateArgs(line.animate);
   if (*line.bakeCommand) checkBakeArgs(line.bake);
+  if (*line.viewCommand) checkViewerArgs(line.view);
   if (*line.benchCommand) {
     CLI::App& b = *line.benchCommand;
     line.bench.runsGiven = b.count("--runs") > 0;
@@ -102,6 +107,7 @@ int runCommand(const CommandLine& line) {
   if (*line.solversCommand) return listSolvers(line.solversJson);
   if (*line.benchCommand) return runBench(line.bench);
   if (*line.bakeCommand) return runBake(line.bake);
+  if (*line.viewCommand) return runViewer(line.view);
   return 0;
 }
 

@@ -10,6 +10,7 @@
 #include "bake_command.h"
 #include "bench_command.h"
 #include "render_command.h"
+#include "view_command.h"
 
 namespace luxel::cli {
 
@@ -19,12 +20,14 @@ struct CommandLine {
   AnimateArgs animate;
   BakeArgs bake;
   BenchArgs bench;
+  ViewerArgs view;
   bool solversJson = false;
   CLI::App* renderCommand = nullptr;
   CLI::App* animateCommand = nullptr;
   CLI::App* bakeCommand = nullptr;
   CLI::App* benchCommand = nullptr;
   CLI::App* solversCommand = nullptr;
+  CLI::App* viewCommand = nullptr;
 };
 
 // The app with every subcommand and option, bound to the returned object's arguments (which is

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -67,6 +68,12 @@ class Session {
   // Edits a material's reflectance and emission (textures and sides stay): every element made of
   // it follows, and the solve continues as for setLights. Throws Error on an invalid material.
   void setMaterial(uint32_t material, const Rgb& reflectance, const Rgb& emission);
+
+  // Irradiance per element from the scene lights `lights` (indices into Scene::lights), with
+  // shadows: exactly the part of Solution::directIrradiance those lights bring, sample for sample.
+  // A viewer that draws some lights per pixel takes this out of the field it interpolates. Throws
+  // Error naming a light that does not exist.
+  std::vector<Rgb> lightIrradiance(std::span<const uint32_t> lights);
 
   // The camera a render of this session's scene uses: the one called `name` (Error listing the
   // scene's cameras when there is none), else the one called "default", else the first, else one

@@ -101,6 +101,12 @@ void Session::setMaterial(uint32_t material, const Rgb& reflectance, const Rgb& 
 
 Camera Session::camera(const std::string& name, float fovY) const { return chooseCamera(state_->scene, name, fovY); }
 
+std::vector<Rgb> Session::lightIrradiance(std::span<const uint32_t> lights) {
+  std::vector<Rgb> out(state_->surfaces.elements.size(), Rgb(0.0f));
+  state_->host->transport().lightIrradiance(lights, out);
+  return out;
+}
+
 Camera chooseCamera(const Scene& scene, const std::string& name, float fovY) {
   if (!name.empty()) {
     if (const Camera* c = scene.findCamera(name)) return *c;

@@ -464,8 +464,17 @@ void CpuTransport::pairs(std::span<const ElementPatch> pairs, std::span<float> o
 }
 
 void CpuTransport::analyticIrradiance(std::span<Rgb> out) {
+  std::vector<uint32_t> all(scene_.lights.size());
+  for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  lightIrradiance(all, out);
+}
+
+void CpuTransport::lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) {
   std::fill(out.begin(), out.end(), Rgb(0.0f));
-  if (scene_.lights.empty()) return;
+  for (uint32_t li : lights)
+    if (li >= scene_.lights.size())
+      throw Error(fmt::format("light {} does not exist: the scene has {} lights", li, scene_.lights.size()));
+  if (lights.empty()) return;
   const Vec3 up = glm::normalize(scene_.up);
   const int k = squareCount(options_.lightSamples);
   const int m = k * k;
@@ -477,8 +486,10 @@ void CpuTransport::analyticIrradiance(std::span<Rgb> out) {
       const Sides sides = Sides::Front;
       rays.clear();
       values.clear();
-      for (size_t li = 0; li < scene_.lights.size(); ++li) {
-        Rng rng(hashCombine(hashCombine(options_.seed ^ 0xA5A5A5A5u, uint32_t(ei)), uint32_t(li)));
+      for (const uint32_t li : lights) {
+        // Seeded by the light's index in the scene, so that a light's samples do not depend on
+        // which other lights are asked for.
+        Rng rng(hashCombine(hashCombine(options_.seed ^ 0xA5A5A5A5u, uint32_t(ei)), li));
         int permutation[256];
         shuffledStrata(rng, m, permutation);
         for (int i = 0; i < m; ++i) {

@@ -27,6 +27,7 @@ class CpuTransport final : public Transport {
   void rows(std::span<const uint32_t> elements, std::span<float> out) override;
   void pairs(std::span<const ElementPatch> pairs, std::span<float> out) override;
   void analyticIrradiance(std::span<Rgb> out) override;
+  void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) override;
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
   void elementsChanged() override;
   // Moves the objects' ray tracer instances (a commit, no rebuild) and forgets what depended on

@@ -30,6 +30,9 @@ class MonteCarloTransport final : public Transport {
   void columns(std::span<const uint32_t> patches, std::span<float> out) override;
   void pairs(std::span<const ElementPatch> pairs, std::span<float> out) override;
   void analyticIrradiance(std::span<Rgb> out) override { lights_.analyticIrradiance(out); }
+  void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) override {
+    lights_.lightIrradiance(lights, out);
+  }
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
   void elementsChanged() override { matrix_.clear(); }
   // A reference for static scenes: its ray tracer holds the patches, not the scene's objects.

@@ -39,6 +39,10 @@ class Transport {
   // Irradiance at each element from the scene's analytic lights (point, spot, sun, skies),
   // with shadows, averaged over the element.
   virtual void analyticIrradiance(std::span<Rgb> out) = 0;
+  // The part of analyticIrradiance that the lights `lights` (indices into Scene::lights) bring:
+  // the same samples, so the parts of every light add up to the whole (a viewer that shows some
+  // lights per pixel takes their part out of the interpolated field).
+  virtual void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) = 0;
 
   // The ray tracer over the scene's faces, for solvers that trace their own rays (the
   // hierarchical solver); null where the backend has none.

@@ -163,9 +163,12 @@ class SceneFileLoader {
 
   Scene load(const Json& doc) {
     in_.object(doc, "");
-    in_.keys(doc, "", {"name", "builtin", "up", "meshes", "objects", "materials", "lights", "cameras"});
+    in_.keys(doc, "", {"name", "builtin", "base", "up", "meshes", "objects", "materials", "lights", "replaceLights", "cameras"});
 
+    if (doc.contains("builtin") && doc.contains("base"))
+      in_.fail("/base", "give 'builtin' or 'base', not both (a base may itself be a built-in name)");
     if (auto it = doc.find("builtin"); it != doc.end()) loadBuiltin(*it, "/builtin");
+    if (auto it = doc.find("base"); it != doc.end()) loadBase(*it, "/base");
     scene_.name = name_;
     if (auto it = doc.find("name"); it != doc.end()) scene_.name = in_.string(*it, "/name");
 
@@ -199,6 +202,11 @@ class SceneFileLoader {
                                     "one from the mesh files)",
                                     a.material));
       for (size_t m = a.firstMesh; m < a.endMesh; ++m) scene_.meshes[m].material = uint32_t(index);
+    }
+    if (auto it = doc.find("replaceLights"); it != doc.end() && in_.boolean(*it, "/replaceLights")) {
+      // The lights of the built-in scene, the base and the mesh files go; /lights replaces them.
+      scene_.lights.clear();
+      scene_.animation.lights.clear();
     }
     if (auto it = doc.find("lights"); it != doc.end()) {
       const Json& lights = in_.array(*it, "/lights");
@@ -244,6 +252,41 @@ class SceneFileLoader {
     } catch (const Error& e) {
       in_.fail(ptr, e.what());
     }
+  }
+
+  // /base: any scene luxel loads (a built-in name, a scene file, a mesh file), which this file
+  // then edits: what the viewer's `save` writes. Bases may chain, up to kMaxBaseDepth deep.
+  static constexpr int kMaxBaseDepth = 8;
+  static int& baseDepth() {
+    thread_local int depth = 0;
+    return depth;
+  }
+  void loadBase(const Json& j, const std::string& ptr) {
+    const std::string spec = in_.string(j, ptr);
+    if (spec.empty()) in_.fail(ptr, "the base scene is empty (a built-in name, a scene file or a mesh file)");
+    if (baseDepth() >= kMaxBaseDepth)
+      in_.fail(ptr, fmt::format("bases nest more than {} deep (does a scene name itself as its base?)", kMaxBaseDepth));
+    ++baseDepth();
+    try {
+      scene_ = loadScene(isBuiltinScene(spec) ? spec : resolve(spec).string());
+      --baseDepth();
+    } catch (const Error& e) {
+      --baseDepth();
+      in_.fail(ptr, e.what());
+    }
+  }
+
+  // /objects/NAME/transform: the object's transform (object to world) as 4 rows of 4 numbers, a
+  // move of the dynamic object from where it was loaded (a rotation, translation and uniform scale).
+  glm::mat4 readMatrix(const Json& j, const std::string& ptr) const {
+    in_.expectType(j, ptr, j.is_array() && j.size() == 4, "4 rows of 4 numbers");
+    glm::mat4 m(1.0f);
+    for (size_t r = 0; r < 4; ++r) {
+      const std::string row = Reader::child(ptr, r);
+      in_.expectType(j[r], row, j[r].is_array() && j[r].size() == 4, "a row of 4 numbers");
+      for (size_t c = 0; c < 4; ++c) m[int(c)][int(r)] = in_.number(j[r][c], Reader::child(row, c));
+    }
+    return m;
   }
 
   fs::path resolve(const std::string& relative) const {
@@ -422,7 +465,7 @@ class SceneFileLoader {
   // scene or the mesh files): "dynamic", and "animation" (null removes one).
   void applyObject(const std::string& name, const Json& spec, const std::string& ptr) {
     in_.object(spec, ptr);
-    in_.keys(spec, ptr, {"dynamic", "animation"});
+    in_.keys(spec, ptr, {"dynamic", "animation", "transform"});
     std::vector<uint32_t> targets;
     for (uint32_t o = 0; o < scene_.objects.size(); ++o)
       if (scene_.objects[o].name == name) targets.push_back(o);
@@ -449,6 +492,18 @@ class SceneFileLoader {
         animations.push_back(ObjectAnimation{
             .object = o, .rest = object.transform,
             .motion = readMotion(*it, p, MotionOf::Object, Vec3(object.transform[3]))});
+      }
+      if (auto it = spec.find("transform"); it != spec.end()) {
+        const std::string p = Reader::child(ptr, "transform");
+        if (!object.dynamic)
+          in_.fail(p, fmt::format("object '{}' is not dynamic, and only a dynamic object moves from where it was loaded "
+                                  "(add \"dynamic\": true)",
+                                  name));
+        try {
+          scene_.placeObject(o, readMatrix(*it, p));
+        } catch (const Error& e) {
+          in_.fail(p, e.what());
+        }
       }
       const bool animated = std::any_of(animations.begin(), animations.end(), [o](const ObjectAnimation& a) { return a.object == o; });
       if (animated && !object.dynamic)

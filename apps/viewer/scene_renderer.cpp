@@ -1,0 +1,408 @@
+#include "scene_renderer.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/gl_context.h"
+#include "gl/shader_program.h"
+#include "luxel/error.h"
+#include "view_shaders.h"
+
+namespace luxel::viewer {
+namespace {
+
+constexpr const char* kModeNames[kViewModeCount] = {"final", "indirect", "direct", "radiosity", "patches", "elements", "density"};
+constexpr uint32_t kHasTwin = 1u, kTriangle = 2u;
+constexpr int kSunSize = 2048;
+
+struct Vertex {
+  Vec3 position;
+  Vec3 normal;
+  Vec2 uv;
+  Vec2 corner;
+  uint32_t element;
+  uint32_t flags;
+};
+
+struct CornerValues {
+  glm::vec4 field, direct, perPixel;
+};
+
+// The four (u, v) corners of Embree's quad parameterisation, and the triangle's barycentrics.
+constexpr Vec2 kQuadCorners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+constexpr Vec2 kTriangleCorners[4] = {{0, 0}, {1, 0}, {0, 1}, {0, 1}};
+
+}  // namespace
+
+ViewMode parseViewMode(const std::string& name) {
+  for (int i = 0; i < kViewModeCount; ++i)
+    if (name == kModeNames[i]) return ViewMode(i);
+  throw Error(fmt::format("unknown view '{}' (expected final, indirect, direct, radiosity, patches, elements or density)", name));
+}
+
+const char* viewModeName(ViewMode mode) { return kModeNames[int(mode)]; }
+
+bool drawnPerPixel(const Light& l) {
+  return l.type == Light::Type::Point || l.type == Light::Type::Spot || l.type == Light::Type::Directional;
+}
+
+struct SceneRenderer::Gl {
+  std::unique_ptr<gl::ShaderProgram> scene, cubeShadow, sunShadow, line;
+  GLuint vao = 0, vbo = 0, ibo = 0, corners = 0, patchOf = 0;
+  GLuint lineVao = 0, elementEdges = 0, patchEdges = 0;
+  GLsizei elementEdgeCount = 0, patchEdgeCount = 0, indexCount = 0;
+  struct Batch {
+    uint32_t material;
+    GLsizei first, count;
+  };
+  std::vector<Batch> batches;
+  std::vector<Material> materials;
+  std::vector<GLuint> textures;  // per Scene::textures
+  size_t elementCount = 0;
+  Vec3 centre{0.0f};
+  float radius = 1.0f;
+  // Shadows and lights.
+  GLuint cubeShadows = 0, sunShadows = 0, shadowFbo = 0;
+  int cubeLayers = 0, sunLayers = 0;
+  int lightCount = 0;
+  glm::vec4 lightPosition[kMaxPerPixelLights]{}, lightPower[kMaxPerPixelLights]{}, lightSpot[kMaxPerPixelLights]{};
+  float cosInner[kMaxPerPixelLights]{}, shadowFar[kMaxPerPixelLights]{}, shadowTexel[kMaxPerPixelLights]{};
+  glm::mat4 sunMatrix[kMaxPerPixelLights]{};
+
+  ~Gl() {
+    GLuint buffers[] = {vbo, ibo, corners, patchOf, elementEdges, patchEdges};
+    glDeleteBuffers(6, buffers);
+    GLuint arrays[] = {vao, lineVao};
+    glDeleteVertexArrays(2, arrays);
+    if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
+    GLuint shadowTextures[] = {cubeShadows, sunShadows};
+    glDeleteTextures(2, shadowTextures);
+    glDeleteFramebuffers(1, &shadowFbo);
+  }
+};
+
+SceneRenderer::SceneRenderer(const Scene& scene, const SurfaceSet& surfaces, std::filesystem::path shaderDir)
+    : gl_(std::make_unique<Gl>()), shaderDir_(std::move(shaderDir)) {
+  buildPrograms();
+  glCreateVertexArrays(1, &gl_->vao);
+  glCreateVertexArrays(1, &gl_->lineVao);
+  // Textures once: moves and new cuts keep the scene's images.
+  for (const Texture& t : scene.textures) {
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    const int levels = 1 + int(std::floor(std::log2(double(std::max(t.width, t.height)))));
+    glTextureStorage2D(tex, levels, GL_RGB32F, t.width, t.height);
+    glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGB, GL_FLOAT, t.texels.data());
+    glGenerateTextureMipmap(tex);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    gl_->textures.push_back(tex);
+  }
+  glCreateFramebuffers(1, &gl_->shadowFbo);
+  setGeometry(scene, surfaces);
+  gl::Context::check("viewer: scene buffers");
+}
+
+SceneRenderer::~SceneRenderer() = default;
+
+void SceneRenderer::buildPrograms() {
+  auto src = [&](const char* name) { return shaderSource(name, shaderDir_); };
+  auto scene = std::make_unique<gl::ShaderProgram>("viewer scene", src("scene.vert"), src("scene.frag"));
+  auto cube = std::make_unique<gl::ShaderProgram>("viewer cube shadow", src("shadow.vert"), src("cube-shadow.frag"));
+  auto sun = std::make_unique<gl::ShaderProgram>("viewer sun shadow", src("shadow.vert"), src("sun-shadow.frag"));
+  auto line = std::make_unique<gl::ShaderProgram>("viewer edges", src("line.vert"), src("line.frag"));
+  gl_->scene = std::move(scene);
+  gl_->cubeShadow = std::move(cube);
+  gl_->sunShadow = std::move(sun);
+  gl_->line = std::move(line);
+}
+
+void SceneRenderer::reloadShaders() { buildPrograms(); }
+
+void SceneRenderer::setGeometry(const Scene& scene, const SurfaceSet& surfaces) {
+  Gl& g = *gl_;
+  g.materials = scene.materials;
+  g.elementCount = surfaces.elements.size();
+  // Elements sorted by material, so that each material is one draw.
+  std::vector<uint32_t> order(surfaces.elements.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return surfaces.elements[a].material < surfaces.elements[b].material;
+  });
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices, patchOf(surfaces.elements.size());
+  vertices.reserve(order.size() * 4);
+  indices.reserve(order.size() * 6);
+  g.batches.clear();
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (uint32_t e : order) {
+    const Element& el = surfaces.elements[e];
+    const SurfaceFace& face = surfaces.faces[el.face];
+    patchOf[e] = el.patch;
+    if (g.batches.empty() || g.batches.back().material != el.material)
+      g.batches.push_back({el.material, GLsizei(indices.size()), 0});
+    const bool triangle = el.polygon.count == 3;
+    const uint32_t flags = (face.twin >= 0 ? kHasTwin : 0u) | (triangle ? kTriangle : 0u);
+    const uint32_t base = uint32_t(vertices.size());
+    for (int k = 0; k < 4; ++k) {
+      const int c = std::min(k, el.polygon.count - 1);
+      vertices.push_back({el.polygon.v[size_t(c)], el.normal, face.uv(el.param[size_t(c)]),
+                          triangle ? kTriangleCorners[k] : kQuadCorners[k], e, flags});
+      lo = glm::min(lo, el.polygon.v[size_t(c)]);
+      hi = glm::max(hi, el.polygon.v[size_t(c)]);
+    }
+    if (triangle) {
+      indices.insert(indices.end(), {base, base + 1, base + 2});
+    } else {
+      indices.insert(indices.end(), {base, base + 1, base + 3, base + 2, base + 3, base + 1});
+    }
+    g.batches.back().count = GLsizei(indices.size()) - g.batches.back().first;
+  }
+  g.centre = vertices.empty() ? Vec3(0.0f) : 0.5f * (lo + hi);
+  g.radius = vertices.empty() ? 1.0f : std::max(0.5f * glm::length(hi - lo), 1e-6f);
+  g.indexCount = GLsizei(indices.size());
+
+  auto upload = [](GLuint& buffer, const void* data, size_t bytes) {
+    glDeleteBuffers(1, &buffer);
+    glCreateBuffers(1, &buffer);
+    glNamedBufferStorage(buffer, GLsizeiptr(std::max<size_t>(bytes, 16)), bytes ? data : nullptr, GL_DYNAMIC_STORAGE_BIT);
+  };
+  upload(g.vbo, vertices.data(), vertices.size() * sizeof(Vertex));
+  upload(g.ibo, indices.data(), indices.size() * sizeof(uint32_t));
+  upload(g.patchOf, patchOf.data(), patchOf.size() * sizeof(uint32_t));
+  std::vector<CornerValues> zero(surfaces.elements.size() * 4, CornerValues{});
+  upload(g.corners, zero.data(), zero.size() * sizeof(CornerValues));
+
+  GLuint vao = g.vao;
+  glVertexArrayVertexBuffer(vao, 0, g.vbo, 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vao, g.ibo);
+  auto attribute = [&](GLuint index, GLint size, GLenum type, size_t offset, bool integer) {
+    glEnableVertexArrayAttrib(vao, index);
+    if (integer)
+      glVertexArrayAttribIFormat(vao, index, size, type, GLuint(offset));
+    else
+      glVertexArrayAttribFormat(vao, index, size, type, GL_FALSE, GLuint(offset));
+    glVertexArrayAttribBinding(vao, index, 0);
+  };
+  attribute(0, 3, GL_FLOAT, offsetof(Vertex, position), false);
+  attribute(1, 3, GL_FLOAT, offsetof(Vertex, normal), false);
+  attribute(2, 2, GL_FLOAT, offsetof(Vertex, uv), false);
+  attribute(3, 2, GL_FLOAT, offsetof(Vertex, corner), false);
+  attribute(4, 1, GL_UNSIGNED_INT, offsetof(Vertex, element), true);
+  attribute(5, 1, GL_UNSIGNED_INT, offsetof(Vertex, flags), true);
+
+  // Edges for the wireframe views: elements' and patches' outlines.
+  std::vector<Vec3> lines;
+  for (const Element& el : surfaces.elements)
+    for (int k = 0; k < el.polygon.count; ++k) {
+      lines.push_back(el.polygon.v[size_t(k)]);
+      lines.push_back(el.polygon.v[size_t((k + 1) % el.polygon.count)]);
+    }
+  upload(g.elementEdges, lines.data(), lines.size() * sizeof(Vec3));
+  g.elementEdgeCount = GLsizei(lines.size());
+  lines.clear();
+  for (const Patch& p : surfaces.patches)
+    for (int k = 0; k < p.polygon.count; ++k) {
+      lines.push_back(p.polygon.v[size_t(k)]);
+      lines.push_back(p.polygon.v[size_t((k + 1) % p.polygon.count)]);
+    }
+  upload(g.patchEdges, lines.data(), lines.size() * sizeof(Vec3));
+  g.patchEdgeCount = GLsizei(lines.size());
+  glEnableVertexArrayAttrib(g.lineVao, 0);
+  glVertexArrayAttribFormat(g.lineVao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(g.lineVao, 0, 0);
+  gl::Context::check("viewer: geometry");
+}
+
+void SceneRenderer::setFields(const std::vector<Rgb>& field, const std::vector<Rgb>& direct,
+                              const std::vector<Rgb>& perPixel) {
+  const size_t n = gl_->elementCount * 4;
+  if (field.size() != n || direct.size() != n || perPixel.size() != n)
+    throw Error(fmt::format("viewer: {} / {} / {} corner values for {} elements", field.size(), direct.size(),
+                            perPixel.size(), gl_->elementCount));
+  std::vector<CornerValues> corners(n);
+  for (size_t i = 0; i < n; ++i)
+    corners[i] = {glm::vec4(field[i], 0.0f), glm::vec4(direct[i], 0.0f), glm::vec4(perPixel[i], 0.0f)};
+  glNamedBufferSubData(gl_->corners, 0, GLsizeiptr(n * sizeof(CornerValues)), corners.data());
+}
+
+void SceneRenderer::setLights(const Scene& scene, const std::vector<uint32_t>& perPixel) {
+  Gl& g = *gl_;
+  if (perPixel.size() > size_t(kMaxPerPixelLights))
+    throw Error(fmt::format("viewer: {} per-pixel lights, at most {}", perPixel.size(), kMaxPerPixelLights));
+  g.lightCount = int(perPixel.size());
+  int cubes = 0, suns = 0;
+  for (int i = 0; i < g.lightCount; ++i) {
+    const Light& l = scene.lights.at(perPixel[size_t(i)]);
+    const bool sun = l.type == Light::Type::Directional;
+    const float type = sun ? 2.0f : l.type == Light::Type::Spot ? 1.0f : 0.0f;
+    g.lightPosition[i] = glm::vec4(sun ? glm::normalize(l.direction) : l.position, type);
+    g.lightPower[i] = glm::vec4(l.power(), float(sun ? suns++ : cubes++));
+    g.lightSpot[i] = glm::vec4(glm::normalize(l.direction), std::cos(l.outerConeAngle));
+    g.cosInner[i] = std::cos(l.innerConeAngle);
+  }
+  // Storage sized to the lights (a cube map array layer is a face; 6 per light).
+  auto ensure = [&](GLuint& tex, GLenum target, int& layers, int want, int size, int depth) {
+    if (want == 0 || layers == want) return;
+    glDeleteTextures(1, &tex);
+    glCreateTextures(target, 1, &tex);
+    glTextureStorage3D(tex, 1, GL_DEPTH_COMPONENT32F, size, size, depth);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // 2x2 percentage-closer filtering
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(tex, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    const float white[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // beyond the sun's map: lit
+    glTextureParameterfv(tex, GL_TEXTURE_BORDER_COLOR, white);
+    layers = want;
+  };
+  ensure(g.cubeShadows, GL_TEXTURE_CUBE_MAP_ARRAY, g.cubeLayers, cubes, shadowSize_, 6 * cubes);
+  ensure(g.sunShadows, GL_TEXTURE_2D_ARRAY, g.sunLayers, suns, kSunSize, suns);
+  drawShadows(scene);
+  gl::Context::check("viewer: shadow maps");
+  (void)perPixel;
+}
+
+void SceneRenderer::drawShadows(const Scene&) {
+  Gl& g = *gl_;
+  const auto start = std::chrono::steady_clock::now();
+  glBindFramebuffer(GL_FRAMEBUFFER, g.shadowFbo);
+  glDrawBuffer(GL_NONE);
+  glReadBuffer(GL_NONE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);  // every face casts, whichever way it faces the light
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glBindVertexArray(g.vao);
+  // The cube faces in OpenGL's order (+x, -x, +y, -y, +z, -z) with their conventional ups.
+  const Vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const Vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+  for (int i = 0; i < g.lightCount; ++i) {
+    const int slot = int(g.lightPower[i].w);
+    if (g.lightPosition[i].w == 2.0f) {
+      // The sun: an orthographic map over the scene's bounding sphere.
+      const Vec3 d = Vec3(g.lightPosition[i]);
+      const Vec3 up = std::abs(d.y) < 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+      const glm::mat4 view = glm::lookAt(g.centre - d * (2.0f * g.radius), g.centre, up);
+      const glm::mat4 proj = glm::ortho(-g.radius, g.radius, -g.radius, g.radius, g.radius * 0.5f, g.radius * 3.5f);
+      const glm::mat4 vp = proj * view;
+      // Clip space to [0,1]^3 for the lookup.
+      const glm::mat4 bias = glm::translate(glm::mat4(1.0f), Vec3(0.5f)) * glm::scale(glm::mat4(1.0f), Vec3(0.5f));
+      g.sunMatrix[i] = bias * vp;
+      g.shadowTexel[i] = 2.0f * g.radius / float(kSunSize);
+      glNamedFramebufferTextureLayer(g.shadowFbo, GL_DEPTH_ATTACHMENT, g.sunShadows, 0, slot);
+      glViewport(0, 0, kSunSize, kSunSize);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      g.sunShadow->use();
+      glUniformMatrix4fv(glGetUniformLocation(g.sunShadow->id(), "uViewProjection"), 1, GL_FALSE, glm::value_ptr(vp));
+      glDrawElements(GL_TRIANGLES, g.indexCount, GL_UNSIGNED_INT, nullptr);
+      continue;
+    }
+    const Vec3 p = Vec3(g.lightPosition[i]);
+    const float far = glm::length(p - g.centre) + g.radius;
+    const float near = far * 1e-4f;
+    g.shadowFar[i] = far;
+    g.shadowTexel[i] = 1.0f / float(shadowSize_);  // tan of half a texel's angle, near the centre
+    const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, near, far);
+    g.cubeShadow->use();
+    glUniform3fv(glGetUniformLocation(g.cubeShadow->id(), "uLight"), 1, glm::value_ptr(p));
+    glUniform1f(glGetUniformLocation(g.cubeShadow->id(), "uFar"), far);
+    glViewport(0, 0, shadowSize_, shadowSize_);
+    for (int f = 0; f < 6; ++f) {
+      glNamedFramebufferTextureLayer(g.shadowFbo, GL_DEPTH_ATTACHMENT, g.cubeShadows, 0, slot * 6 + f);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      const glm::mat4 vp = proj * glm::lookAt(p, p + dirs[f], ups[f]);
+      glUniformMatrix4fv(glGetUniformLocation(g.cubeShadow->id(), "uViewProjection"), 1, GL_FALSE, glm::value_ptr(vp));
+      glDrawElements(GL_TRIANGLES, g.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+  }
+  glFinish();
+  lastShadowMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void SceneRenderer::draw(const Frame& f) {
+  Gl& g = *gl_;
+  const GLuint prog = g.scene->id();
+  const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const GLuint clearId[4] = {0, 0, 0, 0};
+  glClearBufferfv(GL_COLOR, 0, clearRadiance);
+  glClearBufferuiv(GL_COLOR, 1, clearId);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);  // backs are drawn black or left to their twins (scene.frag)
+  glDisable(GL_BLEND);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  g.scene->use();
+  auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
+  glUniformMatrix4fv(loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
+  glUniform1i(loc("uView"), int(f.mode));
+  glUniform3fv(loc("uEye"), 1, glm::value_ptr(f.eye));
+  glUniform1f(loc("uTexelSize"), f.texelSize);
+  glUniform1i(loc("uLightCount"), g.lightCount);
+  if (g.lightCount > 0) {
+    glUniform4fv(loc("uLightPosition"), g.lightCount, glm::value_ptr(g.lightPosition[0]));
+    glUniform4fv(loc("uLightPower"), g.lightCount, glm::value_ptr(g.lightPower[0]));
+    glUniform4fv(loc("uLightSpot"), g.lightCount, glm::value_ptr(g.lightSpot[0]));
+    glUniform1fv(loc("uLightCosInner"), g.lightCount, g.cosInner);
+    glUniform1fv(loc("uShadowFar"), g.lightCount, g.shadowFar);
+    glUniform1fv(loc("uShadowTexel"), g.lightCount, g.shadowTexel);
+    glUniformMatrix4fv(loc("uSunMatrix"), g.lightCount, GL_FALSE, glm::value_ptr(g.sunMatrix[0]));
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.corners);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.patchOf);
+  // Unused samplers still need a texture of their type bound (a sampler with none reads zero,
+  // and some drivers complain); the shadow arrays exist once a light needed them.
+  if (g.cubeShadows) glBindTextureUnit(2, g.cubeShadows);
+  if (g.sunShadows) glBindTextureUnit(3, g.sunShadows);
+  glBindVertexArray(g.vao);
+  for (const Gl::Batch& b : g.batches) {
+    const Material& m = g.materials[b.material];
+    glUniform3fv(loc("uReflectance"), 1, glm::value_ptr(m.reflectance));
+    glUniform3fv(loc("uEmission"), 1, glm::value_ptr(m.emission));
+    const bool rt = m.reflectanceTexture >= 0 && size_t(m.reflectanceTexture) < g.textures.size();
+    const bool et = m.isEmissive() && m.emissionTexture >= 0 && size_t(m.emissionTexture) < g.textures.size();
+    glUniform1i(loc("uReflectanceTexture"), rt);
+    glUniform1i(loc("uEmissionTexture"), et);
+    if (rt) glBindTextureUnit(0, g.textures[size_t(m.reflectanceTexture)]);
+    if (et) glBindTextureUnit(1, g.textures[size_t(m.emissionTexture)]);
+    glDrawElements(GL_TRIANGLES, b.count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(size_t(b.first) * sizeof(uint32_t)));
+  }
+  if (f.elementEdges || f.patchEdges) {
+    g.line->use();
+    const GLuint lp = g.line->id();
+    glUniformMatrix4fv(glGetUniformLocation(lp, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
+    glDepthFunc(GL_LEQUAL);
+    glEnable(GL_POLYGON_OFFSET_LINE);
+    glBindVertexArray(g.lineVao);
+    glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // edges are not pickable
+    auto edges = [&](GLuint buffer, GLsizei count, glm::vec4 colour) {
+      glVertexArrayVertexBuffer(g.lineVao, 0, buffer, 0, sizeof(Vec3));
+      glUniform4fv(glGetUniformLocation(lp, "uColour"), 1, glm::value_ptr(colour));
+      glDrawArrays(GL_LINES, 0, count);
+    };
+    // Edge colours are radiance: bright enough to read at any exposure is not possible, so they
+    // are drawn relative to the picture by the tone pass's clamp: 1e9 is white under any curve.
+    if (f.elementEdges) edges(g.elementEdges, g.elementEdgeCount, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    if (f.patchEdges) edges(g.patchEdges, g.patchEdgeCount, glm::vec4(1e9f, 1e9f, 0.0f, 1.0f));
+    glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_POLYGON_OFFSET_LINE);
+  }
+  glBindVertexArray(0);
+}
+
+}  // namespace luxel::viewer

@@ -1,0 +1,74 @@
+// Draws a discretised scene and its radiosity solution with OpenGL 4.5: element fields
+// interpolated per pixel as the ray-cast renderer does, plus direct light per pixel from point, spot
+// and sun lights with shadow maps (the dynamic direct light of seed 004 over the radiosity's
+// indirect light), and the debug views. Needs a current OpenGL 4.5 core context.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/scene.h"
+#include "luxel/surface.h"
+
+namespace luxel::viewer {
+
+enum class ViewMode { Final, Indirect, Direct, Radiosity, Patches, Elements, Density };
+ViewMode parseViewMode(const std::string& name);  // throws luxel::Error listing the modes
+const char* viewModeName(ViewMode mode);
+inline constexpr int kViewModeCount = 7;
+
+inline constexpr int kMaxPerPixelLights = 8;
+
+// Whether the viewer draws `light` per pixel (point, spot and sun lights); skies stay in the field.
+bool drawnPerPixel(const Light& light);
+
+class SceneRenderer {
+ public:
+  // `shaderDir`: a folder whose files replace built-in shaders (view_shaders.h), or empty.
+  SceneRenderer(const Scene& scene, const SurfaceSet& surfaces, std::filesystem::path shaderDir = {});
+  ~SceneRenderer();
+  SceneRenderer(const SceneRenderer&) = delete;
+  SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+  // The elements' places, normals and materials again (after a move or a new cut), and the
+  // scene's textures when `textures` (after a new scene).
+  void setGeometry(const Scene& scene, const SurfaceSet& surfaces);
+  // Per element corner (4 per element, elementCornerValues' layout): the field drawn by
+  // interpolation (all irradiance but the per-pixel lights'), its direct part, and the per-pixel
+  // lights' part.
+  void setFields(const std::vector<Rgb>& field, const std::vector<Rgb>& direct, const std::vector<Rgb>& perPixel);
+  // Which lights are drawn per pixel (indices into scene.lights, at most kMaxPerPixelLights) and
+  // their shadow maps, drawn again now.
+  void setLights(const Scene& scene, const std::vector<uint32_t>& perPixel);
+  // Compiles the shaders again (from the shader folder when there is one). Throws luxel::Error
+  // with the compiler's log and keeps the old programs when one does not compile.
+  void reloadShaders();
+
+  struct Frame {
+    ViewMode mode = ViewMode::Final;
+    glm::mat4 viewProjection{1.0f};
+    Vec3 eye{0.0f};
+    float texelSize = 0.1f;  // the density view's checker
+    bool elementEdges = false, patchEdges = false;
+  };
+  // Draws into the bound framebuffer (an HdrTarget's: radiance and element ids), which it clears.
+  void draw(const Frame& frame);
+
+  double lastShadowMs() const { return lastShadowMs_; }
+  int shadowMapSize() const { return shadowSize_; }
+
+ private:
+  struct Gl;
+  void buildPrograms();
+  void drawShadows(const Scene& scene);
+  std::unique_ptr<Gl> gl_;
+  std::filesystem::path shaderDir_;
+  int shadowSize_ = 1024;
+  double lastShadowMs_ = 0.0;
+};
+
+}  // namespace luxel::viewer

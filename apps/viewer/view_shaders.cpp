@@ -1,0 +1,278 @@
+// The viewer's GLSL, kept in one place so that `--shaders DIR` can replace any of it from files and
+// `shaders.reload` can compile it again while the viewer runs (003's run-time shader reloading).
+#include "view_shaders.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "luxel/error.h"
+
+namespace luxel::viewer {
+namespace {
+
+// The scene pass. Radiance is what `luxel render` computes per pixel:
+//   L = Le + rho / pi * (H_field + sum of the per-pixel lights' irradiance times visibility),
+// with H_field interpolated over the element from its four corner values exactly as the ray
+// caster does (bilinear in the quad's (u, v), which Embree and this split into triangles
+// (0,1,3) and (2,3,1) give alike; barycentric on triangles).
+const char* kSceneVertex = R"(#version 450 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec2 aUv;
+layout(location = 3) in vec2 aCorner;
+layout(location = 4) in uint aElement;
+layout(location = 5) in uint aFlags;
+uniform mat4 uViewProjection;
+out vec3 vPosition;
+out vec2 vUv;
+out vec2 vCorner;
+flat out vec3 vNormal;
+flat out uint vElement;
+flat out uint vFlags;
+void main() {
+  vPosition = aPosition;
+  vUv = aUv;
+  vCorner = aCorner;
+  vNormal = aNormal;
+  vElement = aElement;
+  vFlags = aFlags;
+  gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}
+)";
+
+const char* kSceneFragment = R"(#version 450 core
+const float kInvPi = 0.31830988618;
+const uint kHasTwin = 1u, kTriangle = 2u;
+const int kMaxLights = 8;
+// Views (ViewMode).
+const int kFinal = 0, kIndirect = 1, kDirect = 2, kRadiosity = 3, kPatches = 4, kElements = 5, kDensity = 6;
+
+in vec3 vPosition;
+in vec2 vUv;
+in vec2 vCorner;
+flat in vec3 vNormal;
+flat in uint vElement;
+flat in uint vFlags;
+
+// Per element corner (4 per element): the interpolated field (everything but the per-pixel
+// lights), its direct part, and the per-pixel lights' own part (for the radiosity view).
+struct Corner { vec4 field; vec4 direct; vec4 perPixel; };
+layout(std430, binding = 0) readonly buffer Corners { Corner corners[]; };
+layout(std430, binding = 1) readonly buffer Patches { uint patchOf[]; };
+
+uniform vec3 uReflectance;
+uniform vec3 uEmission;
+uniform bool uReflectanceTexture;
+uniform bool uEmissionTexture;
+layout(binding = 0) uniform sampler2D uReflectanceMap;
+layout(binding = 1) uniform sampler2D uEmissionMap;
+layout(binding = 2) uniform samplerCubeArrayShadow uCubeShadows;
+layout(binding = 3) uniform sampler2DArrayShadow uSunShadows;
+
+uniform int uView;
+uniform vec3 uEye;
+uniform float uTexelSize;  // the density view's checker cell, scene units
+
+uniform int uLightCount;
+uniform vec4 uLightPosition[kMaxLights];   // xyz: position (point, spot) or the way light travels (sun); w: type 0 point, 1 spot, 2 sun
+uniform vec4 uLightPower[kMaxLights];      // rgb: colour times intensity; w: shadow slot, -1 none
+uniform vec4 uLightSpot[kMaxLights];       // xyz: spot axis (unit); z..: w = cos outer
+uniform float uLightCosInner[kMaxLights];
+uniform float uShadowFar[kMaxLights];      // cube maps: the distance depth 1 stands for
+uniform float uShadowTexel[kMaxLights];    // tan of half a texel's angle (cube) or a texel's size (sun)
+uniform mat4 uSunMatrix[kMaxLights];       // world to the sun map's [0,1]^3
+
+layout(location = 0) out vec4 outRadiance;  // a = 1 where a surface is seen (auto exposure's coverage)
+layout(location = 1) out uint outElement;   // element + 1, 0 for the background (picking)
+
+vec3 cornerValue(int which) {
+  uint base = vElement * 4u;
+  vec3 c0, c1, c2, c3;
+  if (which == 0) { c0 = corners[base].field.rgb; c1 = corners[base + 1u].field.rgb; c2 = corners[base + 2u].field.rgb; c3 = corners[base + 3u].field.rgb; }
+  else if (which == 1) { c0 = corners[base].direct.rgb; c1 = corners[base + 1u].direct.rgb; c2 = corners[base + 2u].direct.rgb; c3 = corners[base + 3u].direct.rgb; }
+  else { c0 = corners[base].perPixel.rgb; c1 = corners[base + 1u].perPixel.rgb; c2 = corners[base + 2u].perPixel.rgb; c3 = corners[base + 3u].perPixel.rgb; }
+  float u = vCorner.x, v = vCorner.y;
+  if ((vFlags & kTriangle) != 0u) return (1.0 - u - v) * c0 + u * c1 + v * c2;
+  return (1.0 - u) * (1.0 - v) * c0 + u * (1.0 - v) * c1 + u * v * c2 + (1.0 - u) * v * c3;
+}
+
+vec3 hashColour(uint x) {
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return vec3(float(x & 255u), float((x >> 8) & 255u), float((x >> 16) & 255u)) / 255.0 * 0.8 + 0.2;
+}
+
+// Irradiance from light i at this point, shadowed by its map: the same formulas as the solver's
+// sampleLight (transport/light_sampling.cpp), front side only.
+vec3 lightIrradiance(int i, vec3 p, vec3 n) {
+  int type = int(uLightPosition[i].w);
+  vec3 power = uLightPower[i].rgb;
+  int slot = int(uLightPower[i].w);
+  if (type == 2) {
+    vec3 w = -uLightPosition[i].xyz;
+    float c = max(dot(n, w), 0.0);
+    if (c <= 0.0) return vec3(0.0);
+    float visible = 1.0;
+    if (slot >= 0) {
+      // Offset along the normal by a few texels: no acne on lit faces, little peter-panning.
+      vec3 q = p + n * (2.0 * uShadowTexel[i]);
+      vec4 s = uSunMatrix[i] * vec4(q, 1.0);
+      visible = texture(uSunShadows, vec4(s.xy, float(slot), s.z));
+    }
+    return power * c * visible;
+  }
+  vec3 d = uLightPosition[i].xyz - p;
+  float r2 = dot(d, d);
+  if (r2 <= 0.0) return vec3(0.0);
+  float r = sqrt(r2);
+  vec3 w = d / r;
+  float c = max(dot(n, w), 0.0);
+  if (c <= 0.0) return vec3(0.0);
+  float falloff = 1.0;
+  if (type == 1) {
+    float cosOuter = uLightSpot[i].w, cosInner = uLightCosInner[i];
+    float t = clamp((dot(-w, uLightSpot[i].xyz) - cosOuter) / max(cosInner - cosOuter, 1e-6), 0.0, 1.0);
+    falloff = t * t;
+    if (falloff <= 0.0) return vec3(0.0);
+  }
+  float visible = 1.0;
+  if (slot >= 0) {
+    vec3 q = p + n * (2.0 * uShadowTexel[i] * r);  // a texel grows with the distance from the light
+    vec3 from = q - uLightPosition[i].xyz;
+    visible = texture(uCubeShadows, vec4(from, float(slot)), length(from) / uShadowFar[i]);
+  }
+  return power * (falloff * c / r2) * visible;
+}
+
+void main() {
+  outElement = vElement + 1u;
+  if (!gl_FrontFacing) {
+    // The back of a two-sided face is its twin's front, drawn in the same place: let it win.
+    if ((vFlags & kHasTwin) != 0u) discard;
+    outRadiance = vec4(0.0, 0.0, 0.0, 1.0);  // one-sided surfaces send nothing backwards
+    return;
+  }
+  vec3 rho = uReflectance;
+  if (uReflectanceTexture) rho *= texture(uReflectanceMap, vUv).rgb;
+  vec3 le = uEmission;
+  if (uEmissionTexture) le *= texture(uEmissionMap, vUv).rgb;
+  vec3 n = normalize(vNormal);
+
+  if (uView == kPatches || uView == kElements) {
+    vec3 c = hashColour(uView == kPatches ? patchOf[vElement] : vElement);
+    outRadiance = vec4(c * (0.35 + 0.65 * abs(dot(n, normalize(uEye - vPosition)))), 1.0);
+    return;
+  }
+  if (uView == kDensity) {
+    // A checker of lightmap texels at the bake's density, laid on the plane the face mostly faces.
+    vec3 a = abs(n);
+    vec2 q = a.x > a.y && a.x > a.z ? vPosition.yz : (a.y > a.z ? vPosition.xz : vPosition.xy);
+    ivec2 cell = ivec2(floor(q / uTexelSize));
+    float shade = ((cell.x + cell.y) & 1) == 0 ? 0.75 : 0.25;
+    outRadiance = vec4(mix(vec3(shade), hashColour(patchOf[vElement]) * shade, 0.3), 1.0);
+    return;
+  }
+
+  vec3 perPixel = vec3(0.0);
+  if (uView == kFinal || uView == kDirect)
+    for (int i = 0; i < uLightCount; ++i) perPixel += lightIrradiance(i, vPosition, n);
+  vec3 h;
+  if (uView == kFinal) h = cornerValue(0) + perPixel;
+  else if (uView == kIndirect) h = max(cornerValue(0) - cornerValue(1), vec3(0.0));
+  else if (uView == kDirect) h = cornerValue(1) + perPixel;
+  else h = cornerValue(0) + cornerValue(2);  // kRadiosity: every light from the elements
+  vec3 radiance = rho * kInvPi * h;
+  if (uView != kIndirect) radiance += le;
+  outRadiance = vec4(radiance, 1.0);
+}
+)";
+
+// Depth of a point light's cube map: distance from the light over the far distance, so that one
+// comparison serves every face.
+const char* kShadowVertex = R"(#version 450 core
+layout(location = 0) in vec3 aPosition;
+uniform mat4 uViewProjection;
+out vec3 vPosition;
+void main() { vPosition = aPosition; gl_Position = uViewProjection * vec4(aPosition, 1.0); }
+)";
+const char* kCubeShadowFragment = R"(#version 450 core
+in vec3 vPosition;
+uniform vec3 uLight;
+uniform float uFar;
+void main() { gl_FragDepth = length(vPosition - uLight) / uFar; }
+)";
+const char* kSunShadowFragment = R"(#version 450 core
+void main() {}
+)";
+
+// Edges of elements or patches over the picture.
+const char* kLineVertex = R"(#version 450 core
+layout(location = 0) in vec3 aPosition;
+uniform mat4 uViewProjection;
+void main() { gl_Position = uViewProjection * vec4(aPosition, 1.0); }
+)";
+const char* kLineFragment = R"(#version 450 core
+uniform vec4 uColour;
+layout(location = 0) out vec4 outRadiance;
+void main() { outRadiance = uColour; }
+)";
+
+// The picture on screen: exposure, tone curve and the sRGB transfer, as src/io/tonemap.cpp does
+// for PNG files (the ACES fit of Narkowicz 2016, Reinhard's L/(1+L) on luminance, or a clamp).
+const char* kToneVertex = R"(#version 450 core
+out vec2 vTexel;
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  vTexel = p;
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+const char* kToneFragment = R"(#version 450 core
+in vec2 vTexel;
+layout(binding = 0) uniform sampler2D uRadiance;
+uniform float uScale;
+uniform int uCurve;  // 0 filmic, 1 reinhard, 2 clamp
+out vec4 outColour;
+float aces(float x) { return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); }
+float srgb(float v) { v = clamp(v, 0.0, 1.0); return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055; }
+void main() {
+  vec3 c = texture(uRadiance, vTexel).rgb;
+  c = clamp(c * uScale, vec3(0.0), vec3(1e18));
+  if (uCurve == 0) c = vec3(aces(c.r), aces(c.g), aces(c.b));
+  else if (uCurve == 1) c = min(c / (1.0 + dot(c, vec3(0.2126, 0.7152, 0.0722))), vec3(1.0));
+  else c = min(c, vec3(1.0));
+  outColour = vec4(srgb(c.r), srgb(c.g), srgb(c.b), 1.0);
+}
+)";
+
+}  // namespace
+
+const std::vector<ShaderSource>& builtinShaders() {
+  static const std::vector<ShaderSource> shaders = {
+      {"scene.vert", kSceneVertex},          {"scene.frag", kSceneFragment},
+      {"shadow.vert", kShadowVertex},        {"cube-shadow.frag", kCubeShadowFragment},
+      {"sun-shadow.frag", kSunShadowFragment}, {"line.vert", kLineVertex},
+      {"line.frag", kLineFragment},          {"tone.vert", kToneVertex},
+      {"tone.frag", kToneFragment},
+  };
+  return shaders;
+}
+
+std::string shaderSource(const std::string& name, const std::filesystem::path& overrides) {
+  if (!overrides.empty()) {
+    const std::filesystem::path file = overrides / name;
+    if (std::filesystem::exists(file)) {
+      std::ifstream in(file, std::ios::binary);
+      if (!in) throw Error(fmt::format("cannot read the shader '{}'", file.string()));
+      std::ostringstream text;
+      text << in.rdbuf();
+      return text.str();
+    }
+  }
+  for (const ShaderSource& s : builtinShaders())
+    if (name == s.name) return s.text;
+  throw Error(fmt::format("the viewer has no shader called '{}'", name));
+}
+
+}  // namespace luxel::viewer

@@ -1,0 +1,481 @@
+#include "viewer.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <imgui.h>
+
+#include "luxel/error.h"
+#include "luxel/lightmap.h"
+#include "luxel/render.h"
+#include "scene_json_writer.h"
+#include "view_shaders.h"
+
+namespace luxel::viewer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// Shift makes walking this much faster.
+constexpr float kRunFactor = 4.0f;
+// Mouse look: radians per pixel of motion.
+constexpr float kLookPerPixel = 0.004f;
+
+std::vector<Rgb> minus(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
+  std::vector<Rgb> out(a.size());
+  for (size_t i = 0; i < a.size(); ++i) out[i] = glm::max(a[i] - (i < b.size() ? b[i] : Rgb(0.0f)), Rgb(0.0f));
+  return out;
+}
+
+}  // namespace
+
+Viewer::Viewer(Scene scene, ViewerOptions options)
+    : original_(scene),
+      loaded_(std::move(scene)),
+      options_(std::move(options)),
+      camera_(options_.camera, loaded_.up, 1.0f) {
+  if (options_.texelsPerMetre <= 0.0f) options_.texelsPerMetre = defaultTexelsPerMetre(loaded_);
+  target_ = std::make_unique<HdrTarget>(options_.width, options_.height);
+  tone_ = std::make_unique<ToneMapPass>(shaderSource("tone.vert", options_.shaderDir),
+                                        shaderSource("tone.frag", options_.shaderDir));
+  startSession();
+  camera_ = ViewCamera(options_.camera, loaded_.up, session_->surfaces().sceneExtent);
+  pivot_ = sceneCentre();
+}
+
+Viewer::~Viewer() = default;
+
+void Viewer::startSession() {
+  SessionOptions so;
+  so.solve = options_.solve;
+  so.solve.followsChanges = true;  // edits continue from the last solution where the solver can
+  so.borrowCurrentGlContext = options_.shareContext;
+  // The new session gets the scene as it stands now (edited lights and poses included).
+  Scene scene = session_ ? session_->scene() : loaded_;
+  for (size_t i = 0; i < scene.objects.size() && i < loaded_.objects.size(); ++i)
+    scene.objects[i].dynamic = loaded_.objects[i].dynamic;
+  session_.reset();  // one GL solver at a time in the shared context
+  session_ = std::make_unique<Session>(std::move(scene), options_.discretise, so);
+  if (!renderer_)
+    renderer_ = std::make_unique<SceneRenderer>(session_->scene(), session_->surfaces(), options_.shaderDir);
+  else
+    renderer_->setGeometry(session_->scene(), session_->surfaces());
+  afterSourcesChanged();
+  zeroFields();
+  solutionShown_ = false;
+}
+
+void Viewer::afterSourcesChanged() {
+  const Scene& scene = session_->scene();
+  perPixel_.clear();
+  for (uint32_t i = 0; i < scene.lights.size() && perPixel_.size() < size_t(kMaxPerPixelLights); ++i)
+    if (drawnPerPixel(scene.lights[i])) perPixel_.push_back(i);
+  perPixelIrradiance_ = session_->lightIrradiance(perPixel_);
+  renderer_->setLights(scene, perPixel_);
+  fieldsStale_ = true;
+}
+
+void Viewer::afterGeometryChanged() {
+  renderer_->setGeometry(session_->scene(), session_->surfaces());
+  perPixelIrradiance_ = session_->lightIrradiance(perPixel_);
+  renderer_->setLights(session_->scene(), perPixel_);
+  fieldsStale_ = true;
+}
+
+void Viewer::zeroFields() {
+  const std::vector<Rgb> zero(session_->surfaces().elements.size() * 4, Rgb(0.0f));
+  renderer_->setFields(zero, zero, zero);
+}
+
+void Viewer::refreshFields() {
+  const auto start = Clock::now();
+  const SurfaceSet& surfaces = session_->surfaces();
+  Solution sol = session_->solution();
+  if (perPixelIrradiance_.size() != surfaces.elements.size())
+    perPixelIrradiance_ = session_->lightIrradiance(perPixel_);
+  const std::vector<Rgb> field = elementCornerValues(surfaces, minus(sol.irradiance, perPixelIrradiance_));
+  const std::vector<Rgb> direct = elementCornerValues(surfaces, minus(sol.directIrradiance, perPixelIrradiance_));
+  const std::vector<Rgb> perPixel = elementCornerValues(surfaces, perPixelIrradiance_);
+  renderer_->setFields(field, direct, perPixel);
+  lastRefresh_ = Clock::now();
+  lastRefreshSeconds_ = std::chrono::duration<double>(lastRefresh_ - start).count();
+  fieldsStale_ = false;
+  solutionShown_ = true;
+}
+
+void Viewer::markEdit(const std::string& what) { pendingEdits_.push_back({what, Clock::now(), false}); }
+
+Vec3 Viewer::sceneCentre() const {
+  const SurfaceSet& s = session_->surfaces();
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const SurfaceFace& f : s.faces)
+    for (int k = 0; k < (f.triangle ? 3 : 4); ++k) lo = glm::min(lo, f.corners[size_t(k)]), hi = glm::max(hi, f.corners[size_t(k)]);
+  return s.faces.empty() ? Vec3(0.0f) : 0.5f * (lo + hi);
+}
+
+std::string Viewer::renderer() const { return reinterpret_cast<const char*>(glGetString(GL_RENDERER)); }
+
+std::string Viewer::status() const {
+  const SolveStats st = session_->stats();
+  return fmt::format("{} on {} | {} elements | {}{} | {:.2e} unshot", st.method, session_->backend(),
+                     session_->surfaces().elements.size(), session_->done() ? "converged" : options_.paused ? "paused" : "solving",
+                     solutionShown_ ? "" : " (unlit)", st.unshotFraction);
+}
+
+std::vector<std::string> Viewer::takeMessages() { return std::exchange(messages_, {}); }
+
+void Viewer::setKey(const std::string& key, bool down) {
+  if (down)
+    keys_.insert(key);
+  else
+    keys_.erase(key);
+}
+
+void Viewer::mouseLook(float dx, float dy) { camera_.look(-dx * kLookPerPixel, -dy * kLookPerPixel); }
+void Viewer::mouseOrbit(float dx, float dy) { camera_.orbit(pivot_, -dx * kLookPerPixel, -dy * kLookPerPixel); }
+void Viewer::scroll(float steps) { camera_.dolly(pivot_, std::clamp(0.1f * steps, -0.5f, 0.5f)); }
+
+std::string Viewer::pick(int x, int y) {
+  const int64_t e = target_->elementAt(x, y);
+  selected_ = -1;
+  if (e < 0 || size_t(e) >= session_->surfaces().elements.size()) return {};
+  const SurfaceSet& s = session_->surfaces();
+  const Element& el = s.elements[size_t(e)];
+  const uint32_t mesh = s.faces[el.face].mesh;
+  pivot_ = el.centroid;
+  const uint32_t object = session_->scene().meshes[mesh].object;
+  if (object == kNoObject) {
+    messages_.push_back(fmt::format("picked mesh '{}': geometry in world space, not an object that can move",
+                                    session_->scene().meshes[mesh].name));
+    return session_->scene().meshes[mesh].name;
+  }
+  selected_ = int64_t(object);
+  return session_->scene().objects[object].name;
+}
+
+uint32_t Viewer::objectByName(const Action& a, const std::string& name) const {
+  const Scene& scene = session_->scene();
+  const int found = scene.findObject(name);
+  if (found >= 0) return uint32_t(found);
+  char* end = nullptr;
+  const long index = std::strtol(name.c_str(), &end, 10);
+  if (*end == '\0' && index >= 0 && size_t(index) < scene.objects.size()) return uint32_t(index);
+  std::string names;
+  for (const Object& o : scene.objects) names += (names.empty() ? "" : ", ") + o.name;
+  throw Error(fmt::format("{}{}'{}': the scene has no object '{}' (it has: {})", a.where, a.where.empty() ? "" : ": ",
+                          a.name, name, names.empty() ? "none" : names));
+}
+
+void Viewer::moveObject(uint32_t object, const glm::mat4& delta, bool aboutCentre) {
+  const Scene& scene = session_->scene();
+  glm::mat4 d = delta;
+  if (aboutCentre) {
+    Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const Mesh& m : scene.meshes)
+      if (m.object == object)
+        for (const Vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const Vec3 c = 0.5f * (lo + hi);
+    d = glm::translate(glm::mat4(1.0f), c) * delta * glm::translate(glm::mat4(1.0f), -c);
+  }
+  const glm::mat4 to = d * scene.objects[object].transform;
+  if (!scene.objects[object].dynamic) {
+    // A static object lives in the ray tracer's one BVH: make it an instance, which means a new
+    // session (a solve from the start); its later moves are followed.
+    scene.checkPlacement(object, to);  // (throws only for a bad transform; static objects pass the similarity check)
+    loaded_.objects[object].dynamic = true;
+    Scene edited = session_->scene();
+    edited.objects[object].dynamic = true;
+    SessionOptions so;
+    so.solve = options_.solve;
+    so.solve.followsChanges = true;
+    so.borrowCurrentGlContext = options_.shareContext;
+    session_.reset();
+    session_ = std::make_unique<Session>(std::move(edited), options_.discretise, so);
+    messages_.push_back(fmt::format("object '{}' made dynamic: the solve starts again, and follows its moves from now on",
+                                    scene.objects[object].name));
+    session_->placeObject(object, to);
+    afterGeometryChanged();
+    zeroFields();
+    solutionShown_ = false;
+    return;
+  }
+  session_->placeObject(object, to);
+  afterGeometryChanged();
+}
+
+void Viewer::setLights(std::vector<Light> lights) {
+  session_->setLights(std::move(lights));
+  afterSourcesChanged();
+}
+
+void Viewer::screenshot(const std::filesystem::path& path) { pendingScreenshots_.push_back(path); }
+
+void Viewer::perform(const Action& a) {
+  checkAction(a);
+  const std::string& n = a.name;
+  const Scene& scene = session_->scene();
+  auto lightIndex = [&](size_t arg) {
+    const int64_t i = argInt(a, arg);
+    if (i < 0 || size_t(i) >= scene.lights.size())
+      throw Error(fmt::format("{}{}'{}': no light {} (the scene has {})", a.where, a.where.empty() ? "" : ": ", n, i,
+                              scene.lights.size()));
+    return size_t(i);
+  };
+  if (n == "camera") {
+    Camera c = camera_.toCamera();
+    c.eye = Vec3(argFloat(a, 0), argFloat(a, 1), argFloat(a, 2));
+    c.target = Vec3(argFloat(a, 3), argFloat(a, 4), argFloat(a, 5));
+    if (a.args.size() > 6) c.fovY = argFloat(a, 6);
+    if (!(c.fovY > 0.0f && c.fovY < 180.0f) || glm::length(c.target - c.eye) <= 0.0f)
+      throw Error(fmt::format("{}: camera: the eye must differ from the target and the field of view lie in (0, 180)", a.where));
+    camera_ = ViewCamera(c, scene.up, session_->surfaces().sceneExtent);
+  } else if (n == "camera.scene") {
+    if (scene.cameras.empty()) throw Error("camera.scene: the scene has no cameras");
+    const Camera* c = nullptr;
+    if (!a.args.empty()) {
+      c = scene.findCamera(a.args[0]);
+      if (!c) throw Error(fmt::format("camera.scene: no camera '{}'", a.args[0]));
+    } else {
+      static size_t next = 0;
+      c = &scene.cameras[next++ % scene.cameras.size()];
+    }
+    camera_ = ViewCamera(*c, scene.up, session_->surfaces().sceneExtent);
+  } else if (n == "key") {
+    const std::string& how = a.args[1];
+    if (how != "down" && how != "up" && how != "tap")
+      throw Error(fmt::format("{}: key: '{}' is not down, up or tap", a.where, how));
+    setKey(a.args[0], how == "down");
+    if (how == "tap") camera_.walk(Vec3(0.0f));  // a tap alone moves nothing: walking needs time
+  } else if (n == "look") {
+    camera_.look(glm::radians(argFloat(a, 0)), glm::radians(argFloat(a, 1)));
+  } else if (n == "orbit") {
+    camera_.orbit(pivot_, glm::radians(argFloat(a, 0)), glm::radians(argFloat(a, 1)));
+  } else if (n == "click") {
+    const std::string picked = pick(int(argInt(a, 0)), int(argInt(a, 1)));
+    messages_.push_back(picked.empty() ? "picked nothing" : "picked " + picked);
+  } else if (n == "solve.pause") {
+    options_.paused = true;
+  } else if (n == "solve.resume") {
+    options_.paused = false;
+  } else if (n == "solve.toggle") {
+    options_.paused = !options_.paused;
+  } else if (n == "solve.reset") {
+    startSession();
+  } else if (n == "solve.backend") {
+    if (a.args[0] != "cpu" && a.args[0] != "gl") throw Error(fmt::format("{}: solve.backend: '{}' is not cpu or gl", a.where, a.args[0]));
+    const std::string old = options_.solve.backend;
+    options_.solve.backend = a.args[0];
+    try {
+      startSession();
+    } catch (...) {
+      options_.solve.backend = old;
+      startSession();
+      throw;
+    }
+  } else if (n == "solve.budget") {
+    const int64_t budget = argInt(a, 0);
+    if (budget < 10 || budget > 50'000'000) throw Error(fmt::format("{}: solve.budget: {} is not between 10 and 50,000,000", a.where, budget));
+    options_.discretise.elementBudget = size_t(budget);
+    options_.discretise.elementSize = 0.0f;
+    startSession();
+  } else if (n == "view") {
+    options_.mode = parseViewMode(a.args[0]);
+  } else if (n == "exposure") {
+    options_.tone.exposure = argFloat(a, 0);
+  } else if (n == "tonemap") {
+    options_.tone.curve = parseToneCurve(a.args[0]);
+  } else if (n == "edges") {
+    if (a.args[0] == "elements") elementEdges_ = !elementEdges_;
+    else if (a.args[0] == "patches") patchEdges_ = !patchEdges_;
+    else if (a.args[0] == "off") elementEdges_ = patchEdges_ = false;
+    else throw Error(fmt::format("{}: edges: '{}' is not elements, patches or off", a.where, a.args[0]));
+  } else if (n == "shaders.reload") {
+    renderer_->reloadShaders();
+    tone_ = std::make_unique<ToneMapPass>(shaderSource("tone.vert", options_.shaderDir), shaderSource("tone.frag", options_.shaderDir));
+    messages_.push_back("shaders reloaded");
+  } else if (n == "light.add-at-camera" || n == "light.add") {
+    std::vector<Light> lights = scene.lights;
+    Light l;
+    l.type = Light::Type::Point;
+    l.name = fmt::format("lamp{}", lights.size());
+    if (n == "light.add") {
+      l.position = Vec3(argFloat(a, 0), argFloat(a, 1), argFloat(a, 2));
+      l.intensity = argFloat(a, 3);
+      if (a.args.size() == 7) l.color = Rgb(argFloat(a, 4), argFloat(a, 5), argFloat(a, 6));
+    } else {
+      l.position = camera_.position();
+      // 10 W/m^2 at a quarter of the scene's size: visible beside a room's own lights.
+      const float r = 0.25f * session_->surfaces().sceneExtent;
+      l.intensity = 10.0f * r * r;
+    }
+    lights.push_back(l);
+    markEdit(n);
+    setLights(std::move(lights));
+  } else if (n == "light.move") {
+    std::vector<Light> lights = scene.lights;
+    lights[lightIndex(0)].position = Vec3(argFloat(a, 1), argFloat(a, 2), argFloat(a, 3));
+    markEdit(n);
+    setLights(std::move(lights));
+  } else if (n == "light.color") {
+    std::vector<Light> lights = scene.lights;
+    Light& l = lights[lightIndex(0)];
+    l.color = Rgb(argFloat(a, 1), argFloat(a, 2), argFloat(a, 3));
+    l.intensity = argFloat(a, 4);
+    markEdit(n);
+    setLights(std::move(lights));
+  } else if (n == "light.delete") {
+    std::vector<Light> lights = scene.lights;
+    lights.erase(lights.begin() + std::ptrdiff_t(lightIndex(0)));
+    markEdit(n);
+    setLights(std::move(lights));
+  } else if (n == "sun") {
+    std::vector<Light> lights = scene.lights;
+    const float az = glm::radians(argFloat(a, 0)), el = glm::radians(argFloat(a, 1));
+    const ViewCamera frame(Camera{}, scene.up, 1.0f);
+    // Azimuth from the scene's east towards its north, elevation above the horizon; light travels down.
+    const Vec3 up = frame.up();
+    const Vec3 east = glm::normalize(glm::cross(Vec3(0, 0, -1) - up * glm::dot(Vec3(0, 0, -1), up), up));
+    const Vec3 north = glm::cross(up, east);
+    const Vec3 towardsSun = (east * std::cos(az) + north * std::sin(az)) * std::cos(el) + up * std::sin(el);
+    auto it = std::find_if(lights.begin(), lights.end(), [](const Light& l) { return l.type == Light::Type::Directional; });
+    if (it == lights.end()) {
+      Light sun;
+      sun.type = Light::Type::Directional;
+      sun.name = "sun";
+      sun.intensity = 1000.0f;
+      sun.angularRadius = 0.00465f;
+      lights.push_back(sun);
+      it = lights.end() - 1;
+    }
+    it->direction = -towardsSun;
+    if (a.args.size() > 2) it->intensity = argFloat(a, 2);
+    markEdit(n);
+    setLights(std::move(lights));
+  } else if (n == "sky") {
+    std::vector<Light> lights = scene.lights;
+    lights.erase(std::remove_if(lights.begin(), lights.end(), [](const Light& l) { return l.type == Light::Type::Sky; }), lights.end());
+    const float radiance = argFloat(a, 0);
+    if (radiance > 0.0f) {
+      Light sky;
+      sky.type = Light::Type::Sky;
+      sky.name = "sky";
+      sky.intensity = radiance;
+      if (a.args.size() == 4) sky.color = Rgb(argFloat(a, 1), argFloat(a, 2), argFloat(a, 3));
+      lights.push_back(sky);
+    }
+    markEdit(n);
+    setLights(std::move(lights));
+  } else if (n == "object.move" || n == "selected.move") {
+    const bool sel = n == "selected.move";
+    if (sel && selected_ < 0) throw Error(fmt::format("{}: selected.move: nothing is picked (click an object first)", a.where));
+    const uint32_t o = sel ? uint32_t(selected_) : objectByName(a, a.args[0]);
+    const size_t k = sel ? 0 : 1;
+    const Vec3 t(argFloat(a, k), argFloat(a, k + 1), argFloat(a, k + 2));
+    markEdit(n);
+    moveObject(o, glm::translate(glm::mat4(1.0f), t), false);
+  } else if (n == "object.rotate" || n == "selected.rotate") {
+    const bool sel = n == "selected.rotate";
+    if (sel && selected_ < 0) throw Error(fmt::format("{}: selected.rotate: nothing is picked (click an object first)", a.where));
+    const uint32_t o = sel ? uint32_t(selected_) : objectByName(a, a.args[0]);
+    const size_t k = sel ? 0 : 1;
+    const Vec3 axis(argFloat(a, k), argFloat(a, k + 1), argFloat(a, k + 2));
+    if (!(glm::length(axis) > 0.0f)) throw Error(fmt::format("{}: {}: the axis is zero", a.where, n));
+    markEdit(n);
+    moveObject(o, glm::rotate(glm::mat4(1.0f), glm::radians(argFloat(a, k + 3)), glm::normalize(axis)), true);
+  } else if (n == "screenshot") {
+    screenshot(a.args[0]);
+  } else if (n == "save") {
+    writeSceneJson(a.args[0], session_->scene(), original_, options_.sceneSpec, camera_.toCamera());
+    messages_.push_back("saved " + a.args[0]);
+  } else if (n == "ui") {
+    if (a.args[0] != "on" && a.args[0] != "off") throw Error(fmt::format("{}: ui: '{}' is not on or off", a.where, a.args[0]));
+    options_.showUi = a.args[0] == "on";
+  } else if (n == "quit") {
+    quit_ = true;
+  }
+}
+
+void Viewer::frame(double dt, int width, int height) {
+  const auto start = Clock::now();
+  FrameSample sample;
+  if (frameIndex_ > 0) sample.frameMs = std::chrono::duration<double, std::milli>(start - frameStart_).count();
+  frameStart_ = start;
+
+  // Walking.
+  Vec3 move(0.0f);
+  if (keys_.count("w")) move.z += 1.0f;
+  if (keys_.count("s")) move.z -= 1.0f;
+  if (keys_.count("d")) move.x += 1.0f;
+  if (keys_.count("a")) move.x -= 1.0f;
+  if (keys_.count("e")) move.y += 1.0f;
+  if (keys_.count("q")) move.y -= 1.0f;
+  if (glm::length(move) > 0.0f)
+    camera_.walk(glm::normalize(move) * float(dt) * camera_.walkSpeed() * (keys_.count("shift") ? kRunFactor : 1.0f));
+
+  // Solving.
+  sample.solving = !options_.paused && !session_->done();
+  if (sample.solving) {
+    const auto solveStart = Clock::now();
+    session_->step(StepLimit{options_.stepSeconds, 0});
+    steppedSinceRefresh_ = true;
+    for (PendingEdit& e : pendingEdits_) e.stepped = true;
+    sample.solveMs = msSince(solveStart);
+  }
+  // The fields follow the solution as often as reading it costs at most a quarter of the time.
+  const double sinceRefresh = std::chrono::duration<double>(Clock::now() - lastRefresh_).count();
+  const bool editWaiting = std::any_of(pendingEdits_.begin(), pendingEdits_.end(), [](const PendingEdit& e) { return e.stepped; });
+  if ((steppedSinceRefresh_ && (session_->done() || editWaiting || sinceRefresh >= 4.0 * lastRefreshSeconds_)) ||
+      (fieldsStale_ && solutionShown_)) {
+    const auto refreshStart = Clock::now();
+    refreshFields();
+    steppedSinceRefresh_ = false;
+    sample.solveMs += msSince(refreshStart);
+  }
+
+  // Drawing.
+  const auto drawStart = Clock::now();
+  target_->resize(width, height);
+  target_->bind();
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  SceneRenderer::Frame f;
+  f.mode = options_.mode;
+  const Vec3 centre = sceneCentre();
+  f.viewProjection = camera_.projection(float(width) / float(height), centre) * camera_.view();
+  f.eye = camera_.position();
+  f.texelSize = 1.0f / options_.texelsPerMetre;
+  f.elementEdges = elementEdges_;
+  f.patchEdges = patchEdges_;
+  renderer_->draw(f);
+  if (frameIndex_ % 8 == 0 || !pendingScreenshots_.empty()) exposureScale_ = target_->meterExposure();
+  for (const std::filesystem::path& p : std::exchange(pendingScreenshots_, {})) {
+    writeImage(target_->readRadiance(), p, options_.tone);
+    messages_.push_back("wrote " + p.string());
+  }
+  sample.drawMs = msSince(drawStart);
+
+  // Edits whose indirect light this frame shows.
+  for (auto it = pendingEdits_.begin(); it != pendingEdits_.end();) {
+    if (it->stepped && !steppedSinceRefresh_) {
+      glFinish();
+      stats_.addEdit({it->action, msSince(it->start)});
+      it = pendingEdits_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  if (frameIndex_ > 0) stats_.addFrame(sample);
+  ++frameIndex_;
+}
+
+void Viewer::present(int width, int height) {
+  const float scale = float(std::exp2(double(options_.tone.exposure)) * (options_.tone.autoExposure ? exposureScale_ : 1.0));
+  tone_->draw(target_->radianceTexture(), width, height, scale, options_.tone.curve);
+}
+
+}  // namespace luxel::viewer
