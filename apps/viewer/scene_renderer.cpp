@@ -338,11 +338,15 @@ void SceneRenderer::draw(const Frame& f) {
   const GLuint prog = g.scene->id();
   const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   const GLuint clearId[4] = {0, 0, 0, 0};
+  const float farDepth = 0.0f;
+  // Reversed depth (ViewCamera::projection); put back as found at the end, for the GL solvers
+  // that share the context.
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glClearBufferfv(GL_COLOR, 0, clearRadiance);
   glClearBufferuiv(GL_COLOR, 1, clearId);
-  glClear(GL_DEPTH_BUFFER_BIT);
+  glClearBufferfv(GL_DEPTH, 0, &farDepth);
   glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
+  glDepthFunc(GL_GREATER);
   glDepthMask(GL_TRUE);
   glDisable(GL_CULL_FACE);  // backs are drawn black or left to their twins (scene.frag)
   glDisable(GL_BLEND);
@@ -386,8 +390,7 @@ void SceneRenderer::draw(const Frame& f) {
     g.line->use();
     const GLuint lp = g.line->id();
     glUniformMatrix4fv(glGetUniformLocation(lp, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
-    glDepthFunc(GL_LEQUAL);
-    glEnable(GL_POLYGON_OFFSET_LINE);
+    glDepthFunc(GL_GEQUAL);
     glBindVertexArray(g.lineVao);
     glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // edges are not pickable
     auto edges = [&](GLuint buffer, GLsizei count, glm::vec4 colour) {
@@ -400,9 +403,10 @@ void SceneRenderer::draw(const Frame& f) {
     if (f.elementEdges) edges(g.elementEdges, g.elementEdgeCount, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     if (f.patchEdges) edges(g.patchEdges, g.patchEdgeCount, glm::vec4(1e9f, 1e9f, 0.0f, 1.0f));
     glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDisable(GL_POLYGON_OFFSET_LINE);
   }
   glBindVertexArray(0);
+  glDepthFunc(GL_LESS);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
 }
 
 }  // namespace luxel::viewer

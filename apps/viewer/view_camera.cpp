@@ -80,7 +80,10 @@ float ViewCamera::farPlane(Vec3 centre) const { return glm::length(centre - posi
 float ViewCamera::nearPlane(Vec3 centre) const { return std::max(1e-4f * farPlane(centre), 1e-5f * extent_); }
 
 glm::mat4 ViewCamera::projection(float aspect, Vec3 centre) const {
-  return glm::perspective(glm::radians(fovY_), aspect, nearPlane(centre), farPlane(centre));
+  // Reversed depth (near at 1, far at 0, glClipControl's zero-to-one range) in a float depth
+  // buffer: precision stays relative at every distance. With the usual mapping, a lamp 0.1 mm
+  // below a ceiling seen from a metre away fought the ceiling for its pixels.
+  return glm::perspectiveRH_ZO(glm::radians(fovY_), aspect, farPlane(centre), nearPlane(centre));
 }
 
 }  // namespace luxel::viewer

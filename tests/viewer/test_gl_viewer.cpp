@@ -1,0 +1,205 @@
+// The viewer's picture and behaviour, in a headless OpenGL 4.5 context (Mesa's llvmpipe without a
+// GPU): it shows what `luxel render` computes, edits change what they should, pause stops the
+// solver, reset unlights, and a saved scene loads back to the same picture.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "luxel/import.h"
+#include "luxel/render.h"
+#include "viewer_rig.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using luxel::Image;
+using luxel::Scene;
+using luxel::test::compareRegions;
+using luxel::test::viewerRig;
+using luxel::viewer::Action;
+using luxel::viewer::ViewerOptions;
+
+ViewerOptions optionsFor(const Scene& scene, int size = 128) {
+  ViewerOptions o;
+  o.sceneName = scene.name;
+  o.sceneSpec = scene.name;
+  o.discretise.elementBudget = 3000;
+  o.solve.method = "progressive";
+  o.solve.settings.set("unshot", 1e-4);
+  o.camera = luxel::chooseCamera(scene);
+  o.width = o.height = size;
+  o.showUi = false;
+  return o;
+}
+
+Image renderLikeLuxel(const luxel::viewer::Viewer& v, luxel::RenderOptions::Mode mode, int size) {
+  luxel::RenderOptions ro;
+  ro.mode = mode;
+  ro.camera = v.camera().toCamera();
+  ro.width = ro.height = size;
+  ro.samplesPerPixel = 16;
+  luxel::Session& s = const_cast<luxel::Session&>(v.session());
+  return luxel::render(s.scene(), s.surfaces(), s.solution(), ro);
+}
+
+void perform(luxel::test::ViewerRig& rig, const std::string& name, std::vector<std::string> args = {}) {
+  rig.viewer->perform(Action{name, std::move(args), "test"});
+}
+
+// The radiosity view interpolates the same corner values the ray caster does, over the same
+// (u, v): region means differ only by how the two sample edges (one sample a pixel against 16
+// jittered ones). The light itself (radiance above 3; what it lights is at most about 1) is left
+// out: its edge falls on a pixel row's boundary here, which the two split differently. Measured on
+// llvmpipe: 3.2% worst of 64 regions (the floor along the box's open front, an edge across the
+// whole row), 5% allowed.
+TEST(GlViewer, RadiosityViewIsWhatLuxelRenderShows) {
+  std::string why;
+  const Scene scene = luxel::builtinScene("cornell");
+  auto rig = viewerRig(scene, optionsFor(scene, 256), why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  perform(*rig, "view", {"radiosity"});
+  rig->solve();
+  const luxel::test::RegionDifference d =
+      compareRegions(rig->picture(), renderLikeLuxel(*rig->viewer, luxel::RenderOptions::Mode::Radiosity, 256), 8, 0.1, 3.0);
+  EXPECT_LT(d.worst, 0.05) << "region " << d.region << ": viewer " << d.a << ", luxel render " << d.b;
+}
+
+// With a spot lamp, the final view computes the lamp's light per pixel with a shadow map where
+// `luxel render --mode hq` traces shadow rays: the regions differ where a shadow edge crosses them.
+// Measured on llvmpipe: within 5% (the same allowance as the radiosity view's).
+TEST(GlViewer, FinalViewWithALampIsWhatLuxelRenderHqShows) {
+  std::string why;
+  Scene scene = luxel::loadSceneJson(
+      R"({"builtin": "cornell", "lights": [{"type": "spot", "position": [0.278, 0.5, 0.28], "target": [0.2, 0.0, 0.25],
+          "intensity": 0.5, "innerConeAngle": 40, "outerConeAngle": 60}]})",
+      LUXEL_TEST_TMP, "lamp.json");
+  auto rig = viewerRig(scene, optionsFor(scene, 256), why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  rig->solve();
+  const luxel::test::RegionDifference d =
+      compareRegions(rig->picture(), renderLikeLuxel(*rig->viewer, luxel::RenderOptions::Mode::HighQuality, 256), 8, 0.1, 3.0);
+  EXPECT_LT(d.worst, 0.05) << "region " << d.region << ": viewer " << d.a << ", luxel render " << d.b;
+}
+
+// Moving a spot lamp changes the picture where its light falls (before or after), and elsewhere
+// only by the change in its indirect light, which is small.
+TEST(GlViewer, MovingALampChangesThePictureWhereItsLightFalls) {
+  std::string why;
+  Scene scene = luxel::loadSceneJson(
+      R"({"builtin": "cornell", "lights": [{"type": "spot", "position": [0.15, 0.5, 0.2], "direction": [0, -1, 0],
+          "intensity": 0.3, "innerConeAngle": 10, "outerConeAngle": 15}]})",
+      LUXEL_TEST_TMP, "lamp.json");
+  auto rig = viewerRig(scene, optionsFor(scene), why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  const size_t lamp = rig->viewer->scene().lights.size() - 1;
+  auto shots = [&] {
+    rig->solve();
+    perform(*rig, "view", {"direct"});
+    rig->frame();
+    Image direct = rig->picture();
+    perform(*rig, "view", {"final"});
+    rig->frame();
+    return std::pair{rig->picture(), direct};
+  };
+  const auto [before, directBefore] = shots();
+  perform(*rig, "light.move", {std::to_string(lamp), "0.40", "0.5", "0.2"});
+  const auto [after, directAfter] = shots();
+  // The lamp's pool of light: where either direct picture is well above the area light's own.
+  double lampChange = 0.0, elsewhere = 0.0, elsewhereLevel = 0.0;
+  size_t lampPixels = 0, otherPixels = 0;
+  for (int y = 0; y < before.height; ++y)
+    for (int x = 0; x < before.width; ++x) {
+      const auto sum = [](const luxel::Rgb& c) { return double(c.x + c.y + c.z); };
+      const double poolBefore = sum(directBefore.at(x, y)), poolAfter = sum(directAfter.at(x, y));
+      const double change = std::abs(sum(after.at(x, y)) - sum(before.at(x, y)));
+      if (std::abs(poolAfter - poolBefore) > 0.2 * std::max(poolAfter, poolBefore)) {
+        lampChange += change, ++lampPixels;
+      } else {
+        elsewhere += change, elsewhereLevel += sum(before.at(x, y)), ++otherPixels;
+      }
+    }
+  ASSERT_GT(lampPixels, 100u);
+  ASSERT_GT(otherPixels, 1000u);
+  lampChange /= double(lampPixels);
+  elsewhere /= double(otherPixels);
+  elsewhereLevel /= double(otherPixels);
+  EXPECT_GT(lampChange, 10.0 * elsewhere);
+  EXPECT_LT(elsewhere, 0.05 * elsewhereLevel);  // the lamp's bounce moved a little: a few percent
+}
+
+TEST(GlViewer, PauseStopsTheSolverAndResetUnlights) {
+  std::string why;
+  const Scene scene = luxel::builtinScene("cornell");
+  auto rig = viewerRig(scene, optionsFor(scene), why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  perform(*rig, "solve.pause");
+  for (int i = 0; i < 10; ++i) rig->frame();
+  EXPECT_EQ(rig->viewer->session().stats().shots, 0u);
+  perform(*rig, "solve.resume");
+  rig->solve();
+  const uint64_t shots = rig->viewer->session().stats().shots;
+  EXPECT_GT(shots, 0u);
+  perform(*rig, "solve.pause");
+  for (int i = 0; i < 5; ++i) rig->frame();
+  EXPECT_EQ(rig->viewer->session().stats().shots, shots);
+  // Reset: a new solve, nothing shot yet, so only the light itself shines.
+  perform(*rig, "solve.reset");
+  rig->frame();
+  const Image unlit = rig->picture();
+  double lit = 0.0, dark = 0.0;
+  const auto& s = rig->viewer->session();
+  for (int y = 0; y < unlit.height; ++y)
+    for (int x = 0; x < unlit.width; ++x) {
+      const luxel::Rgb& c = unlit.at(x, y);
+      (c.x + c.y + c.z > 1.0f ? lit : dark) += 1.0;
+      if (c.x + c.y + c.z <= 1.0f) EXPECT_EQ(c.x + c.y + c.z, 0.0f) << x << "," << y;
+    }
+  EXPECT_GT(lit, 0.0);    // the light's own face
+  EXPECT_GT(dark, 0.8 * double(unlit.width * unlit.height));
+  EXPECT_EQ(s.stats().shots, 0u);
+}
+
+TEST(GlViewer, ASavedSceneLoadsBackToTheSamePicture) {
+  std::string why;
+  const Scene scene = luxel::builtinScene("cornell-small");
+  auto rig = viewerRig(scene, optionsFor(scene), why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  rig->solve();
+  perform(*rig, "object.rotate", {"box", "0", "1", "0", "30"});
+  perform(*rig, "light.add", {"0.08", "0.48", "0.45", "0.05"});  // near the ceiling, clear of the box
+  rig->solve();
+  const fs::path dir = fs::path(LUXEL_TEST_TMP) / "viewer-save";
+  fs::create_directories(dir);
+  perform(*rig, "save", {(dir / "edited.json").string()});
+  const Image edited = rig->picture();
+  const luxel::Camera cam = rig->viewer->camera().toCamera();
+  rig->viewer.reset();
+
+  const Scene reloaded = luxel::loadSceneFile(dir / "edited.json");
+  ViewerOptions o = optionsFor(reloaded);
+  o.camera = *reloaded.findCamera("viewer");
+  rig->viewer = std::make_unique<luxel::viewer::Viewer>(reloaded, o);
+  rig->solve();
+  // The edited solve followed the moves (cross-redistribution), the reloaded one solved from
+  // scratch: both stop at the same unshot threshold, so they agree within it.
+  const luxel::test::RegionDifference d = compareRegions(rig->picture(), edited, 8);
+  EXPECT_LT(d.worst, 0.01) << "region " << d.region << ": reloaded " << d.a << ", edited " << d.b;
+  EXPECT_LT(glm::length(rig->viewer->camera().position() - cam.eye), 1e-5f);
+}
+
+TEST(GlViewer, BadEditsSayWhatIsWrongAndChangeNothing) {
+  std::string why;
+  const Scene scene = luxel::builtinScene("cornell");
+  auto rig = viewerRig(scene, optionsFor(scene), why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  const size_t lights = rig->viewer->scene().lights.size();
+  EXPECT_THROW(perform(*rig, "light.move", {"7", "0", "0", "0"}), luxel::Error);
+  EXPECT_THROW(perform(*rig, "object.move", {"nothing", "0", "0", "1"}), luxel::Error);
+  EXPECT_THROW(perform(*rig, "selected.move", {"0", "0", "1"}), luxel::Error);
+  EXPECT_THROW(perform(*rig, "view", {"sideways"}), luxel::Error);
+  EXPECT_THROW(perform(*rig, "light.add", {"0", "0", "0", "-1"}), luxel::Error);
+  EXPECT_EQ(rig->viewer->scene().lights.size(), lights);
+  rig->frame();  // still drawing
+}
+
+}  // namespace

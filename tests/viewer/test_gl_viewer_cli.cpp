@@ -1,0 +1,86 @@
+// `luxel view` as a user runs it: in a window under Xvfb (skipped, saying why, where xvfb-run is
+// missing), headless, and with bad scripts and options.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.h"
+#include "luxel/image.h"
+#include "viewer_rig.h"
+
+namespace {
+
+bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+const std::vector<std::string> kSolve = {"--elements", "3000", "--solver", "progressive", "--unshot", "1e-4"};
+
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// The window's picture (an EXR screenshot: radiance, before tone mapping) against `luxel render`
+// from the same camera, as GlViewer.RadiosityViewIsWhatLuxelRenderShows compares them in-process.
+TEST(GlViewerCli, WindowUnderXvfbShowsWhatLuxelRenderShows) {
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed (Debian: xvfb, xauth): no display to open a window on";
+  const fs::path dir = scratchDir();
+  // 150 frames: the 3,000-element Cornell box converges in well under a second of them.
+  const CliRun view = luxel(dir, with({"view", "cornell", "--hidden", "--frames", "150", "--screenshot", "view.exr", "--size",
+                                      "256x256", "--view", "radiosity", "--stats", "stats.json"},
+                                     kSolve),
+                            "exec xvfb-run -a -s '-screen 0 640x480x24' ");
+  ASSERT_EQ(view.code, 0) << view.err;
+  const CliRun render = luxel(dir, with({"render", "cornell", "--mode", "radiosity", "-o", "render.exr", "--size", "256x256", "-q"}, kSolve));
+  ASSERT_EQ(render.code, 0) << render.err;
+  const luxel::test::RegionDifference d =
+      luxel::test::compareRegions(luxel::readExr(dir / "view.exr"), luxel::readExr(dir / "render.exr"), 8, 0.1, 3.0);
+  EXPECT_LT(d.worst, 0.05) << "region " << d.region << ": view " << d.a << ", render " << d.b;
+  const nlohmann::json stats = nlohmann::json::parse(readFile(dir / "stats.json"));
+  EXPECT_EQ(stats["frames"], 149);  // the first frame has no duration
+  EXPECT_NE(stats["renderer"].get<std::string>(), "");
+  EXPECT_GT(stats["idle"]["frames"].get<int>() + stats["solving"]["frames"].get<int>(), 0);
+}
+
+TEST(GlViewerCli, HeadlessRunsAScriptAndSavesTheScene) {
+  const fs::path dir = scratchDir();
+  writeFile(dir / "walk.txt",
+            "0 solve.pause\n"
+            "1 key w down\n"
+            "5 key w up\n"
+            "6 light.add-at-camera\n"
+            "7 save edited.json\n"
+            "8 screenshot frame8.png\n");
+  const CliRun r = luxel(dir, {"view", "cornell", "--headless", "--frames", "10", "--script", "walk.txt", "--size", "64x64",
+                               "--elements", "500"});
+  if (r.code != 0 && r.err.find("OpenGL 4.5") != std::string::npos) GTEST_SKIP() << "no OpenGL 4.5 context: " << r.err;
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "frame8.png"));
+  const std::string saved = readFile(dir / "edited.json");
+  EXPECT_NE(saved.find("\"base\": \"cornell\""), std::string::npos) << saved;
+  EXPECT_NE(saved.find("\"type\": \"point\""), std::string::npos) << saved;  // the lamp
+  // It loads, and renders.
+  EXPECT_EQ(luxel(dir, {"render", "edited.json", "--camera", "viewer", "-o", "edited.png", "--size", "16x16", "--elements", "300", "-q"}).code, 0);
+}
+
+TEST(GlViewerCli, ScriptMistakesFailBeforeAnyWindowNamingTheLine) {
+  const fs::path dir = scratchDir();
+  writeFile(dir / "bad.txt", "0 solve.pause\n\n2 light.move 0 1\n");
+  const std::vector<std::string> before = listDir(dir);
+  expectFailure(luxel(dir, {"view", "cornell", "--script", "bad.txt", "--frames", "3", "--screenshot", "x.png"}), dir, before,
+                {"bad.txt:3: 'light.move' expects 'LIGHT X Y Z', got 2 arguments"});
+  expectFailure(luxel(dir, {"view", "cornell", "--script", "missing.txt"}), dir, before, {"cannot read the viewer script 'missing.txt'"});
+  expectFailure(luxel(dir, {"view", "cornell", "--screenshot", "x.png"}), dir, before, {"--screenshot needs --frames N"});
+  expectFailure(luxel(dir, {"view", "cornell", "--view", "sideways"}), dir, before, {"unknown view 'sideways'"});
+  expectFailure(luxel(dir, {"view", "cornell", "--headless"}), dir, before, {"--headless needs --frames N"});
+  expectFailure(luxel(dir, {"view", "no-such-scene.obj", "--headless", "--frames", "1"}), dir, before, {"no-such-scene.obj"});
+}
+
+TEST(GlViewerCli, ActionsAreListed) {
+  const fs::path dir = scratchDir();
+  const CliRun r = luxel(dir, {"view", "--actions"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  for (const char* a : {"light.add-at-camera", "solve.pause", "solve.reset", "object.move", "screenshot", "save", "quit"})
+    EXPECT_NE(r.out.find(a), std::string::npos) << a;
+}
+
+}  // namespace
