@@ -55,7 +55,9 @@ bool drawnPerPixel(const Light& l) {
 }
 
 struct SceneRenderer::Gl {
-  std::unique_ptr<gl::ShaderProgram> scene, cubeShadow, sunShadow, line;
+  // One per view and count of per-pixel lights, made when first drawn.
+  std::unique_ptr<gl::ShaderProgram> scenes[kViewModeCount][kMaxPerPixelLights + 1];
+  std::unique_ptr<gl::ShaderProgram> cubeShadow, sunShadow, line;
   GLuint vao = 0, vbo = 0, ibo = 0, corners = 0, patchOf = 0;
   GLuint lineVao = 0, elementEdges = 0, patchEdges = 0;
   GLsizei elementEdgeCount = 0, patchEdgeCount = 0, indexCount = 0;
@@ -115,13 +117,34 @@ SceneRenderer::SceneRenderer(const Scene& scene, const SurfaceSet& surfaces, std
 
 SceneRenderer::~SceneRenderer() = default;
 
+namespace {
+
+std::string sceneDefines(ViewMode mode, int lights) { return fmt::format("#define VIEW {}\n#define LIGHTS {}\n", int(mode), lights); }
+
+}  // namespace
+
+gl::ShaderProgram& SceneRenderer::sceneProgram(ViewMode mode, int lights) {
+  std::unique_ptr<gl::ShaderProgram>& p = gl_->scenes[int(mode)][lights];
+  if (!p)
+    p = std::make_unique<gl::ShaderProgram>(fmt::format("viewer scene ({} view, {} lights)", viewModeName(mode), lights),
+                                            shaderSource("scene.vert", shaderDir_, sceneDefines(mode, lights)),
+                                            shaderSource("scene.frag", shaderDir_, sceneDefines(mode, lights)));
+  return *p;
+}
+
 void SceneRenderer::buildPrograms() {
   auto src = [&](const char* name) { return shaderSource(name, shaderDir_); };
-  auto scene = std::make_unique<gl::ShaderProgram>("viewer scene", src("scene.vert"), src("scene.frag"));
+  // The final view now, so that a shader that does not compile fails at once; the others when
+  // first shown.
+  auto scene = std::make_unique<gl::ShaderProgram>("viewer scene (final view)",
+                                                   shaderSource("scene.vert", shaderDir_, sceneDefines(ViewMode::Final, 0)),
+                                                   shaderSource("scene.frag", shaderDir_, sceneDefines(ViewMode::Final, 0)));
   auto cube = std::make_unique<gl::ShaderProgram>("viewer cube shadow", src("shadow.vert"), src("cube-shadow.frag"));
   auto sun = std::make_unique<gl::ShaderProgram>("viewer sun shadow", src("shadow.vert"), src("sun-shadow.frag"));
   auto line = std::make_unique<gl::ShaderProgram>("viewer edges", src("line.vert"), src("line.frag"));
-  gl_->scene = std::move(scene);
+  for (auto& row : gl_->scenes)
+    for (auto& p : row) p.reset();
+  gl_->scenes[0][0] = std::move(scene);
   gl_->cubeShadow = std::move(cube);
   gl_->sunShadow = std::move(sun);
   gl_->line = std::move(line);
@@ -335,7 +358,8 @@ void SceneRenderer::drawShadows(const Scene&) {
 
 void SceneRenderer::draw(const Frame& f) {
   Gl& g = *gl_;
-  const GLuint prog = g.scene->id();
+  gl::ShaderProgram& program = sceneProgram(f.mode, g.lightCount);
+  const GLuint prog = program.id();
   const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   const GLuint clearId[4] = {0, 0, 0, 0};
   const float farDepth = 0.0f;
@@ -351,13 +375,11 @@ void SceneRenderer::draw(const Frame& f) {
   glDisable(GL_CULL_FACE);  // backs are drawn black or left to their twins (scene.frag)
   glDisable(GL_BLEND);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  g.scene->use();
+  program.use();
   auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
   glUniformMatrix4fv(loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
-  glUniform1i(loc("uView"), int(f.mode));
   glUniform3fv(loc("uEye"), 1, glm::value_ptr(f.eye));
   glUniform1f(loc("uTexelSize"), f.texelSize);
-  glUniform1i(loc("uLightCount"), g.lightCount);
   if (g.lightCount > 0) {
     glUniform4fv(loc("uLightPosition"), g.lightCount, glm::value_ptr(g.lightPosition[0]));
     glUniform4fv(loc("uLightPower"), g.lightCount, glm::value_ptr(g.lightPower[0]));

@@ -14,6 +14,10 @@
 #include "luxel/scene.h"
 #include "luxel/surface.h"
 
+namespace luxel::gl {
+class ShaderProgram;
+}
+
 namespace luxel::viewer {
 
 enum class ViewMode { Final, Indirect, Direct, Radiosity, Patches, Elements, Density };
@@ -64,6 +68,7 @@ class SceneRenderer {
  private:
   struct Gl;
   void buildPrograms();
+  gl::ShaderProgram& sceneProgram(ViewMode mode, int lights);
   void drawShadows(const Scene& scene);
   std::unique_ptr<Gl> gl_;
   std::filesystem::path shaderDir_;

@@ -18,12 +18,17 @@ namespace {
 // caster does (bilinear in the quad's (u, v), which Embree and this split into triangles
 // (0,1,3) and (2,3,1) give alike; barycentric on triangles).
 const char* kSceneVertex = R"(#version 450 core
+const int kFinal = 0, kIndirect = 1, kDirect = 2, kRadiosity = 3;
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
 layout(location = 3) in vec2 aCorner;
 layout(location = 4) in uint aElement;
 layout(location = 5) in uint aFlags;
+// Per element corner (4 per element): the interpolated field (everything but the per-pixel
+// lights), its direct part, and the per-pixel lights' own part (for the radiosity view).
+struct Corner { vec4 field; vec4 direct; vec4 perPixel; };
+layout(std430, binding = 0) readonly buffer Corners { Corner corners[]; };
 uniform mat4 uViewProjection;
 out vec3 vPosition;
 out vec2 vUv;
@@ -31,6 +36,16 @@ out vec2 vCorner;
 flat out vec3 vNormal;
 flat out uint vElement;
 flat out uint vFlags;
+// The element's four corner values of what this view shows, read once per vertex rather than once
+// per pixel (the fragment shader only blends them).
+flat out vec3 vC0, vC1, vC2, vC3;
+vec3 shown(uint i) {
+  Corner c = corners[i];
+  if (VIEW == kIndirect) return max(c.field.rgb - c.direct.rgb, vec3(0.0));
+  if (VIEW == kDirect) return c.direct.rgb;
+  if (VIEW == kRadiosity) return c.field.rgb + c.perPixel.rgb;
+  return c.field.rgb;
+}
 void main() {
   vPosition = aPosition;
   vUv = aUv;
@@ -38,6 +53,8 @@ void main() {
   vNormal = aNormal;
   vElement = aElement;
   vFlags = aFlags;
+  uint base = aElement * 4u;
+  vC0 = shown(base); vC1 = shown(base + 1u); vC2 = shown(base + 2u); vC3 = shown(base + 3u);
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
 )";
@@ -55,11 +72,8 @@ in vec2 vCorner;
 flat in vec3 vNormal;
 flat in uint vElement;
 flat in uint vFlags;
+flat in vec3 vC0, vC1, vC2, vC3;
 
-// Per element corner (4 per element): the interpolated field (everything but the per-pixel
-// lights), its direct part, and the per-pixel lights' own part (for the radiosity view).
-struct Corner { vec4 field; vec4 direct; vec4 perPixel; };
-layout(std430, binding = 0) readonly buffer Corners { Corner corners[]; };
 layout(std430, binding = 1) readonly buffer Patches { uint patchOf[]; };
 
 uniform vec3 uReflectance;
@@ -71,11 +85,15 @@ layout(binding = 1) uniform sampler2D uEmissionMap;
 layout(binding = 2) uniform samplerCubeArrayShadow uCubeShadows;
 layout(binding = 3) uniform sampler2DArrayShadow uSunShadows;
 
-uniform int uView;
+// The view is compiled in (scene.frag is built once per view with VIEW defined): a rasteriser on
+// the CPU runs every branch of a shader whose branches depend on a uniform, and the seven views'
+// code cost llvmpipe twice the time of one.
+const int kView = VIEW;
 uniform vec3 uEye;
 uniform float uTexelSize;  // the density view's checker cell, scene units
 
-uniform int uLightCount;
+// How many per-pixel lights, compiled in too (LIGHTS) for the same reason as the view.
+const int kLightCount = LIGHTS;
 uniform vec4 uLightPosition[kMaxLights];   // xyz: position (point, spot) or the way light travels (sun); w: type 0 point, 1 spot, 2 sun
 uniform vec4 uLightPower[kMaxLights];      // rgb: colour times intensity; w: shadow slot, -1 none
 uniform vec4 uLightSpot[kMaxLights];       // xyz: spot axis (unit); z..: w = cos outer
@@ -87,15 +105,11 @@ uniform mat4 uSunMatrix[kMaxLights];       // world to the sun map's [0,1]^3
 layout(location = 0) out vec4 outRadiance;  // a = 1 where a surface is seen (auto exposure's coverage)
 layout(location = 1) out uint outElement;   // element + 1, 0 for the background (picking)
 
-vec3 cornerValue(int which) {
-  uint base = vElement * 4u;
-  vec3 c0, c1, c2, c3;
-  if (which == 0) { c0 = corners[base].field.rgb; c1 = corners[base + 1u].field.rgb; c2 = corners[base + 2u].field.rgb; c3 = corners[base + 3u].field.rgb; }
-  else if (which == 1) { c0 = corners[base].direct.rgb; c1 = corners[base + 1u].direct.rgb; c2 = corners[base + 2u].direct.rgb; c3 = corners[base + 3u].direct.rgb; }
-  else { c0 = corners[base].perPixel.rgb; c1 = corners[base + 1u].perPixel.rgb; c2 = corners[base + 2u].perPixel.rgb; c3 = corners[base + 3u].perPixel.rgb; }
+// What the view shows of the solution here: the corner values blended as the ray caster does.
+vec3 fieldValue() {
   float u = vCorner.x, v = vCorner.y;
-  if ((vFlags & kTriangle) != 0u) return (1.0 - u - v) * c0 + u * c1 + v * c2;
-  return (1.0 - u) * (1.0 - v) * c0 + u * (1.0 - v) * c1 + u * v * c2 + (1.0 - u) * v * c3;
+  if ((vFlags & kTriangle) != 0u) return (1.0 - u - v) * vC0 + u * vC1 + v * vC2;
+  return (1.0 - u) * (1.0 - v) * vC0 + u * (1.0 - v) * vC1 + u * v * vC2 + (1.0 - u) * v * vC3;
 }
 
 vec3 hashColour(uint x) {
@@ -159,12 +173,12 @@ void main() {
   if (uEmissionTexture) le *= texture(uEmissionMap, vUv).rgb;
   vec3 n = normalize(vNormal);
 
-  if (uView == kPatches || uView == kElements) {
-    vec3 c = hashColour(uView == kPatches ? patchOf[vElement] : vElement);
+  if (kView == kPatches || kView == kElements) {
+    vec3 c = hashColour(kView == kPatches ? patchOf[vElement] : vElement);
     outRadiance = vec4(c * (0.35 + 0.65 * abs(dot(n, normalize(uEye - vPosition)))), 1.0);
     return;
   }
-  if (uView == kDensity) {
+  if (kView == kDensity) {
     // A checker of lightmap texels at the bake's density, laid on the plane the face mostly faces.
     vec3 a = abs(n);
     vec2 q = a.x > a.y && a.x > a.z ? vPosition.yz : (a.y > a.z ? vPosition.xz : vPosition.xy);
@@ -175,15 +189,12 @@ void main() {
   }
 
   vec3 perPixel = vec3(0.0);
-  if (uView == kFinal || uView == kDirect)
-    for (int i = 0; i < uLightCount; ++i) perPixel += lightIrradiance(i, vPosition, n);
-  vec3 h;
-  if (uView == kFinal) h = cornerValue(0) + perPixel;
-  else if (uView == kIndirect) h = max(cornerValue(0) - cornerValue(1), vec3(0.0));
-  else if (uView == kDirect) h = cornerValue(1) + perPixel;
-  else h = cornerValue(0) + cornerValue(2);  // kRadiosity: every light from the elements
-  vec3 radiance = rho * kInvPi * h;
-  if (uView != kIndirect) radiance += le;
+  if (kView == kFinal || kView == kDirect)
+    for (int i = 0; i < kLightCount; ++i) perPixel += lightIrradiance(i, vPosition, n);
+  // Final: the field and the per-pixel lights; indirect: the field less its direct part; direct:
+  // the field's direct part and the per-pixel lights; radiosity: every light from the elements.
+  vec3 radiance = rho * kInvPi * (fieldValue() + perPixel);
+  if (kView != kIndirect) radiance += le;
   outRadiance = vec4(radiance, 1.0);
 }
 )";
@@ -259,7 +270,23 @@ const std::vector<ShaderSource>& builtinShaders() {
   return shaders;
 }
 
-std::string shaderSource(const std::string& name, const std::filesystem::path& overrides) {
+namespace {
+
+std::string withDefines(std::string source, const std::string& defines) {
+  if (defines.empty()) return source;
+  const size_t version = source.find("#version");
+  const size_t line = version == std::string::npos ? 0 : source.find('\n', version);
+  if (line == std::string::npos) return source + "\n" + defines;
+  return source.insert(version == std::string::npos ? 0 : line + 1, defines);
+}
+
+}  // namespace
+
+std::string shaderSource(const std::string& name, const std::filesystem::path& overrides, const std::string& defines) {
+  return withDefines(shaderFile(name, overrides), defines);
+}
+
+std::string shaderFile(const std::string& name, const std::filesystem::path& overrides) {
   if (!overrides.empty()) {
     const std::filesystem::path file = overrides / name;
     if (std::filesystem::exists(file)) {

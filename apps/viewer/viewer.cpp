@@ -474,6 +474,7 @@ void Viewer::frame(double dt, int width, int height) {
 }
 
 void Viewer::present(int width, int height) {
+
   const float scale = float(std::exp2(double(options_.tone.exposure)) * (options_.tone.autoExposure ? exposureScale_ : 1.0));
   tone_->draw(target_->radianceTexture(), width, height, scale, options_.tone.curve);
 }
