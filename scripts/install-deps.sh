@@ -26,7 +26,7 @@ packages=(
 # Debian's nodejs and npm unless a Node.js with npm is there already (NodeSource's nodejs bundles
 # npm and conflicts with Debian's npm package).
 packages+=(libtinygltf-dev)
-# The three.js lightmap check (tools/three-check, CTest Web.ThreeLightmap) drives Debian's headless
+# The three.js checks (tools/three-check, CTest Web.ThreeLightmap and Web.HtmlViewer) drive Debian's headless
 # Chromium (/usr/bin/chromium; WebGL through its bundled SwiftShader, no GPU) with playwright-core.
 packages+=(chromium)
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
@@ -61,6 +61,8 @@ fi
 
 # three.js and playwright-core (the versions pinned by tools/three-check/package-lock.json) into
 # tools/three-check/node_modules, ignored by git; no browser is downloaded (the check uses Debian's).
+# The build also embeds this three.js in luxel for `luxel bake --html` (docs/baking.md, "Viewing a
+# bake in the browser"): without it that option says to run this script and rebuild.
 three_check="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tools/three-check"
 if [ ! -f "$three_check/node_modules/three/package.json" ] || [ ! -f "$three_check/node_modules/playwright-core/package.json" ]; then
   echo "install-deps: installing three.js and playwright-core (npm ci in tools/three-check)"

@@ -18,6 +18,7 @@
 #include "luxel/lightmap.h"
 #include "luxel/session.h"
 #include "luxel/solve.h"
+#include "html_page.h"
 #include "out_of_memory.h"
 #include "output_paths.h"
 #include "progress_bar.h"
@@ -59,6 +60,15 @@ void checkBakeArgs(const BakeArgs& a) {
   if (!a.vertexColorsFor.empty() && !a.lightmaps)
     throw Error("--vertex-colors-for needs --lightmaps (the other meshes get lightmaps); --vertex-colors alone "
                 "colours every mesh");
+  if (a.html) {
+    if (lowerExtension(fs::path(a.output)) != ".glb")
+      throw Error(fmt::format("--html writes a page beside the glb and embeds it: -o must name a .glb file (not '{}')",
+                              a.output));
+    if (!a.lightmaps && !a.vertexColors)
+      throw Error("--html shows the baked light: add --lightmaps or --vertex-colors (a glb without either holds no "
+                  "light to show)");
+    checkHtmlPageAssets();
+  }
   checkSolveArgs(a.solve);
 }
 
@@ -66,6 +76,7 @@ int runBake(const BakeArgs& a) {
   // Check the output before the (possibly long) solve.
   const fs::path out(a.output);
   std::vector<OutputPath> paths{{"-o", a.output, {".glb"}}};
+  if (a.html) paths.push_back({"--html", htmlPagePath(out).string(), {".html"}});
   if (!a.tracePath.empty()) paths.push_back({"--progress-trace", a.tracePath, {}});
   for (OutputPath& p : checkpointOutputs(a.solve)) paths.push_back(std::move(p));
   checkOutputPaths(paths);
@@ -109,6 +120,11 @@ int runBake(const BakeArgs& a) {
       exr.replace_extension(fmt::format(".lightmap{}.exr", p));
       writeExr(lightmapPageImage(bake, p), exr);
     }
+    if (a.html)
+      writeHtmlPage(out, htmlPagePath(out),
+                    {scene.name, out.filename().string(),
+                     a.vertexColorsFor.empty() ? "lightmaps (irradiance)"
+                                               : "lightmaps, and vertex colours (irradiance) on some meshes"});
     bar.finish();
     bar.writeTrace();
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -137,6 +153,7 @@ int runBake(const BakeArgs& a) {
                                  count == 1 ? "" : "es", list);
       }
       std::cout << "luxel: wrote " << a.output << "\n";
+      if (a.html) std::cout << "luxel: wrote " << htmlPagePath(out).string() << " (open it in a browser)\n";
     }
     return 0;
   }
@@ -154,6 +171,7 @@ int runBake(const BakeArgs& a) {
     go.elementColors = elementRadiance(surfaces, solution);
   }
   writeGlb(solved, out, go);
+  if (a.html) writeHtmlPage(out, htmlPagePath(out), {solved.name, out.filename().string(), "vertex colours (radiance)"});
   bar.finish();
   bar.writeTrace();
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -169,6 +187,7 @@ int runBake(const BakeArgs& a) {
     else
       std::cout << fmt::format("luxel: bake {} triangles; total {:.3f} s\n", solved.triangleCount(), total);
     std::cout << "luxel: wrote " << a.output << "\n";
+    if (a.html) std::cout << "luxel: wrote " << htmlPagePath(out).string() << " (open it in a browser)\n";
   }
   return 0;
 }

@@ -1,6 +1,6 @@
-// `luxel bake SCENE -o OUT.glb [--vertex-colors | --lightmaps [--vertex-colors-for PATTERNS]]`:
+// `luxel bake SCENE -o OUT.glb [--vertex-colors | --lightmaps [--vertex-colors-for PATTERNS]] [--html]`:
 // solves a scene as `luxel render` does and writes its meshes and materials as glTF 2.0 binary,
-// with the solution baked in (docs/baking.md).
+// with the solution baked in (docs/baking.md), and with --html a page that shows it in a browser.
 #pragma once
 
 #include <cstddef>
@@ -29,6 +29,9 @@ struct BakeArgs {
   int threads = 0;
   bool quiet = false;
   std::string tracePath;  // --progress-trace FILE
+  // --html: also OUT.html beside the glb, a self-contained page that shows the bake in a browser
+  // (html_page.h). Needs a .glb output and baked light (--lightmaps or --vertex-colors).
+  bool html = false;
 };
 
 // Everything about the arguments that can be checked without a file: throws Error.

@@ -45,6 +45,9 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   bake->add_option("--threads", ka.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
   bake->add_flag("-q,--quiet", ka.quiet, "Print nothing but errors");
   bake->add_option("--progress-trace", ka.tracePath, "Write every progress report, timed, as tab-separated lines");
+  bake->add_flag("--html", ka.html,
+                 "Also write OUT.html beside the glb: a page that shows the bake in a browser (three.js; orbit, walk, "
+                 "exposure), with everything in it, so that it opens from disk with no network");
 
   BenchArgs& ba = line->bench;
   CLI::App* bench = line->benchCommand = app.add_subcommand("bench", "Run a benchmark suite: timings, throughput, memory and error");

@@ -1,0 +1,333 @@
+// The viewer in the page that `luxel bake ... --html` writes: apps/luxel/html_page.cpp puts it in
+// html_viewer/page.html, with the glb (base64, in the element #luxel-glb) and three.js's modules
+// (data: URLs in the import map), so that the page opens from disk with no network. It shows the
+// bake with the display recipes of docs/baking.md, copied below exactly as that file writes them
+// (tests/web/html_viewer.mjs checks that they still agree), ACES tone mapping with an exposure
+// control, and orbit and walk navigation. window.luxelViewer reports its state to that test.
+// The page holds it inline, in a script element: this file must not contain that element's end tag,
+// nor an HTML comment's opening (html_page.cpp refuses to write such a page).
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+const $ = (id) => document.getElementById(id);
+const about = JSON.parse($('luxel-bake').textContent);
+const viewer = (window.luxelViewer = { ready: false, error: null, frames: 0, three: THREE.REVISION, about });
+
+// ---- docs/baking.md's display recipes, as it writes them ------------------------------------------
+// (Unindented, so that each body is the documentation's text character for character.)
+
+// "Displaying them (three.js)": --vertex-colors, COLOR_0 holds radiance / S; shown unlit.
+function showRadiance(gltf) {
+const S = gltf.scene.userData.luxel?.vertexColorScale ?? 1;
+gltf.scene.traverse((o) => {
+  if (!o.isMesh || !o.geometry.attributes.color) return;
+  o.material = new THREE.MeshBasicMaterial({
+    vertexColors: true,
+    color: new THREE.Color(S, S, S),   // linear, may exceed 1
+    side: o.material.side,             // keeps doubleSided
+  });
+});
+}
+
+// "Vertex colours for some meshes, lightmaps for the rest": --vertex-colors-for, COLOR_0 holds
+// irradiance / S; times the base colour / pi.
+function showIrradiance(gltf) {
+const S = gltf.scene.userData.luxel?.vertexColorScale ?? 1;   // vertexColors: 'irradiance'
+gltf.scene.traverse((o) => {
+  if (!o.isMesh || !o.geometry.attributes.color) return;
+  const m = o.material;
+  o.material = new THREE.MeshBasicMaterial({
+    map: m.map, vertexColors: true, side: m.side, transparent: m.transparent, alphaTest: m.alphaTest,
+    color: m.color.clone().multiplyScalar(S / Math.PI),   // base colour x H / pi
+  });
+});
+}
+
+// "Lightmaps": RGBM pages decoded on the GPU into half-float lightmaps on MeshLambertMaterials.
+// It finishes in promise callbacks (waitForLightmaps below).
+function showLightmaps(gltf, renderer) {
+// RGBM page -> linear irradiance H = rgb × a × rgbmRange, one texel per pixel, into a half-float
+// texture: bilinear, no mipmaps, flipY false, like the glTF texture it comes from.
+function decodeRGBM(tex, range) {
+  const target = new THREE.WebGLRenderTarget(tex.image.width, tex.image.height,
+                                             { type: THREE.HalfFloatType, depthBuffer: false });
+  const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.ShaderMaterial({
+    uniforms: { rgbm: { value: tex }, range: { value: range } },
+    vertexShader: 'varying vec2 vUv; void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }',
+    fragmentShader: 'uniform sampler2D rgbm; uniform float range; varying vec2 vUv;\n' +
+      'void main() { vec4 c = texture2D(rgbm, vUv); gl_FragColor = vec4(c.rgb * c.a * range, 1.0); }',
+  }));
+  quad.frustumCulled = false;
+  const previous = renderer.getRenderTarget();
+  renderer.setRenderTarget(target);
+  renderer.render(quad, new THREE.Camera());
+  renderer.setRenderTarget(previous);
+  quad.geometry.dispose();
+  quad.material.dispose();
+  target.texture.channel = 1;  // TEXCOORD_1
+  return target.texture;
+}
+const pages = new Map(), lambert = new Map();
+gltf.scene.traverse((o) => {
+  const lm = o.isMesh && o.material.userData.luxel;
+  if (!lm) return;
+  if (!pages.has(lm.lightMap))
+    pages.set(lm.lightMap, gltf.parser.getDependency('texture', lm.lightMap).then((t) => decodeRGBM(t, lm.rgbmRange)));
+  pages.get(lm.lightMap).then((lightMap) => {
+    const m = o.material;
+    if (!lambert.has(m))
+      lambert.set(m, new THREE.MeshLambertMaterial({
+        name: m.name, color: m.color, map: m.map, side: m.side,
+        emissive: m.emissive, emissiveMap: m.emissiveMap, emissiveIntensity: m.emissiveIntensity,
+        lightMap, lightMapIntensity: 1,
+      }));
+    o.material = lambert.get(m);
+  });
+});
+}
+
+// ---- the viewer ----------------------------------------------------------------------------------
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+const status = $('luxel-status');
+
+// The first error, shown on the page and logged; the viewer stops drawing. Errors in promise
+// callbacks (the lightmap recipe's) and in event handlers end up here too.
+let stop = () => {};
+function fail(e) {
+  if (viewer.error) return;
+  viewer.error = String(e?.stack ?? e);
+  status.className = 'error';
+  status.textContent = `The bake could not be shown: ${e?.message ?? e}`;
+  console.error(e);
+  stop();
+}
+window.addEventListener('unhandledrejection', (e) => fail(e.reason));
+window.addEventListener('error', (e) => fail(e.error ?? e.message));
+
+function glbBytes() {
+  const text = atob($('luxel-glb').textContent.trim());
+  const bytes = new Uint8Array(text.length);
+  for (let i = 0; i < text.length; ++i) bytes[i] = text.charCodeAt(i);
+  return bytes.buffer;
+}
+
+async function waitForLightmaps(meshes) {
+  for (let t = 0; meshes.some((o) => !o.material.lightMap); t += 10) {
+    if (viewer.error) throw new Error(viewer.error);
+    if (t > 60000) throw new Error('the lightmaps were not decoded within 60 s');
+    await sleep(10);
+  }
+}
+
+// The log-average luminance of what the camera sees, mapped to middle grey (0.18), as luxel's own
+// images do (src/io/tonemap.cpp: Reinhard et al. 2002, with delta 1e-4 of the mean luminance);
+// pixels that show nothing are left out. Rendered small into a float target: linear radiance.
+function autoExposure(renderer, scene, camera) {
+  const float = renderer.extensions.has('EXT_color_buffer_float');
+  const w = 128, h = Math.max(1, Math.round(128 / camera.aspect));
+  const target = new THREE.WebGLRenderTarget(w, h, { type: float ? THREE.FloatType : THREE.HalfFloatType });
+  const clear = renderer.getClearAlpha();
+  try {
+    renderer.setRenderTarget(target);
+    renderer.setClearAlpha(0);
+    renderer.clear();
+    renderer.render(scene, camera);
+    const raw = float ? new Float32Array(w * h * 4) : new Uint16Array(w * h * 4);
+    renderer.readRenderTargetPixels(target, 0, 0, w, h, raw);
+    const px = float ? raw : Float32Array.from(raw, (v) => THREE.DataUtils.fromHalfFloat(v));
+    let sum = 0, weights = 0, logSum = 0;
+    const lum = (i) => Math.max(0, 0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2]);
+    for (let i = 0; i < px.length; i += 4) {
+      const weight = Math.min(1, Math.max(0, px[i + 3]));
+      if (!Number.isFinite(lum(i))) continue;
+      sum += weight * lum(i);
+      weights += weight;
+    }
+    if (!(weights > 0 && sum > 0)) return 1;
+    const delta = 1e-4 * (sum / weights);
+    for (let i = 0; i < px.length; i += 4) {
+      const weight = Math.min(1, Math.max(0, px[i + 3]));
+      if (Number.isFinite(lum(i))) logSum += weight * Math.log(delta + lum(i));
+    }
+    return 0.18 / Math.exp(logSum / weights);
+  } finally {
+    renderer.setRenderTarget(null);
+    renderer.setClearAlpha(clear);
+    target.dispose();
+  }
+}
+
+function base64(bytes) {
+  let s = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+  return btoa(s);
+}
+
+async function main() {
+  $('luxel-title').textContent = about.scene;
+  $('luxel-about').textContent = `${about.glb}: ${about.bake}; luxel ${about.luxel}, three.js r${THREE.REVISION}`;
+  const canvas = $('luxel-view');
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
+  renderer.setPixelRatio(window.devicePixelRatio);
+  renderer.setSize(window.innerWidth, window.innerHeight, false);
+  renderer.outputColorSpace = THREE.SRGBColorSpace;
+  renderer.toneMapping = THREE.ACESFilmicToneMapping;
+  renderer.setClearColor(0x000000, 1);
+
+  status.textContent = 'Loading the bake\u2026';
+  const gltf = await new GLTFLoader().parseAsync(glbBytes(), '');
+  const scene = gltf.scene;
+  const baked = scene.userData.luxel ?? {};
+  if (baked.vertexColors === 'irradiance') showIrradiance(gltf);
+  else if (baked.vertexColors) showRadiance(gltf);
+  const lightmapped = [];
+  scene.traverse((o) => o.isMesh && o.material.userData.luxel && lightmapped.push(o));
+  if (lightmapped.length) {
+    showLightmaps(gltf, renderer);
+    await waitForLightmaps(lightmapped);
+  }
+  viewer.shows = [lightmapped.length && 'lightmaps', baked.vertexColors && `vertex colours (${baked.vertexColors})`]
+    .filter(Boolean).join(' and ') || 'no baked light';
+
+  // The starting view, as `luxel render` chooses it (src/session/session.cpp, chooseCamera): the
+  // scene's camera named "default", else its first (the glb carries them as glTF cameras), else
+  // the bounding box framed from +z with a 45-degree field of view.
+  scene.updateMatrixWorld(true);
+  const bounds = new THREE.Box3().setFromObject(scene);
+  const centre = bounds.isEmpty() ? new THREE.Vector3() : bounds.getCenter(new THREE.Vector3());
+  const radius = bounds.isEmpty() ? 1 : Math.max(1e-6, bounds.getSize(new THREE.Vector3()).length() / 2);
+  const camera = new THREE.PerspectiveCamera(45, window.innerWidth / window.innerHeight, radius / 2000, radius * 40);
+  const controls = new OrbitControls(camera, canvas);
+  const start = { position: new THREE.Vector3(), quaternion: new THREE.Quaternion(), target: new THREE.Vector3(),
+                  up: new THREE.Vector3(0, 1, 0), fov: 45 };
+  const cameras = gltf.cameras.filter((c) => c.isPerspectiveCamera);
+  const sceneCamera = cameras.find((c) => c.name === 'default') ?? cameras[0];
+  if (sceneCamera) {
+    sceneCamera.matrixWorld.decompose(start.position, start.quaternion, new THREE.Vector3());
+    start.fov = sceneCamera.fov;
+    start.up.set(0, 1, 0).applyQuaternion(start.quaternion);  // orbit about the camera's own up
+    const forward = new THREE.Vector3(0, 0, -1).applyQuaternion(start.quaternion);
+    const d = Math.max(forward.dot(centre.clone().sub(start.position)), radius * 0.05);
+    start.target.copy(start.position).addScaledVector(forward, d);
+  } else {
+    start.target.copy(centre);
+    start.position.copy(centre).add(new THREE.Vector3(0, 0, 1.1 * radius / Math.tan(THREE.MathUtils.degToRad(start.fov / 2))));
+  }
+  viewer.view = sceneCamera ? `the scene's camera '${sceneCamera.name}'` : 'the bounds, framed from +z';
+
+  let needsRender = true;
+  const requestRender = () => { needsRender = true; };
+  controls.addEventListener('change', requestRender);
+  function startView() {
+    camera.fov = start.fov;
+    camera.up.copy(start.up);
+    camera.position.copy(start.position);
+    camera.quaternion.copy(start.quaternion);
+    camera.updateProjectionMatrix();
+    controls.target.copy(start.target);
+    controls.update();  // looks at the target: the same orientation, the target lying straight ahead
+    requestRender();
+  }
+  startView();
+
+  // Exposure: automatic for the starting view, then in stops from there (slider, - and +).
+  const slider = $('luxel-exposure'), sliderValue = $('luxel-exposure-value');
+  let automatic = 1, stops = 0;
+  function setExposure(s) {
+    stops = Math.min(8, Math.max(-8, Math.round(s * 30) / 30));
+    renderer.toneMappingExposure = viewer.exposure = automatic * 2 ** stops;
+    slider.value = String(stops);
+    sliderValue.textContent = `${stops >= 0 ? '+' : '\u2212'}${Math.abs(stops).toFixed(1)} EV`;
+    requestRender();
+  }
+  function measureExposure() {
+    automatic = viewer.automaticExposure = autoExposure(renderer, scene, camera);
+    setExposure(0);
+  }
+  measureExposure();
+  slider.addEventListener('input', () => setExposure(Number(slider.value)));
+
+  // Walking: W A S D along the ground plane (perpendicular to the camera's up), Q E along up; the
+  // orbit's target moves with the camera. Half the scene's radius a second, four times that with Shift.
+  const keys = new Set();
+  let running = false;
+  const moves = { KeyW: [0, 0, 1], KeyS: [0, 0, -1], KeyD: [1, 0, 0], KeyA: [-1, 0, 0], KeyE: [0, 1, 0], KeyQ: [0, -1, 0] };
+  function walk(dt) {
+    const v = new THREE.Vector3();
+    if (!keys.size) return false;
+    const up = camera.up.clone().normalize();
+    const forward = camera.getWorldDirection(new THREE.Vector3());
+    forward.addScaledVector(up, -forward.dot(up));
+    if (forward.lengthSq() < 1e-8)  // looking straight up or down: forward is the top of the view
+      forward.set(0, 1, 0).applyQuaternion(camera.quaternion).addScaledVector(up, -up.dot(forward));
+    forward.normalize();
+    const right = new THREE.Vector3().crossVectors(forward, up).normalize();
+    for (const k of keys) {
+      const m = moves[k];
+      v.addScaledVector(right, m[0]).addScaledVector(up, m[1]).addScaledVector(forward, m[2]);
+    }
+    if (v.lengthSq() === 0) return false;
+    v.normalize().multiplyScalar(radius * 0.5 * (running ? 4 : 1) * dt);
+    camera.position.add(v);
+    controls.target.add(v);
+    controls.update();
+    return true;
+  }
+  const help = $('luxel-help');
+  window.addEventListener('keydown', (e) => {
+    if (e.ctrlKey || e.metaKey || e.altKey) return;  // the browser's own shortcuts
+    running = e.shiftKey;
+    if (moves[e.code]) keys.add(e.code);
+    else if (e.key === '-' || e.code === 'NumpadSubtract') setExposure(stops - 1 / 3);
+    else if (e.key === '+' || e.key === '=' || e.code === 'NumpadAdd') setExposure(stops + 1 / 3);
+    else if (e.key === '0' || e.code === 'Numpad0') measureExposure();
+    else if (e.code === 'KeyR') startView();
+    else if (e.code === 'KeyH' || e.key === '?') help.hidden = !help.hidden;
+    else return;
+    e.preventDefault();
+  });
+  window.addEventListener('keyup', (e) => {
+    running = e.shiftKey;
+    keys.delete(e.code);
+  });
+  window.addEventListener('blur', () => keys.clear());
+  window.addEventListener('resize', () => {
+    renderer.setSize(window.innerWidth, window.innerHeight, false);
+    camera.aspect = window.innerWidth / window.innerHeight;
+    camera.updateProjectionMatrix();
+    requestRender();
+  });
+
+  function render() {
+    renderer.render(scene, camera);
+    viewer.frames += 1;
+  }
+  // For tests/web/html_viewer.mjs: a frame drawn as the loop draws it, read back as 8-bit sRGB
+  // (what the canvas shows: tone-mapped), rows bottom-up; and where the camera is.
+  viewer.readPixels = () => {
+    render();
+    const gl = renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const pixels = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+    return { width: w, height: h, pixels: base64(pixels) };
+  };
+  viewer.camera = () => ({ position: camera.position.toArray(), target: controls.target.toArray() });
+
+  let last = performance.now();
+  stop = () => renderer.setAnimationLoop(null);
+  renderer.setAnimationLoop((now) => {
+    const dt = Math.min(0.1, Math.max(0, (now - last) / 1000));
+    last = now;
+    if (walk(dt)) needsRender = true;
+    if (!needsRender) return;
+    needsRender = false;
+    render();
+    if (!viewer.ready) {
+      viewer.ready = true;
+      status.textContent = viewer.shows === 'no baked light' ? 'This glb holds no baked light (bake it with --lightmaps or --vertex-colors).' : '';
+    }
+  });
+}
+
+main().catch(fail);
