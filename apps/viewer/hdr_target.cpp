@@ -12,7 +12,7 @@
 
 namespace luxel::viewer {
 
-HdrTarget::HdrTarget(int width, int height) { resize(width, height); }
+HdrTarget::HdrTarget(int width, int height, bool fullFloat) : fullFloat_(fullFloat) { resize(width, height); }
 
 HdrTarget::~HdrTarget() { release(); }
 
@@ -33,7 +33,7 @@ void HdrTarget::resize(int width, int height) {
   width_ = width;
   height_ = height;
   glCreateTextures(GL_TEXTURE_2D, 1, &radiance_);
-  glTextureStorage2D(radiance_, 1, GL_RGBA32F, width, height);
+  glTextureStorage2D(radiance_, 1, fullFloat_ ? GL_RGBA32F : GL_RGBA16F, width, height);
   glTextureParameteri(radiance_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(radiance_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTextureParameteri(radiance_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -1,7 +1,8 @@
-// The viewer's offscreen picture: linear radiance (RGBA32F, alpha = 1 where a surface is seen),
-// element ids for picking (R32UI), and depth. The scene is drawn here; the tone pass puts it on
-// the screen, and screenshots read it back as radiance, so an EXR screenshot is what `luxel render`
-// would write.
+// The viewer's offscreen picture: linear radiance (alpha = 1 where a surface is seen), element ids
+// for picking (R32UI), and depth. The scene is drawn here and the tone pass puts it on the screen.
+// On screen the radiance is kept in half floats, scaled near the exposure (a quarter less to move
+// per pixel made llvmpipe's frame 20% faster); screenshots draw the frame again into a full-float
+// one, so an EXR screenshot holds what `luxel render` would write.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +18,8 @@ namespace luxel::viewer {
 
 class HdrTarget {
  public:
-  HdrTarget(int width, int height);
+  // `fullFloat`: RGBA32F radiance (screenshots); else RGBA16F (the screen).
+  HdrTarget(int width, int height, bool fullFloat);
   ~HdrTarget();
   HdrTarget(const HdrTarget&) = delete;
   HdrTarget& operator=(const HdrTarget&) = delete;
@@ -38,6 +40,7 @@ class HdrTarget {
 
  private:
   void release();
+  bool fullFloat_ = false;
   int width_ = 0, height_ = 0;
   unsigned fbo_ = 0, radiance_ = 0, ids_ = 0, depth_ = 0;
   unsigned meterFbo_ = 0, meterTexture_ = 0;

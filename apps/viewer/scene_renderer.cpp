@@ -379,6 +379,7 @@ void SceneRenderer::draw(const Frame& f) {
   auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
   glUniformMatrix4fv(loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
   glUniform3fv(loc("uEye"), 1, glm::value_ptr(f.eye));
+  glUniform1f(loc("uOutputScale"), f.outputScale);
   glUniform1f(loc("uTexelSize"), f.texelSize);
   if (g.lightCount > 0) {
     glUniform4fv(loc("uLightPosition"), g.lightCount, glm::value_ptr(g.lightPosition[0]));

@@ -58,6 +58,7 @@ class SceneRenderer {
     Vec3 eye{0.0f};
     float texelSize = 0.1f;  // the density view's checker
     bool elementEdges = false, patchEdges = false;
+    float outputScale = 1.0f;  // radiance is stored times this (HdrTarget: half floats near the exposure)
   };
   // Draws into the bound framebuffer (an HdrTarget's: radiance and element ids), which it clears.
   void draw(const Frame& frame);

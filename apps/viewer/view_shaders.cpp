@@ -102,7 +102,12 @@ uniform float uShadowFar[kMaxLights];      // cube maps: the distance depth 1 st
 uniform float uShadowTexel[kMaxLights];    // tan of half a texel's angle (cube) or a texel's size (sun)
 uniform mat4 uSunMatrix[kMaxLights];       // world to the sun map's [0,1]^3
 
-layout(location = 0) out vec4 outRadiance;  // a = 1 where a surface is seen (auto exposure's coverage)
+// Radiance times uOutputScale (about the exposure, so that a half-float picture holds it: values
+// near 0.18, clamped below half float's largest); a = 1 where a surface is seen (auto exposure's
+// coverage).
+layout(location = 0) out vec4 outRadiance;
+uniform float uOutputScale;
+void store(vec3 radiance) { outRadiance = vec4(min(radiance * uOutputScale, vec3(60000.0)), 1.0); }
 layout(location = 1) out uint outElement;   // element + 1, 0 for the background (picking)
 
 // What the view shows of the solution here: the corner values blended as the ray caster does.
@@ -164,7 +169,7 @@ void main() {
   if (!gl_FrontFacing) {
     // The back of a two-sided face is its twin's front, drawn in the same place: let it win.
     if ((vFlags & kHasTwin) != 0u) discard;
-    outRadiance = vec4(0.0, 0.0, 0.0, 1.0);  // one-sided surfaces send nothing backwards
+    store(vec3(0.0));  // one-sided surfaces send nothing backwards
     return;
   }
   vec3 rho = uReflectance;
@@ -175,7 +180,7 @@ void main() {
 
   if (kView == kPatches || kView == kElements) {
     vec3 c = hashColour(kView == kPatches ? patchOf[vElement] : vElement);
-    outRadiance = vec4(c * (0.35 + 0.65 * abs(dot(n, normalize(uEye - vPosition)))), 1.0);
+    store(c * (0.35 + 0.65 * abs(dot(n, normalize(uEye - vPosition)))));
     return;
   }
   if (kView == kDensity) {
@@ -184,7 +189,7 @@ void main() {
     vec2 q = a.x > a.y && a.x > a.z ? vPosition.yz : (a.y > a.z ? vPosition.xz : vPosition.xy);
     ivec2 cell = ivec2(floor(q / uTexelSize));
     float shade = ((cell.x + cell.y) & 1) == 0 ? 0.75 : 0.25;
-    outRadiance = vec4(mix(vec3(shade), hashColour(patchOf[vElement]) * shade, 0.3), 1.0);
+    store(mix(vec3(shade), hashColour(patchOf[vElement]) * shade, 0.3));
     return;
   }
 
@@ -195,7 +200,7 @@ void main() {
   // the field's direct part and the per-pixel lights; radiosity: every light from the elements.
   vec3 radiance = rho * kInvPi * (fieldValue() + perPixel);
   if (kView != kIndirect) radiance += le;
-  outRadiance = vec4(radiance, 1.0);
+  store(radiance);
 }
 )";
 

@@ -41,7 +41,7 @@ Viewer::Viewer(Scene scene, ViewerOptions options)
       options_(std::move(options)),
       camera_(options_.camera, loaded_.up, 1.0f) {
   if (options_.texelsPerMetre <= 0.0f) options_.texelsPerMetre = defaultTexelsPerMetre(loaded_);
-  target_ = std::make_unique<HdrTarget>(options_.width, options_.height);
+  target_ = std::make_unique<HdrTarget>(options_.width, options_.height, /*fullFloat=*/false);
   tone_ = std::make_unique<ToneMapPass>(shaderSource("tone.vert", options_.shaderDir),
                                         shaderSource("tone.frag", options_.shaderDir));
   startSession();
@@ -451,11 +451,20 @@ void Viewer::frame(double dt, int width, int height) {
   f.texelSize = 1.0f / options_.texelsPerMetre;
   f.elementEdges = elementEdges_;
   f.patchEdges = patchEdges_;
+  // The picture holds radiance times the exposure metered so far (values near middle grey), which
+  // half floats hold without overflow; the tone pass divides it out again.
+  storedScale_ = float(std::clamp(exposureScale_, 1e-30, 1e30));
+  f.outputScale = storedScale_;
   renderer_->draw(f);
-  if (frameIndex_ % 8 == 0 || !pendingScreenshots_.empty()) exposureScale_ = target_->meterExposure();
-  for (const std::filesystem::path& p : std::exchange(pendingScreenshots_, {})) {
-    writeImage(target_->readRadiance(), p, options_.tone);
-    messages_.push_back("wrote " + p.string());
+  // Metering the stored picture gives the exposure of the radiance divided by the scale it holds.
+  if (frameIndex_ % 8 == 0) exposureScale_ = target_->meterExposure() * double(storedScale_);
+  lastFrame_ = f;
+  if (!pendingScreenshots_.empty()) {
+    const Image shot = readRadiance();
+    for (const std::filesystem::path& p : std::exchange(pendingScreenshots_, {})) {
+      writeImage(shot, p, options_.tone);
+      messages_.push_back("wrote " + p.string());
+    }
   }
   sample.drawMs = msSince(drawStart);
 
@@ -473,9 +482,22 @@ void Viewer::frame(double dt, int width, int height) {
   ++frameIndex_;
 }
 
+Image Viewer::readRadiance() {
+  // The last frame again, in full floats and unscaled (the screen's picture is half floats).
+  const int width = target_->width(), height = target_->height();
+  if (!shotTarget_) shotTarget_ = std::make_unique<HdrTarget>(width, height, /*fullFloat=*/true);
+  shotTarget_->resize(width, height);
+  shotTarget_->bind();
+  SceneRenderer::Frame f = lastFrame_;
+  f.outputScale = 1.0f;
+  renderer_->draw(f);
+  return shotTarget_->readRadiance();
+}
+
 void Viewer::present(int width, int height) {
 
-  const float scale = float(std::exp2(double(options_.tone.exposure)) * (options_.tone.autoExposure ? exposureScale_ : 1.0));
+  const double exposure = std::exp2(double(options_.tone.exposure)) * (options_.tone.autoExposure ? exposureScale_ : 1.0);
+  const float scale = float(exposure / double(storedScale_));
   tone_->draw(target_->radianceTexture(), width, height, scale, options_.tone.curve);
 }
 

@@ -84,8 +84,9 @@ class Viewer {
   int64_t frameCount() const { return frameIndex_; }
   std::string renderer() const;  // GL_RENDERER
   std::string status() const;    // one line: solver, step, unshot, frame time
-  // The radiance of the last frame (row 0 at the top), for screenshots and tests.
-  Image readRadiance() const { return target_->readRadiance(); }
+  // The radiance of the last frame (row 0 at the top), in full floats: drawn again unscaled into a
+  // full-float picture, as a screenshot is.
+  Image readRadiance();
   // The scene as edited, for `save`.
   const Scene& scene() const { return session_->scene(); }
   std::vector<std::string> takeMessages();  // what happened since last asked (errors of edits, saved files)
@@ -118,7 +119,10 @@ class Viewer {
   Vec3 pivot_{0.0f};
   bool elementEdges_ = false, patchEdges_ = false;
   int64_t selected_ = -1;  // picked object
-  double exposureScale_ = 1.0;
+  double exposureScale_ = 1.0;  // automatic exposure of the radiance (autoExposureScale)
+  float storedScale_ = 1.0f;    // what the on-screen picture's radiance is multiplied by
+  std::unique_ptr<HdrTarget> shotTarget_;  // full floats, for screenshots
+  SceneRenderer::Frame lastFrame_;
   int64_t frameIndex_ = 0;
   bool fieldsStale_ = true, steppedSinceRefresh_ = false, solutionShown_ = false;
   std::chrono::steady_clock::time_point lastRefresh_{}, frameStart_{};
