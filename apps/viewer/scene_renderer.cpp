@@ -57,7 +57,10 @@ bool drawnPerPixel(const Light& l) {
 struct SceneRenderer::Gl {
   // One per view and count of per-pixel lights, made when first drawn.
   std::unique_ptr<gl::ShaderProgram> scenes[kViewModeCount][kMaxPerPixelLights + 1];
-  std::unique_ptr<gl::ShaderProgram> cubeShadow, sunShadow, line;
+  std::unique_ptr<gl::ShaderProgram> cubeShadow, sunShadow, line, sky;
+  GLuint skyVao = 0;
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  Rgb uniformSky{0.0f}, overcastSky{0.0f};
   GLuint vao = 0, vbo = 0, ibo = 0, corners = 0, patchOf = 0;
   GLuint lineVao = 0, elementEdges = 0, patchEdges = 0;
   GLsizei elementEdgeCount = 0, patchEdgeCount = 0, indexCount = 0;
@@ -82,8 +85,8 @@ struct SceneRenderer::Gl {
   ~Gl() {
     GLuint buffers[] = {vbo, ibo, corners, patchOf, elementEdges, patchEdges};
     glDeleteBuffers(6, buffers);
-    GLuint arrays[] = {vao, lineVao};
-    glDeleteVertexArrays(2, arrays);
+    GLuint arrays[] = {vao, lineVao, skyVao};
+    glDeleteVertexArrays(3, arrays);
     if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
     GLuint shadowTextures[] = {cubeShadows, sunShadows};
     glDeleteTextures(2, shadowTextures);
@@ -96,6 +99,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const SurfaceSet& surfaces, std
   buildPrograms();
   glCreateVertexArrays(1, &gl_->vao);
   glCreateVertexArrays(1, &gl_->lineVao);
+  glCreateVertexArrays(1, &gl_->skyVao);
   // Textures once: moves and new cuts keep the scene's images.
   for (const Texture& t : scene.textures) {
     GLuint tex = 0;
@@ -142,12 +146,14 @@ void SceneRenderer::buildPrograms() {
   auto cube = std::make_unique<gl::ShaderProgram>("viewer cube shadow", src("shadow.vert"), src("cube-shadow.frag"));
   auto sun = std::make_unique<gl::ShaderProgram>("viewer sun shadow", src("shadow.vert"), src("sun-shadow.frag"));
   auto line = std::make_unique<gl::ShaderProgram>("viewer edges", src("line.vert"), src("line.frag"));
+  auto sky = std::make_unique<gl::ShaderProgram>("viewer sky", src("sky.vert"), src("sky.frag"));
   for (auto& row : gl_->scenes)
     for (auto& p : row) p.reset();
   gl_->scenes[0][0] = std::move(scene);
   gl_->cubeShadow = std::move(cube);
   gl_->sunShadow = std::move(sun);
   gl_->line = std::move(line);
+  gl_->sky = std::move(sky);
 }
 
 void SceneRenderer::reloadShaders() { buildPrograms(); }
@@ -264,6 +270,12 @@ void SceneRenderer::setLights(const Scene& scene, const std::vector<uint32_t>& p
   if (perPixel.size() > size_t(kMaxPerPixelLights))
     throw Error(fmt::format("viewer: {} per-pixel lights, at most {}", perPixel.size(), kMaxPerPixelLights));
   g.lightCount = int(perPixel.size());
+  g.up = glm::length(scene.up) > 0.0f ? glm::normalize(scene.up) : Vec3(0, 1, 0);
+  g.uniformSky = g.overcastSky = Rgb(0.0f);
+  for (const Light& l : scene.lights) {
+    if (l.type == Light::Type::Sky) g.uniformSky += l.power();
+    if (l.type == Light::Type::CieOvercastSky) g.overcastSky += l.power();
+  }
   int cubes = 0, suns = 0;
   for (int i = 0; i < g.lightCount; ++i) {
     const Light& l = scene.lights.at(perPixel[size_t(i)]);
@@ -369,10 +381,24 @@ void SceneRenderer::draw(const Frame& f) {
   glClearBufferfv(GL_COLOR, 0, clearRadiance);
   glClearBufferuiv(GL_COLOR, 1, clearId);
   glClearBufferfv(GL_DEPTH, 0, &farDepth);
+  glDisable(GL_CULL_FACE);  // backs are drawn black or left to their twins (scene.frag)
+  glDisable(GL_BLEND);
+  if (g.uniformSky != Rgb(0.0f) || g.overcastSky != Rgb(0.0f)) {
+    glDisable(GL_DEPTH_TEST);
+    g.sky->use();
+    const GLuint sp = g.sky->id();
+    const glm::mat4 inverse = glm::inverse(f.viewProjection);
+    glUniformMatrix4fv(glGetUniformLocation(sp, "uInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
+    glUniform3fv(glGetUniformLocation(sp, "uUp"), 1, glm::value_ptr(g.up));
+    glUniform3fv(glGetUniformLocation(sp, "uUniform"), 1, glm::value_ptr(g.uniformSky));
+    glUniform3fv(glGetUniformLocation(sp, "uOvercast"), 1, glm::value_ptr(g.overcastSky));
+    glUniform1f(glGetUniformLocation(sp, "uOutputScale"), f.outputScale);
+    glBindVertexArray(g.skyVao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
   glDepthMask(GL_TRUE);
-  glDisable(GL_CULL_FACE);  // backs are drawn black or left to their twins (scene.frag)
   glDisable(GL_BLEND);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   program.use();

@@ -222,6 +222,36 @@ const char* kSunShadowFragment = R"(#version 450 core
 void main() {}
 )";
 
+// The sky behind the scene, where the scene's sky lights give radiance (skyRadiance in
+// transport/light_sampling.cpp): uniform, or the CIE overcast sky's (1 + 2 cos z) / 3 of the zenith.
+// Alpha 0: automatic exposure meters on surfaces only, as for `luxel render`'s coverage.
+const char* kSkyVertex = R"(#version 450 core
+uniform mat4 uInverseViewProjection;
+out vec3 vDirection;
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0;
+  vec4 far = uInverseViewProjection * vec4(p, 0.0, 1.0);   // reversed depth: 0 is the far plane
+  vec4 near = uInverseViewProjection * vec4(p, 1.0, 1.0);
+  vDirection = far.xyz / far.w - near.xyz / near.w;
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+const char* kSkyFragment = R"(#version 450 core
+in vec3 vDirection;
+uniform vec3 uUp;
+uniform vec3 uUniform;   // summed uniform skies' radiance
+uniform vec3 uOvercast;  // summed CIE overcast skies' zenith radiance
+uniform float uOutputScale;
+layout(location = 0) out vec4 outRadiance;
+layout(location = 1) out uint outElement;
+void main() {
+  float c = dot(normalize(vDirection), uUp);
+  vec3 l = c > 0.0 ? uUniform + uOvercast * ((1.0 + 2.0 * c) / 3.0) : vec3(0.0);
+  outRadiance = vec4(min(l * uOutputScale, vec3(60000.0)), 0.0);
+  outElement = 0u;
+}
+)";
+
 // Edges of elements or patches over the picture.
 const char* kLineVertex = R"(#version 450 core
 layout(location = 0) in vec3 aPosition;
@@ -269,7 +299,8 @@ const std::vector<ShaderSource>& builtinShaders() {
       {"scene.vert", kSceneVertex},          {"scene.frag", kSceneFragment},
       {"shadow.vert", kShadowVertex},        {"cube-shadow.frag", kCubeShadowFragment},
       {"sun-shadow.frag", kSunShadowFragment}, {"line.vert", kLineVertex},
-      {"line.frag", kLineFragment},          {"tone.vert", kToneVertex},
+      {"line.frag", kLineFragment},          {"sky.vert", kSkyVertex},
+      {"sky.frag", kSkyFragment},          {"tone.vert", kToneVertex},
       {"tone.frag", kToneFragment},
   };
   return shaders;
