@@ -67,7 +67,8 @@ std::string FrameStats::json(const std::string& scene, int width, int height, co
   j["idle"] = phase(frames_, false);
   j["solving"] = phase(frames_, true);
   nlohmann::json edits = nlohmann::json::array();
-  for (const EditLatency& e : edits_) edits.push_back({{"action", e.action}, {"ms", e.ms}});
+  for (const EditLatency& e : edits_)
+    edits.push_back({{"action", e.action}, {"ms", e.ms}, {"edit_ms", e.editMs}, {"solve_ms", e.solveMs}});
   j["edits"] = edits;
   return j.dump(2) + "\n";
 }

@@ -19,6 +19,8 @@ struct FrameSample {
 struct EditLatency {
   std::string action;
   double ms = 0.0;  // from the edit to the end of the first frame drawn with its indirect light
+  double editMs = 0.0;   // of which making the edit (the session's update, shadow maps)
+  double solveMs = 0.0;  // and the solver's steps until its light was redistributed
 };
 
 struct Percentiles {

@@ -12,6 +12,7 @@
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
 #include "luxel/render.h"
+#include "render/corner_values.h"
 #include "scene_json_writer.h"
 #include "view_shaders.h"
 
@@ -62,6 +63,7 @@ void Viewer::startSession() {
     scene.objects[i].dynamic = loaded_.objects[i].dynamic;
   session_.reset();  // one GL solver at a time in the shared context
   session_ = std::make_unique<Session>(std::move(scene), options_.discretise, so);
+  cornerGroups_.reset();
   if (!renderer_)
     renderer_ = std::make_unique<SceneRenderer>(session_->scene(), session_->surfaces(), options_.shaderDir);
   else
@@ -82,6 +84,7 @@ void Viewer::afterSourcesChanged() {
 }
 
 void Viewer::afterGeometryChanged() {
+  cornerGroups_.reset();
   renderer_->setGeometry(session_->scene(), session_->surfaces());
   perPixelIrradiance_ = session_->lightIrradiance(perPixel_);
   renderer_->setLights(session_->scene(), perPixel_);
@@ -97,11 +100,13 @@ void Viewer::refreshFields() {
   const auto start = Clock::now();
   const SurfaceSet& surfaces = session_->surfaces();
   Solution sol = session_->solution();
-  if (perPixelIrradiance_.size() != surfaces.elements.size())
-    perPixelIrradiance_ = session_->lightIrradiance(perPixel_);
-  const std::vector<Rgb> field = elementCornerValues(surfaces, minus(sol.irradiance, perPixelIrradiance_));
-  const std::vector<Rgb> direct = elementCornerValues(surfaces, minus(sol.directIrradiance, perPixelIrradiance_));
-  const std::vector<Rgb> perPixel = elementCornerValues(surfaces, perPixelIrradiance_);
+  // Adaptive refinement (--refine) splits elements as the solve goes: draw the new cut.
+  if (perPixelIrradiance_.size() != surfaces.elements.size()) afterGeometryChanged();
+  // Which elements meet at each corner changes only with the geometry.
+  if (!cornerGroups_) cornerGroups_ = std::make_unique<CornerGroups>(surfaces, kDefaultCreaseCosine);
+  const std::vector<Rgb> field = elementCornerValues(surfaces, *cornerGroups_, minus(sol.irradiance, perPixelIrradiance_));
+  const std::vector<Rgb> direct = elementCornerValues(surfaces, *cornerGroups_, minus(sol.directIrradiance, perPixelIrradiance_));
+  const std::vector<Rgb> perPixel = elementCornerValues(surfaces, *cornerGroups_, perPixelIrradiance_);
   renderer_->setFields(field, direct, perPixel);
   lastRefresh_ = Clock::now();
   lastRefreshSeconds_ = std::chrono::duration<double>(lastRefresh_ - start).count();
@@ -217,6 +222,13 @@ void Viewer::setLights(std::vector<Light> lights) {
 void Viewer::screenshot(const std::filesystem::path& path) { pendingScreenshots_.push_back(path); }
 
 void Viewer::perform(const Action& a) {
+  const auto start = Clock::now();
+  const size_t editsBefore = pendingEdits_.size();
+  performNow(a);
+  if (pendingEdits_.size() > editsBefore) pendingEdits_.back().editMs = msSince(start);
+}
+
+void Viewer::performNow(const Action& a) {
   checkAction(a);
   const std::string& n = a.name;
   const Scene& scene = session_->scene();
@@ -424,8 +436,8 @@ void Viewer::frame(double dt, int width, int height) {
     const auto solveStart = Clock::now();
     session_->step(StepLimit{options_.stepSeconds, 0});
     steppedSinceRefresh_ = true;
-    for (PendingEdit& e : pendingEdits_) e.stepped = true;
     sample.solveMs = msSince(solveStart);
+    for (PendingEdit& e : pendingEdits_) e.stepped = true, e.solveMs += sample.solveMs;
   }
   // The fields follow the solution as often as reading it costs at most a quarter of the time.
   const double sinceRefresh = std::chrono::duration<double>(Clock::now() - lastRefresh_).count();
@@ -472,7 +484,7 @@ void Viewer::frame(double dt, int width, int height) {
   for (auto it = pendingEdits_.begin(); it != pendingEdits_.end();) {
     if (it->stepped && !steppedSinceRefresh_) {
       glFinish();
-      stats_.addEdit({it->action, msSince(it->start)});
+      stats_.addEdit({it->action, msSince(it->start), it->editMs, it->solveMs});
       it = pendingEdits_.erase(it);
     } else {
       ++it;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "frame_stats.h"
+#include "mesh/corner_groups.h"
 #include "hdr_target.h"
 #include "luxel/image.h"
 #include "luxel/session.h"
@@ -98,6 +99,7 @@ class Viewer {
   void refreshFields();                // solution to the renderer's corner values
   void zeroFields();
   void markEdit(const std::string& what);
+  void performNow(const Action& action);
   void setLights(std::vector<Light> lights);
   void moveObject(uint32_t object, const glm::mat4& delta, bool aboutCentre);
   uint32_t objectByName(const Action& a, const std::string& name) const;
@@ -114,6 +116,7 @@ class Viewer {
   ViewCamera camera_;
   std::vector<uint32_t> perPixel_;     // lights drawn per pixel
   std::vector<Rgb> perPixelIrradiance_;  // their part of the solution, per element
+  std::unique_ptr<CornerGroups> cornerGroups_;  // of the current surfaces; reset when they change
   std::set<std::string> keys_;
   bool orbitMode_ = false;
   Vec3 pivot_{0.0f};
@@ -131,6 +134,7 @@ class Viewer {
     std::string action;
     std::chrono::steady_clock::time_point start;
     bool stepped = false;
+    double editMs = 0.0, solveMs = 0.0;
   };
   std::vector<PendingEdit> pendingEdits_;
   std::vector<std::filesystem::path> pendingScreenshots_;

@@ -2,13 +2,17 @@
 // elements meeting there on the same smooth surface (Cohen and Wallace, "Radiosity and Realistic
 // Image Synthesis", 1993, section 9.2: nodal averaging), so values never bleed across creases or
 // material boundaries.
+#include "render/corner_values.h"
+
 #include "luxel/render.h"
-#include "mesh/corner_groups.h"
 
 namespace luxel {
 
 std::vector<Rgb> elementCornerValues(const SurfaceSet& surfaces, const std::vector<Rgb>& perElement) {
-  CornerGroups groups(surfaces, kDefaultCreaseCosine);
+  return elementCornerValues(surfaces, CornerGroups(surfaces, kDefaultCreaseCosine), perElement);
+}
+
+std::vector<Rgb> elementCornerValues(const SurfaceSet& surfaces, const CornerGroups& groups, const std::vector<Rgb>& perElement) {
   std::vector<Rgb> corners(surfaces.elements.size() * 4, Rgb(0.0f));
   for (uint32_t e = 0; e < surfaces.elements.size(); ++e) {
     const int count = surfaces.elements[e].polygon.count;
