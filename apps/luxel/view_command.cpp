@@ -27,6 +27,8 @@ void addViewerOptions(CLI::App& c, ViewerArgs& a) {
   c.add_option("--tonemap", a.toneCurve, "Tone curve: filmic, reinhard or clamp")->capture_default_str();
   c.add_option("--exposure", a.exposure, "Exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));
   c.add_option("--view", a.viewMode, "final, indirect, direct, radiosity, patches, elements or density")->capture_default_str();
+  c.add_option("--shadows", a.shadows, "Shadows of point, spot and sun lights: maps (cube shadow maps) or volumes (stencil shadow volumes)")
+      ->capture_default_str();
   addSolveOptions(c, a.solve);
   c.add_option("--script", a.script, "Replay timed input from this file (`luxel view --actions` lists what it may say)");
   c.add_option("--screenshot", a.screenshot, "Write the last frame (.png tone-mapped, .exr radiance) and exit; needs --frames");
@@ -53,6 +55,7 @@ void checkViewerArgs(const ViewerArgs& a) {
   if (a.up) parseVec3(*a.up, "up");
   parseToneCurve(a.toneCurve);
   viewer::parseViewMode(a.viewMode);
+  viewer::parseShadowMethod(a.shadows);
   checkSolveArgs(a.solve);
   if (!a.screenshot.empty() && a.frames <= 0) throw Error("--screenshot needs --frames N: the frame to write");
 }
@@ -101,6 +104,7 @@ int runViewer(const ViewerArgs& a) {
   o.tone.curve = parseToneCurve(a.toneCurve);
   o.tone.exposure = a.exposure;
   o.mode = viewer::parseViewMode(a.viewMode);
+  o.shadows = viewer::parseShadowMethod(a.shadows);
   o.paused = a.paused;
   o.stepSeconds = a.stepMs / 1000.0;
   o.shaderDir = a.shaderDir;

@@ -17,6 +17,7 @@ struct ViewerArgs : ViewArgs {
   std::string scene;
   SolveArgs solve;
   std::string viewMode = "final";
+  std::string shadows = "maps";
   std::string script;
   std::string screenshot;
   int64_t frames = 0;

@@ -41,11 +41,12 @@ void HdrTarget::resize(int width, int height) {
   glCreateTextures(GL_TEXTURE_2D, 1, &ids_);
   glTextureStorage2D(ids_, 1, GL_R32UI, width, height);
   glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
-  glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, width, height);
+  // With a stencil, for the shadow-volume path.
+  glTextureStorage2D(depth_, 1, GL_DEPTH32F_STENCIL8, width, height);
   glCreateFramebuffers(1, &fbo_);
   glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, radiance_, 0);
   glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT1, ids_, 0);
-  glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, depth_, 0);
+  glNamedFramebufferTexture(fbo_, GL_DEPTH_STENCIL_ATTACHMENT, depth_, 0);
   const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glNamedFramebufferDrawBuffers(fbo_, 2, buffers);
   const GLenum status = glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER);

@@ -57,6 +57,10 @@ bool drawnPerPixel(const Light& l) {
 struct SceneRenderer::Gl {
   // One per view and count of per-pixel lights, made when first drawn.
   std::unique_ptr<gl::ShaderProgram> scenes[kViewModeCount][kMaxPerPixelLights + 1];
+  std::unique_ptr<gl::ShaderProgram> lightOnly[kViewModeCount];  // the shadow-volume path's per-light pass
+  std::unique_ptr<gl::ShaderProgram> volume;
+  GLuint casterVao = 0, casters = 0;
+  GLsizei casterVertexCount = 0;
   std::unique_ptr<gl::ShaderProgram> cubeShadow, sunShadow, line, sky;
   GLuint skyVao = 0;
   Vec3 up{0.0f, 1.0f, 0.0f};
@@ -85,8 +89,9 @@ struct SceneRenderer::Gl {
   ~Gl() {
     GLuint buffers[] = {vbo, ibo, corners, patchOf, elementEdges, patchEdges};
     glDeleteBuffers(6, buffers);
-    GLuint arrays[] = {vao, lineVao, skyVao};
-    glDeleteVertexArrays(3, arrays);
+    GLuint arrays[] = {vao, lineVao, skyVao, casterVao};
+    glDeleteVertexArrays(4, arrays);
+    glDeleteBuffers(1, &casters);
     if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
     GLuint shadowTextures[] = {cubeShadows, sunShadows};
     glDeleteTextures(2, shadowTextures);
@@ -100,6 +105,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, const SurfaceSet& surfaces, std
   glCreateVertexArrays(1, &gl_->vao);
   glCreateVertexArrays(1, &gl_->lineVao);
   glCreateVertexArrays(1, &gl_->skyVao);
+  glCreateVertexArrays(1, &gl_->casterVao);
   // Textures once: moves and new cuts keep the scene's images.
   for (const Texture& t : scene.textures) {
     GLuint tex = 0;
@@ -123,16 +129,19 @@ SceneRenderer::~SceneRenderer() = default;
 
 namespace {
 
-std::string sceneDefines(ViewMode mode, int lights) { return fmt::format("#define VIEW {}\n#define LIGHTS {}\n", int(mode), lights); }
+std::string sceneDefines(ViewMode mode, int lights, bool lightOnly = false) {
+  return fmt::format("#define VIEW {}\n#define LIGHTS {}\n#define LIGHT_ONLY {}\n", int(mode), lights, lightOnly ? 1 : 0);
+}
 
 }  // namespace
 
-gl::ShaderProgram& SceneRenderer::sceneProgram(ViewMode mode, int lights) {
-  std::unique_ptr<gl::ShaderProgram>& p = gl_->scenes[int(mode)][lights];
+gl::ShaderProgram& SceneRenderer::sceneProgram(ViewMode mode, int lights, bool lightOnly) {
+  std::unique_ptr<gl::ShaderProgram>& p = lightOnly ? gl_->lightOnly[int(mode)] : gl_->scenes[int(mode)][lights];
   if (!p)
-    p = std::make_unique<gl::ShaderProgram>(fmt::format("viewer scene ({} view, {} lights)", viewModeName(mode), lights),
-                                            shaderSource("scene.vert", shaderDir_, sceneDefines(mode, lights)),
-                                            shaderSource("scene.frag", shaderDir_, sceneDefines(mode, lights)));
+    p = std::make_unique<gl::ShaderProgram>(
+        fmt::format("viewer scene ({} view, {} lights{})", viewModeName(mode), lights, lightOnly ? ", one light's pass" : ""),
+        shaderSource("scene.vert", shaderDir_, sceneDefines(mode, lights, lightOnly)),
+        shaderSource("scene.frag", shaderDir_, sceneDefines(mode, lights, lightOnly)));
   return *p;
 }
 
@@ -149,6 +158,8 @@ void SceneRenderer::buildPrograms() {
   auto sky = std::make_unique<gl::ShaderProgram>("viewer sky", src("sky.vert"), src("sky.frag"));
   for (auto& row : gl_->scenes)
     for (auto& p : row) p.reset();
+  for (auto& p : gl_->lightOnly) p.reset();
+  gl_->volume = std::make_unique<gl::ShaderProgram>("viewer shadow volumes", src("volume.vert"), src("volume.geom"), src("volume.frag"));
   gl_->scenes[0][0] = std::move(scene);
   gl_->cubeShadow = std::move(cube);
   gl_->sunShadow = std::move(sun);
@@ -247,6 +258,18 @@ void SceneRenderer::setGeometry(const Scene& scene, const SurfaceSet& surfaces) 
     }
   upload(g.patchEdges, lines.data(), lines.size() * sizeof(Vec3));
   g.patchEdgeCount = GLsizei(lines.size());
+  // Shadow casters: the faces as triangles (coarser than the elements, the same surfaces).
+  lines.clear();
+  for (const SurfaceFace& face : surfaces.faces) {
+    lines.insert(lines.end(), {face.corners[0], face.corners[1], face.corners[2]});
+    if (!face.triangle) lines.insert(lines.end(), {face.corners[0], face.corners[2], face.corners[3]});
+  }
+  upload(g.casters, lines.data(), lines.size() * sizeof(Vec3));
+  g.casterVertexCount = GLsizei(lines.size());
+  glEnableVertexArrayAttrib(g.casterVao, 0);
+  glVertexArrayAttribFormat(g.casterVao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(g.casterVao, 0, 0);
+  glVertexArrayVertexBuffer(g.casterVao, 0, g.casters, 0, sizeof(Vec3));
   glEnableVertexArrayAttrib(g.lineVao, 0);
   glVertexArrayAttribFormat(g.lineVao, 0, 3, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribBinding(g.lineVao, 0, 0);
@@ -304,7 +327,7 @@ void SceneRenderer::setLights(const Scene& scene, const std::vector<uint32_t>& p
   };
   ensure(g.cubeShadows, GL_TEXTURE_CUBE_MAP_ARRAY, g.cubeLayers, cubes, shadowSize_, 6 * cubes);
   ensure(g.sunShadows, GL_TEXTURE_2D_ARRAY, g.sunLayers, suns, kSunSize, suns);
-  drawShadows(scene);
+  if (shadowMethod_ == ShadowMethod::Maps) drawShadows(scene);
   gl::Context::check("viewer: shadow maps");
   (void)perPixel;
 }
@@ -368,58 +391,51 @@ void SceneRenderer::drawShadows(const Scene&) {
   lastShadowMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void SceneRenderer::draw(const Frame& f) {
+void SceneRenderer::drawSky(const Frame& f) {
   Gl& g = *gl_;
-  gl::ShaderProgram& program = sceneProgram(f.mode, g.lightCount);
-  const GLuint prog = program.id();
-  const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  const GLuint clearId[4] = {0, 0, 0, 0};
-  const float farDepth = 0.0f;
-  // Reversed depth (ViewCamera::projection); put back as found at the end, for the GL solvers
-  // that share the context.
-  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-  glClearBufferfv(GL_COLOR, 0, clearRadiance);
-  glClearBufferuiv(GL_COLOR, 1, clearId);
-  glClearBufferfv(GL_DEPTH, 0, &farDepth);
-  glDisable(GL_CULL_FACE);  // backs are drawn black or left to their twins (scene.frag)
-  glDisable(GL_BLEND);
-  if (g.uniformSky != Rgb(0.0f) || g.overcastSky != Rgb(0.0f)) {
-    glDisable(GL_DEPTH_TEST);
-    g.sky->use();
-    const GLuint sp = g.sky->id();
-    const glm::mat4 inverse = glm::inverse(f.viewProjection);
-    glUniformMatrix4fv(glGetUniformLocation(sp, "uInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
-    glUniform3fv(glGetUniformLocation(sp, "uUp"), 1, glm::value_ptr(g.up));
-    glUniform3fv(glGetUniformLocation(sp, "uUniform"), 1, glm::value_ptr(g.uniformSky));
-    glUniform3fv(glGetUniformLocation(sp, "uOvercast"), 1, glm::value_ptr(g.overcastSky));
-    glUniform1f(glGetUniformLocation(sp, "uOutputScale"), f.outputScale);
-    glBindVertexArray(g.skyVao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
+  if (g.uniformSky == Rgb(0.0f) && g.overcastSky == Rgb(0.0f)) return;
+  // After the surfaces, at infinity (depth 0, what the depth buffer was cleared to): only the
+  // pixels no surface covers pass, so the sky costs what is seen of it.
   glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_GREATER);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_BLEND);
-  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glDepthFunc(GL_GEQUAL);
+  glDepthMask(GL_FALSE);
+  g.sky->use();
+  const GLuint sp = g.sky->id();
+  const glm::mat4 inverse = glm::inverse(f.viewProjection);
+  glUniformMatrix4fv(glGetUniformLocation(sp, "uInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
+  glUniform3fv(glGetUniformLocation(sp, "uUp"), 1, glm::value_ptr(g.up));
+  glUniform3fv(glGetUniformLocation(sp, "uUniform"), 1, glm::value_ptr(g.uniformSky));
+  glUniform3fv(glGetUniformLocation(sp, "uOvercast"), 1, glm::value_ptr(g.overcastSky));
+  glUniform1f(glGetUniformLocation(sp, "uOutputScale"), f.outputScale);
+  glBindVertexArray(g.skyVao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void SceneRenderer::drawSurfaces(gl::ShaderProgram& program, const Frame& f, int first, int count, bool withShadowMaps) {
+  Gl& g = *gl_;
+  const GLuint prog = program.id();
   program.use();
   auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
   glUniformMatrix4fv(loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
   glUniform3fv(loc("uEye"), 1, glm::value_ptr(f.eye));
   glUniform1f(loc("uOutputScale"), f.outputScale);
   glUniform1f(loc("uTexelSize"), f.texelSize);
-  if (g.lightCount > 0) {
-    glUniform4fv(loc("uLightPosition"), g.lightCount, glm::value_ptr(g.lightPosition[0]));
-    glUniform4fv(loc("uLightPower"), g.lightCount, glm::value_ptr(g.lightPower[0]));
-    glUniform4fv(loc("uLightSpot"), g.lightCount, glm::value_ptr(g.lightSpot[0]));
-    glUniform1fv(loc("uLightCosInner"), g.lightCount, g.cosInner);
-    glUniform1fv(loc("uShadowFar"), g.lightCount, g.shadowFar);
-    glUniform1fv(loc("uShadowTexel"), g.lightCount, g.shadowTexel);
-    glUniformMatrix4fv(loc("uSunMatrix"), g.lightCount, GL_FALSE, glm::value_ptr(g.sunMatrix[0]));
+  if (count > 0) {
+    glm::vec4 power[kMaxPerPixelLights];
+    for (int i = 0; i < count; ++i) {
+      power[i] = g.lightPower[first + i];
+      if (!withShadowMaps) power[i].w = -1.0f;  // no map: the stencil decides
+    }
+    glUniform4fv(loc("uLightPosition"), count, glm::value_ptr(g.lightPosition[first]));
+    glUniform4fv(loc("uLightPower"), count, glm::value_ptr(power[0]));
+    glUniform4fv(loc("uLightSpot"), count, glm::value_ptr(g.lightSpot[first]));
+    glUniform1fv(loc("uLightCosInner"), count, g.cosInner + first);
+    glUniform1fv(loc("uShadowFar"), count, g.shadowFar + first);
+    glUniform1fv(loc("uShadowTexel"), count, g.shadowTexel + first);
+    glUniformMatrix4fv(loc("uSunMatrix"), count, GL_FALSE, glm::value_ptr(g.sunMatrix[first]));
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.corners);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.patchOf);
-  // Unused samplers still need a texture of their type bound (a sampler with none reads zero,
-  // and some drivers complain); the shadow arrays exist once a light needed them.
   if (g.cubeShadows) glBindTextureUnit(2, g.cubeShadows);
   if (g.sunShadows) glBindTextureUnit(3, g.sunShadows);
   glBindVertexArray(g.vao);
@@ -435,27 +451,110 @@ void SceneRenderer::draw(const Frame& f) {
     if (et) glBindTextureUnit(1, g.textures[size_t(m.emissionTexture)]);
     glDrawElements(GL_TRIANGLES, b.count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(size_t(b.first) * sizeof(uint32_t)));
   }
-  if (f.elementEdges || f.patchEdges) {
-    g.line->use();
-    const GLuint lp = g.line->id();
-    glUniformMatrix4fv(glGetUniformLocation(lp, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
-    glDepthFunc(GL_GEQUAL);
-    glBindVertexArray(g.lineVao);
-    glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // edges are not pickable
-    auto edges = [&](GLuint buffer, GLsizei count, glm::vec4 colour) {
-      glVertexArrayVertexBuffer(g.lineVao, 0, buffer, 0, sizeof(Vec3));
-      glUniform4fv(glGetUniformLocation(lp, "uColour"), 1, glm::value_ptr(colour));
-      glDrawArrays(GL_LINES, 0, count);
-    };
-    // Edge colours are radiance: bright enough to read at any exposure is not possible, so they
-    // are drawn relative to the picture by the tone pass's clamp: 1e9 is white under any curve.
-    if (f.elementEdges) edges(g.elementEdges, g.elementEdgeCount, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    if (f.patchEdges) edges(g.patchEdges, g.patchEdgeCount, glm::vec4(1e9f, 1e9f, 0.0f, 1.0f));
-    glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void SceneRenderer::drawVolumes(const Frame& f, int light) {
+  Gl& g = *gl_;
+  const bool sun = g.lightPosition[light].w == 2.0f;
+  const glm::vec4 l = sun ? glm::vec4(Vec3(g.lightPosition[light]), 0.0f) : glm::vec4(Vec3(g.lightPosition[light]), 1.0f);
+  g.volume->use();
+  glUniformMatrix4fv(glGetUniformLocation(g.volume->id(), "uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
+  glUniform4fv(glGetUniformLocation(g.volume->id(), "uLight"), 1, glm::value_ptr(l));
+  glBindVertexArray(g.casterVao);
+  glDrawArrays(GL_TRIANGLES, 0, g.casterVertexCount);
+}
+
+void SceneRenderer::drawEdges(const Frame& f) {
+  Gl& g = *gl_;
+  if (!f.elementEdges && !f.patchEdges) return;
+  g.line->use();
+  const GLuint lp = g.line->id();
+  glUniformMatrix4fv(glGetUniformLocation(lp, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
+  glDepthFunc(GL_GEQUAL);
+  glBindVertexArray(g.lineVao);
+  glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);  // edges are not pickable
+  auto edges = [&](GLuint buffer, GLsizei count, glm::vec4 colour) {
+    glVertexArrayVertexBuffer(g.lineVao, 0, buffer, 0, sizeof(Vec3));
+    glUniform4fv(glGetUniformLocation(lp, "uColour"), 1, glm::value_ptr(colour));
+    glDrawArrays(GL_LINES, 0, count);
+  };
+  // Element edges black; patch edges yellow and far brighter than any radiance shown (1e4 times the
+  // exposure's middle grey), so the tone curve draws them at full yellow.
+  if (f.elementEdges) edges(g.elementEdges, g.elementEdgeCount, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  if (f.patchEdges) edges(g.patchEdges, g.patchEdgeCount, glm::vec4(1e4f, 1e4f, 0.0f, 1.0f));
+  glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void SceneRenderer::draw(const Frame& f) {
+  Gl& g = *gl_;
+  const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const GLuint clearId[4] = {0, 0, 0, 0};
+  // Reversed depth (ViewCamera::projection): put back as found at the end, for the GL solvers
+  // that share the context.
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glClearBufferfv(GL_COLOR, 0, clearRadiance);
+  glClearBufferuiv(GL_COLOR, 1, clearId);
+  glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  glDisable(GL_CULL_FACE);  // backs are drawn black or left to their twins (scene.frag)
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+  const bool perPixelView = f.mode == ViewMode::Final || f.mode == ViewMode::Direct;
+  const bool volumes = shadowMethod_ == ShadowMethod::Volumes && perPixelView && g.lightCount > 0;
+  if (!volumes) {
+    drawSurfaces(sceneProgram(f.mode, perPixelView ? g.lightCount : 0), f, 0, perPixelView ? g.lightCount : 0, true);
+  } else {
+    // 004's path: the light that needs no shadows first (the field and emission), then for each
+    // light its shadow volumes into the stencil (z-fail: counted where they lie behind what is
+    // seen) and its light added where the count is zero.
+    drawSurfaces(sceneProgram(f.mode, 0), f, 0, 0, false);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_STENCIL_TEST);
+    for (int i = 0; i < g.lightCount; ++i) {
+      glClear(GL_STENCIL_BUFFER_BIT);
+      glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      glDepthFunc(GL_GREATER);
+      glStencilFunc(GL_ALWAYS, 0, 0xFF);
+      glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
+      glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
+      drawVolumes(f, i);
+      glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glStencilFunc(GL_EQUAL, 0, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+      glDepthFunc(GL_GEQUAL);  // the surfaces seen, drawn again (invariant positions)
+      glEnablei(GL_BLEND, 0);
+      glBlendFunci(0, GL_ONE, GL_ONE);
+      drawSurfaces(sceneProgram(f.mode, 1, true), f, i, 1, false);
+      glDisablei(GL_BLEND, 0);
+    }
+    glDisable(GL_STENCIL_TEST);
+    glDepthMask(GL_TRUE);
   }
+  drawSky(f);
+  drawEdges(f);
   glBindVertexArray(0);
+  glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+}
+
+ShadowMethod parseShadowMethod(const std::string& name) {
+  if (name == "maps") return ShadowMethod::Maps;
+  if (name == "volumes") return ShadowMethod::Volumes;
+  throw Error(fmt::format("unknown shadow method '{}' (expected maps or volumes)", name));
+}
+
+const char* shadowMethodName(ShadowMethod m) { return m == ShadowMethod::Maps ? "maps" : "volumes"; }
+
+void SceneRenderer::setShadowMethod(ShadowMethod method, const Scene& scene) {
+  if (method == shadowMethod_) return;
+  shadowMethod_ = method;
+  if (method == ShadowMethod::Maps) drawShadows(scene);
 }
 
 }  // namespace luxel::viewer

@@ -27,6 +27,12 @@ inline constexpr int kViewModeCount = 7;
 
 inline constexpr int kMaxPerPixelLights = 8;
 
+// How per-pixel lights cast shadows: cube (and, for suns, orthographic) shadow maps drawn when a
+// light changes, or 004's stencil shadow volumes drawn every frame (exact, one pass per light).
+enum class ShadowMethod { Maps, Volumes };
+ShadowMethod parseShadowMethod(const std::string& name);  // "maps" | "volumes"
+const char* shadowMethodName(ShadowMethod method);
+
 // Whether the viewer draws `light` per pixel (point, spot and sun lights); skies stay in the field.
 bool drawnPerPixel(const Light& light);
 
@@ -48,6 +54,9 @@ class SceneRenderer {
   // Which lights are drawn per pixel (indices into scene.lights, at most kMaxPerPixelLights) and
   // their shadow maps, drawn again now.
   void setLights(const Scene& scene, const std::vector<uint32_t>& perPixel);
+  // Changes how shadows are drawn (the maps are drawn again when chosen).
+  void setShadowMethod(ShadowMethod method, const Scene& scene);
+  ShadowMethod shadowMethod() const { return shadowMethod_; }
   // Compiles the shaders again (from the shader folder when there is one). Throws luxel::Error
   // with the compiler's log and keeps the old programs when one does not compile.
   void reloadShaders();
@@ -69,7 +78,13 @@ class SceneRenderer {
  private:
   struct Gl;
   void buildPrograms();
-  gl::ShaderProgram& sceneProgram(ViewMode mode, int lights);
+  gl::ShaderProgram& sceneProgram(ViewMode mode, int lights, bool lightOnly = false);
+  void drawSky(const Frame& frame);
+  // The surfaces with `program`, its per-pixel lights [first, first + count).
+  void drawSurfaces(gl::ShaderProgram& program, const Frame& frame, int first, int count, bool withShadowMaps);
+  void drawVolumes(const Frame& frame, int light);
+  void drawEdges(const Frame& frame);
+  ShadowMethod shadowMethod_ = ShadowMethod::Maps;
   void drawShadows(const Scene& scene);
   std::unique_ptr<Gl> gl_;
   std::filesystem::path shaderDir_;

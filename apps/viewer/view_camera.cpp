@@ -80,10 +80,17 @@ float ViewCamera::farPlane(Vec3 centre) const { return glm::length(centre - posi
 float ViewCamera::nearPlane(Vec3 centre) const { return std::max(1e-4f * farPlane(centre), 1e-5f * extent_); }
 
 glm::mat4 ViewCamera::projection(float aspect, Vec3 centre) const {
-  // Reversed depth (near at 1, far at 0, glClipControl's zero-to-one range) in a float depth
-  // buffer: precision stays relative at every distance. With the usual mapping, a lamp 0.1 mm
-  // below a ceiling seen from a metre away fought the ceiling for its pixels.
-  return glm::perspectiveRH_ZO(glm::radians(fovY_), aspect, farPlane(centre), nearPlane(centre));
+  // Reversed depth (near at 1, infinity at 0, glClipControl's zero-to-one range) in a float depth
+  // buffer: precision stays relative at every distance, and shadow volumes' far caps at infinity
+  // are inside the frustum (z-fail needs them). With the usual mapping, a lamp 0.1 mm below a
+  // ceiling seen from a metre away fought the ceiling for its pixels.
+  const float f = 1.0f / std::tan(0.5f * glm::radians(fovY_));
+  glm::mat4 p(0.0f);
+  p[0][0] = f / aspect;
+  p[1][1] = f;
+  p[2][3] = -1.0f;               // clip w = -z_eye
+  p[3][2] = nearPlane(centre);   // clip z = near: depth = near / -z_eye
+  return p;
 }
 
 }  // namespace luxel::viewer

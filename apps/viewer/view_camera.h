@@ -36,9 +36,9 @@ class ViewCamera {
   void dolly(Vec3 pivot, float factor);
 
   glm::mat4 view() const;
-  // OpenGL clip space with reversed depth in [0, 1] (near 1, far 0: glClipControl(GL_LOWER_LEFT,
-  // GL_ZERO_TO_ONE), a GL_GREATER test), near and far planes from the scene's extent and where the
-  // camera stands relative to `sceneCentre`.
+  // OpenGL clip space with reversed depth in [0, 1] (the near plane at 1, infinity at 0:
+  // glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), a GL_GREATER test), the near plane from the
+  // scene's extent and where the camera stands relative to `sceneCentre`.
   glm::mat4 projection(float aspect, Vec3 sceneCentre) const;
   float nearPlane(Vec3 sceneCentre) const;
   float farPlane(Vec3 sceneCentre) const;

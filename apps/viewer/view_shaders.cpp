@@ -30,6 +30,8 @@ layout(location = 5) in uint aFlags;
 struct Corner { vec4 field; vec4 direct; vec4 perPixel; };
 layout(std430, binding = 0) readonly buffer Corners { Corner corners[]; };
 uniform mat4 uViewProjection;
+// The same depth in every pass (the shadow-volume path draws the scene again for each light).
+invariant gl_Position;
 out vec3 vPosition;
 out vec2 vUv;
 out vec2 vCorner;
@@ -196,12 +198,49 @@ void main() {
   vec3 perPixel = vec3(0.0);
   if (kView == kFinal || kView == kDirect)
     for (int i = 0; i < kLightCount; ++i) perPixel += lightIrradiance(i, vPosition, n);
+  if (LIGHT_ONLY != 0) {
+    // One light's pass of the shadow-volume path, added where the stencil says it is seen.
+    store(rho * kInvPi * perPixel);
+    return;
+  }
   // Final: the field and the per-pixel lights; indirect: the field less its direct part; direct:
   // the field's direct part and the per-pixel lights; radiosity: every light from the elements.
   vec3 radiance = rho * kInvPi * (fieldValue() + perPixel);
   if (kView != kIndirect) radiance += le;
   store(radiance);
 }
+)";
+
+// Stencil shadow volumes (004 section 3.2; z-fail with the far plane at infinity, Everitt and
+// Kilgard 2002): each triangle facing away from the light (004's caster set (c)) is extruded away
+// from it into a closed volume: itself reversed as the near cap, itself at infinity as the far cap
+// (a point light's), and a side for each edge. Every caster's volume is closed on its own, so no
+// adjacency is needed and open or non-manifold meshes are fine.
+const char* kVolumeVertex = R"(#version 450 core
+layout(location = 0) in vec3 aPosition;
+out vec3 vPosition;
+void main() { vPosition = aPosition; }
+)";
+const char* kVolumeGeometry = R"(#version 450 core
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 18) out;
+in vec3 vPosition[];
+uniform mat4 uViewProjection;
+uniform vec4 uLight;  // w = 1: a point light at xyz; w = 0: a sun, light travelling along xyz
+vec4 atInfinity(vec3 p) { return uLight.w > 0.5 ? vec4(p - uLight.xyz, 0.0) : vec4(uLight.xyz, 0.0); }
+void emit(vec4 p) { gl_Position = uViewProjection * p; EmitVertex(); }
+void side(vec3 p, vec3 q) { emit(vec4(p, 1.0)); emit(vec4(q, 1.0)); emit(atInfinity(p)); emit(atInfinity(q)); EndPrimitive(); }
+void main() {
+  vec3 a = vPosition[0], b = vPosition[1], c = vPosition[2];
+  vec3 towardsLight = uLight.w > 0.5 ? uLight.xyz - a : -uLight.xyz;
+  if (dot(cross(b - a, c - a), towardsLight) >= 0.0) return;  // lit side towards the light: not a caster
+  emit(vec4(a, 1.0)); emit(vec4(c, 1.0)); emit(vec4(b, 1.0)); EndPrimitive();
+  if (uLight.w > 0.5) { emit(atInfinity(a)); emit(atInfinity(b)); emit(atInfinity(c)); EndPrimitive(); }
+  side(a, b); side(b, c); side(c, a);
+}
+)";
+const char* kVolumeFragment = R"(#version 450 core
+void main() {}
 )";
 
 // Depth of a point light's cube map: distance from the light over the far distance, so that one
@@ -230,7 +269,8 @@ uniform mat4 uInverseViewProjection;
 out vec3 vDirection;
 void main() {
   vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0;
-  vec4 far = uInverseViewProjection * vec4(p, 0.0, 1.0);   // reversed depth: 0 is the far plane
+  // Reversed depth with the far plane at infinity: 1 is the near plane, 0.5 twice as far.
+  vec4 far = uInverseViewProjection * vec4(p, 0.5, 1.0);
   vec4 near = uInverseViewProjection * vec4(p, 1.0, 1.0);
   vDirection = far.xyz / far.w - near.xyz / near.w;
   gl_Position = vec4(p, 0.0, 1.0);
@@ -300,7 +340,8 @@ const std::vector<ShaderSource>& builtinShaders() {
       {"shadow.vert", kShadowVertex},        {"cube-shadow.frag", kCubeShadowFragment},
       {"sun-shadow.frag", kSunShadowFragment}, {"line.vert", kLineVertex},
       {"line.frag", kLineFragment},          {"sky.vert", kSkyVertex},
-      {"sky.frag", kSkyFragment},          {"tone.vert", kToneVertex},
+      {"sky.frag", kSkyFragment},            {"volume.vert", kVolumeVertex},
+      {"volume.geom", kVolumeGeometry},      {"volume.frag", kVolumeFragment},          {"tone.vert", kToneVertex},
       {"tone.frag", kToneFragment},
   };
   return shaders;

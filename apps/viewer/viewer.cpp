@@ -64,9 +64,10 @@ void Viewer::startSession() {
   session_.reset();  // one GL solver at a time in the shared context
   session_ = std::make_unique<Session>(std::move(scene), options_.discretise, so);
   cornerGroups_.reset();
-  if (!renderer_)
+  if (!renderer_) {
     renderer_ = std::make_unique<SceneRenderer>(session_->scene(), session_->surfaces(), options_.shaderDir);
-  else
+    renderer_->setShadowMethod(options_.shadows, session_->scene());
+  } else
     renderer_->setGeometry(session_->scene(), session_->surfaces());
   afterSourcesChanged();
   zeroFields();
@@ -300,6 +301,9 @@ void Viewer::performNow(const Action& a) {
     options_.mode = parseViewMode(a.args[0]);
   } else if (n == "exposure") {
     options_.tone.exposure = argFloat(a, 0);
+  } else if (n == "shadows") {
+    renderer_->setShadowMethod(parseShadowMethod(a.args[0]), session_->scene());
+    options_.shadows = renderer_->shadowMethod();
   } else if (n == "tonemap") {
     options_.tone.curve = parseToneCurve(a.args[0]);
   } else if (n == "edges") {

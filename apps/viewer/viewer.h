@@ -33,6 +33,7 @@ struct ViewerOptions {
   int width = 1280, height = 720;
   ToneMap tone;
   ViewMode mode = ViewMode::Final;
+  ShadowMethod shadows = ShadowMethod::Maps;
   bool paused = false;       // start with the solver paused
   double stepSeconds = 0.012;  // solver time per frame while solving
   std::filesystem::path shaderDir;

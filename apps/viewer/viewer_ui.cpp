@@ -83,6 +83,10 @@ void Viewer::drawUi() {
     int curve = int(options_.tone.curve);
     const char* curves[] = {"filmic", "reinhard", "clamp"};
     if (ImGui::Combo("tone curve", &curve, curves, 3)) options_.tone.curve = ToneMap::Curve(curve);
+    int shadows = int(options_.shadows);
+    if (ImGui::RadioButton("shadow maps", &shadows, 0)) act("shadows", {"maps"});
+    ImGui::SameLine();
+    if (ImGui::RadioButton("shadow volumes", &shadows, 1)) act("shadows", {"volumes"});
     ImGui::Checkbox("element edges", &elementEdges_);
     ImGui::SameLine();
     ImGui::Checkbox("patch edges", &patchEdges_);

@@ -64,10 +64,13 @@ TEST(GlViewer, RadiosityViewIsWhatLuxelRenderShows) {
   EXPECT_LT(d.worst, 0.05) << "region " << d.region << ": viewer " << d.a << ", luxel render " << d.b;
 }
 
-// With a spot lamp, the final view computes the lamp's light per pixel with a shadow map where
-// `luxel render --mode hq` traces shadow rays: the regions differ where a shadow edge crosses them.
-// Measured on llvmpipe: within 5% (the same allowance as the radiosity view's).
-TEST(GlViewer, FinalViewWithALampIsWhatLuxelRenderHqShows) {
+// With a spot lamp, the final view computes the lamp's light per pixel with a shadow map (or a
+// shadow volume) where `luxel render --mode hq` traces shadow rays: the regions differ where a
+// shadow edge crosses them. Measured on llvmpipe: within 5% (the same allowance as the radiosity
+// view's), both ways.
+class GlViewerShadows : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GlViewerShadows, FinalViewWithALampIsWhatLuxelRenderHqShows) {
   std::string why;
   Scene scene = luxel::loadSceneJson(
       R"({"builtin": "cornell", "lights": [{"type": "spot", "position": [0.278, 0.5, 0.28], "target": [0.2, 0.0, 0.25],
@@ -75,11 +78,14 @@ TEST(GlViewer, FinalViewWithALampIsWhatLuxelRenderHqShows) {
       LUXEL_TEST_TMP, "lamp.json");
   auto rig = viewerRig(scene, optionsFor(scene, 256), why);
   if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  perform(*rig, "shadows", {GetParam()});
   rig->solve();
   const luxel::test::RegionDifference d =
       compareRegions(rig->picture(), renderLikeLuxel(*rig->viewer, luxel::RenderOptions::Mode::HighQuality, 256), 8, 0.1, 3.0);
   EXPECT_LT(d.worst, 0.05) << "region " << d.region << ": viewer " << d.a << ", luxel render " << d.b;
 }
+
+INSTANTIATE_TEST_SUITE_P(GlShadowMethods, GlViewerShadows, ::testing::Values("maps", "volumes"));
 
 // Moving a spot lamp changes the picture where its light falls (before or after), and elsewhere
 // only by the change in its indirect light, which is small.
