@@ -61,8 +61,10 @@ void Viewer::startSession() {
   Scene scene = session_ ? session_->scene() : loaded_;
   for (size_t i = 0; i < scene.objects.size() && i < loaded_.objects.size(); ++i)
     scene.objects[i].dynamic = loaded_.objects[i].dynamic;
-  session_.reset();  // one GL solver at a time in the shared context
-  session_ = std::make_unique<Session>(std::move(scene), options_.discretise, so);
+  // Made before the old one goes: when it cannot be made (no GL backend, say) the viewer goes on
+  // with the old one.
+  auto next = std::make_unique<Session>(std::move(scene), options_.discretise, so);
+  session_ = std::move(next);
   cornerGroups_.reset();
   if (!renderer_) {
     renderer_ = std::make_unique<SceneRenderer>(session_->scene(), session_->surfaces(), options_.shaderDir);
@@ -193,16 +195,16 @@ void Viewer::moveObject(uint32_t object, const glm::mat4& delta, bool aboutCentr
   if (!scene.objects[object].dynamic) {
     // A static object lives in the ray tracer's one BVH: make it an instance, which means a new
     // session (a solve from the start); its later moves are followed.
-    scene.checkPlacement(object, to);  // (throws only for a bad transform; static objects pass the similarity check)
-    loaded_.objects[object].dynamic = true;
     Scene edited = session_->scene();
     edited.objects[object].dynamic = true;
+    edited.checkPlacement(object, to);  // a bad transform throws before anything changes
     SessionOptions so;
     so.solve = options_.solve;
     so.solve.followsChanges = true;
     so.borrowCurrentGlContext = options_.shareContext;
-    session_.reset();
-    session_ = std::make_unique<Session>(std::move(edited), options_.discretise, so);
+    auto next = std::make_unique<Session>(std::move(edited), options_.discretise, so);
+    session_ = std::move(next);
+    loaded_.objects[object].dynamic = true;
     messages_.push_back(fmt::format("object '{}' made dynamic: the solve starts again, and follows its moves from now on",
                                     scene.objects[object].name));
     session_->placeObject(object, to);
@@ -255,16 +257,15 @@ void Viewer::performNow(const Action& a) {
       c = scene.findCamera(a.args[0]);
       if (!c) throw Error(fmt::format("camera.scene: no camera '{}'", a.args[0]));
     } else {
-      static size_t next = 0;
-      c = &scene.cameras[next++ % scene.cameras.size()];
+      c = &scene.cameras[nextSceneCamera_++ % scene.cameras.size()];
     }
     camera_ = ViewCamera(*c, scene.up, session_->surfaces().sceneExtent);
   } else if (n == "key") {
     const std::string& how = a.args[1];
     if (how != "down" && how != "up" && how != "tap")
       throw Error(fmt::format("{}: key: '{}' is not down, up or tap", a.where, how));
-    setKey(a.args[0], how == "down");
-    if (how == "tap") camera_.walk(Vec3(0.0f));  // a tap alone moves nothing: walking needs time
+    setKey(a.args[0], how != "up");
+    if (how == "tap") tapped_.insert(a.args[0]);  // held for the next frame only
   } else if (n == "look") {
     camera_.look(glm::radians(argFloat(a, 0)), glm::radians(argFloat(a, 1)));
   } else if (n == "orbit") {
@@ -287,8 +288,7 @@ void Viewer::performNow(const Action& a) {
     try {
       startSession();
     } catch (...) {
-      options_.solve.backend = old;
-      startSession();
+      options_.solve.backend = old;  // the old session goes on
       throw;
     }
   } else if (n == "solve.budget") {
@@ -433,6 +433,7 @@ void Viewer::frame(double dt, int width, int height) {
   if (keys_.count("q")) move.y -= 1.0f;
   if (glm::length(move) > 0.0f)
     camera_.walk(glm::normalize(move) * float(dt) * camera_.walkSpeed() * (keys_.count("shift") ? kRunFactor : 1.0f));
+  for (const std::string& k : std::exchange(tapped_, {})) keys_.erase(k);
 
   // Solving.
   sample.solving = !options_.paused && !session_->done();

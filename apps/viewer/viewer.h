@@ -119,6 +119,8 @@ class Viewer {
   std::vector<Rgb> perPixelIrradiance_;  // their part of the solution, per element
   std::unique_ptr<CornerGroups> cornerGroups_;  // of the current surfaces; reset when they change
   std::set<std::string> keys_;
+  std::set<std::string> tapped_;  // keys to release after the next frame
+  size_t nextSceneCamera_ = 0;
   bool orbitMode_ = false;
   Vec3 pivot_{0.0f};
   bool elementEdges_ = false, patchEdges_ = false;

@@ -193,6 +193,28 @@ TEST(GlViewer, ASavedSceneLoadsBackToTheSamePicture) {
   EXPECT_LT(glm::length(rig->viewer->camera().position() - cam.eye), 1e-5f);
 }
 
+// Held keys walk at a fifth of the scene's size a second, on the ground; a tap moves one frame's worth.
+TEST(GlViewer, KeysWalkAtTheScenesSpeed) {
+  std::string why;
+  const Scene scene = luxel::builtinScene("cornell");
+  auto rig = viewerRig(scene, optionsFor(scene, 64), why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  perform(*rig, "solve.pause");
+  const luxel::viewer::ViewCamera& cam = rig->viewer->camera();
+  const luxel::Vec3 start = cam.position(), forward = cam.forward();
+  perform(*rig, "key", {"w", "down"});
+  for (int i = 0; i < 30; ++i) rig->frame();  // 30 frames of 1/60 s
+  perform(*rig, "key", {"w", "up"});
+  rig->frame();
+  const float expected = 0.5f * cam.walkSpeed();
+  EXPECT_NEAR(glm::dot(cam.position() - start, forward), expected, 1e-4f * expected);
+  const luxel::Vec3 afterWalk = cam.position();
+  perform(*rig, "key", {"d", "tap"});
+  rig->frame();
+  rig->frame();
+  EXPECT_NEAR(glm::length(cam.position() - afterWalk), cam.walkSpeed() / 60.0f, 1e-3f * cam.walkSpeed());
+}
+
 TEST(GlViewer, BadEditsSayWhatIsWrongAndChangeNothing) {
   std::string why;
   const Scene scene = luxel::builtinScene("cornell");
