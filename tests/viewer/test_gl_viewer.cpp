@@ -193,6 +193,28 @@ TEST(GlViewer, ASavedSceneLoadsBackToTheSamePicture) {
   EXPECT_LT(glm::length(rig->viewer->camera().position() - cam.eye), 1e-5f);
 }
 
+// The GL backend solves in the viewer's own context (borrowed): the solver's hemicube passes and
+// the viewer's drawing take turns in it, each setting the state it needs, and the picture is
+// still what luxel render makes of the same solution.
+TEST(GlViewer, SolvesOnTheGpuInTheViewersContext) {
+  std::string why;
+  const Scene scene = luxel::builtinScene("cornell");
+  ViewerOptions o = optionsFor(scene, 256);
+  o.discretise.elementBudget = 1500;
+  o.solve.backend = "gl";
+  o.solve.settings = {};
+  o.solve.settings.set("unshot", 1e-3).set("hemicube-resolution", 64);
+  auto rig = viewerRig(scene, o, why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  ASSERT_EQ(rig->viewer->session().backend(), "gl");
+  perform(*rig, "view", {"radiosity"});
+  rig->solve();
+  EXPECT_GT(rig->viewer->session().stats().hemicubes, 0u);
+  const luxel::test::RegionDifference d =
+      compareRegions(rig->picture(), renderLikeLuxel(*rig->viewer, luxel::RenderOptions::Mode::Radiosity, 256), 8, 0.1, 3.0);
+  EXPECT_LT(d.worst, 0.05) << "region " << d.region << ": viewer " << d.a << ", luxel render " << d.b;
+}
+
 // Held keys walk at a fifth of the scene's size a second, on the ground; a tap moves one frame's worth.
 TEST(GlViewer, KeysWalkAtTheScenesSpeed) {
   std::string why;
