@@ -26,7 +26,7 @@ void addViewerOptions(CLI::App& c, ViewerArgs& a) {
   c.add_option("--size", a.size, "Window size WxH")->capture_default_str();
   c.add_option("--tonemap", a.toneCurve, "Tone curve: filmic, reinhard or clamp")->capture_default_str();
   c.add_option("--exposure", a.exposure, "Exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));
-  c.add_option("--view", a.viewMode, "final, indirect, direct, radiosity, patches, elements or density")->capture_default_str();
+  c.add_option("--view", a.viewMode, "final, indirect, direct, radiosity, patches, elements, density or unshot")->capture_default_str();
   c.add_option("--shadows", a.shadows, "Shadows of point, spot and sun lights: maps (cube shadow maps) or volumes (stencil shadow volumes)")
       ->capture_default_str();
   addSolveOptions(c, a.solve);

@@ -19,7 +19,7 @@
 namespace luxel::viewer {
 namespace {
 
-constexpr const char* kModeNames[kViewModeCount] = {"final", "indirect", "direct", "radiosity", "patches", "elements", "density"};
+constexpr const char* kModeNames[kViewModeCount] = {"final", "indirect", "direct", "radiosity", "patches", "elements", "density", "unshot"};
 constexpr uint32_t kHasTwin = 1u, kTriangle = 2u;
 constexpr int kSunSize = 2048;
 
@@ -45,7 +45,7 @@ constexpr Vec2 kTriangleCorners[4] = {{0, 0}, {1, 0}, {0, 1}, {0, 1}};
 ViewMode parseViewMode(const std::string& name) {
   for (int i = 0; i < kViewModeCount; ++i)
     if (name == kModeNames[i]) return ViewMode(i);
-  throw Error(fmt::format("unknown view '{}' (expected final, indirect, direct, radiosity, patches, elements or density)", name));
+  throw Error(fmt::format("unknown view '{}' (expected final, indirect, direct, radiosity, patches, elements, density or unshot)", name));
 }
 
 const char* viewModeName(ViewMode mode) { return kModeNames[int(mode)]; }
@@ -65,7 +65,7 @@ struct SceneRenderer::Gl {
   GLuint skyVao = 0;
   Vec3 up{0.0f, 1.0f, 0.0f};
   Rgb uniformSky{0.0f}, overcastSky{0.0f};
-  GLuint vao = 0, vbo = 0, ibo = 0, corners = 0, patchOf = 0;
+  GLuint vao = 0, vbo = 0, ibo = 0, corners = 0, patchOf = 0, unshot = 0;
   GLuint lineVao = 0, elementEdges = 0, patchEdges = 0;
   GLsizei elementEdgeCount = 0, patchEdgeCount = 0, indexCount = 0;
   struct Batch {
@@ -87,8 +87,8 @@ struct SceneRenderer::Gl {
   glm::mat4 sunMatrix[kMaxPerPixelLights]{};
 
   ~Gl() {
-    GLuint buffers[] = {vbo, ibo, corners, patchOf, elementEdges, patchEdges};
-    glDeleteBuffers(6, buffers);
+    GLuint buffers[] = {vbo, ibo, corners, patchOf, elementEdges, patchEdges, unshot};
+    glDeleteBuffers(7, buffers);
     GLuint arrays[] = {vao, lineVao, skyVao, casterVao};
     glDeleteVertexArrays(4, arrays);
     glDeleteBuffers(1, &casters);
@@ -222,6 +222,8 @@ void SceneRenderer::setGeometry(const Scene& scene, const SurfaceSet& surfaces) 
   upload(g.patchOf, patchOf.data(), patchOf.size() * sizeof(uint32_t));
   std::vector<CornerValues> zero(surfaces.elements.size() * 4, CornerValues{});
   upload(g.corners, zero.data(), zero.size() * sizeof(CornerValues));
+  const std::vector<float> noHeat(surfaces.elements.size(), 0.0f);
+  upload(g.unshot, noHeat.data(), noHeat.size() * sizeof(float));
 
   GLuint vao = g.vao;
   glVertexArrayVertexBuffer(vao, 0, g.vbo, 0, sizeof(Vertex));
@@ -286,6 +288,12 @@ void SceneRenderer::setFields(const std::vector<Rgb>& field, const std::vector<R
   for (size_t i = 0; i < n; ++i)
     corners[i] = {glm::vec4(field[i], 0.0f), glm::vec4(direct[i], 0.0f), glm::vec4(perPixel[i], 0.0f)};
   glNamedBufferSubData(gl_->corners, 0, GLsizeiptr(n * sizeof(CornerValues)), corners.data());
+}
+
+void SceneRenderer::setUnshot(const std::vector<float>& heat) {
+  std::vector<float> h = heat;
+  h.resize(gl_->elementCount, 0.0f);
+  glNamedBufferSubData(gl_->unshot, 0, GLsizeiptr(h.size() * sizeof(float)), h.data());
 }
 
 void SceneRenderer::setLights(const Scene& scene, const std::vector<uint32_t>& perPixel) {
@@ -436,6 +444,7 @@ void SceneRenderer::drawSurfaces(gl::ShaderProgram& program, const Frame& f, int
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.corners);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.patchOf);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g.unshot);
   if (g.cubeShadows) glBindTextureUnit(2, g.cubeShadows);
   if (g.sunShadows) glBindTextureUnit(3, g.sunShadows);
   glBindVertexArray(g.vao);

@@ -20,10 +20,10 @@ class ShaderProgram;
 
 namespace luxel::viewer {
 
-enum class ViewMode { Final, Indirect, Direct, Radiosity, Patches, Elements, Density };
+enum class ViewMode { Final, Indirect, Direct, Radiosity, Patches, Elements, Density, Unshot };
 ViewMode parseViewMode(const std::string& name);  // throws luxel::Error listing the modes
 const char* viewModeName(ViewMode mode);
-inline constexpr int kViewModeCount = 7;
+inline constexpr int kViewModeCount = 8;
 
 inline constexpr int kMaxPerPixelLights = 8;
 
@@ -51,6 +51,9 @@ class SceneRenderer {
   // interpolation (all irradiance but the per-pixel lights'), its direct part, and the per-pixel
   // lights' part.
   void setFields(const std::vector<Rgb>& field, const std::vector<Rgb>& direct, const std::vector<Rgb>& perPixel);
+  // Per element, where the solve has work left, in [0, 1] (the unshot view's heat: 0 nothing or a
+  // millionth of the most, 1 the most); empty: nothing known (the view is black).
+  void setUnshot(const std::vector<float>& heat);
   // Which lights are drawn per pixel (indices into scene.lights, at most kMaxPerPixelLights) and
   // their shadow maps, drawn again now.
   void setLights(const Scene& scene, const std::vector<uint32_t>& perPixel);

@@ -66,7 +66,7 @@ const float kInvPi = 0.31830988618;
 const uint kHasTwin = 1u, kTriangle = 2u;
 const int kMaxLights = 8;
 // Views (ViewMode).
-const int kFinal = 0, kIndirect = 1, kDirect = 2, kRadiosity = 3, kPatches = 4, kElements = 5, kDensity = 6;
+const int kFinal = 0, kIndirect = 1, kDirect = 2, kRadiosity = 3, kPatches = 4, kElements = 5, kDensity = 6, kUnshot = 7;
 
 in vec3 vPosition;
 in vec2 vUv;
@@ -77,6 +77,7 @@ flat in uint vFlags;
 flat in vec3 vC0, vC1, vC2, vC3;
 
 layout(std430, binding = 1) readonly buffer Patches { uint patchOf[]; };
+layout(std430, binding = 2) readonly buffer Unshot { float unshotHeat[]; };
 
 uniform vec3 uReflectance;
 uniform vec3 uEmission;
@@ -182,6 +183,14 @@ void main() {
 
   if (kView == kPatches || kView == kElements) {
     vec3 c = hashColour(kView == kPatches ? patchOf[vElement] : vElement);
+    store(c * (0.35 + 0.65 * abs(dot(n, normalize(uEye - vPosition)))));
+    return;
+  }
+  if (kView == kUnshot) {
+    // Where the solve has work left: black (none, or a millionth of the most), blue, red, yellow (the most).
+    float t = unshotHeat[vElement];
+    vec3 c = t <= 0.0 ? vec3(0.0) : mix(mix(vec3(0.05, 0.1, 0.6), vec3(0.9, 0.1, 0.1), clamp(2.0 * t, 0.0, 1.0)),
+                                         vec3(1.0, 0.95, 0.2), clamp(2.0 * t - 1.0, 0.0, 1.0));
     store(c * (0.35 + 0.65 * abs(dot(n, normalize(uEye - vPosition)))));
     return;
   }

@@ -34,6 +34,26 @@ std::vector<Rgb> minus(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
   return out;
 }
 
+bool isFalseColourView(ViewMode m) {
+  return m == ViewMode::Patches || m == ViewMode::Elements || m == ViewMode::Density || m == ViewMode::Unshot;
+}
+
+// The unshot view's heat per element: its unshot power (unshot radiosity times area, summed over
+// channels) on a log scale over six decades below the most.
+std::vector<float> unshotHeat(const SurfaceSet& surfaces, const std::vector<Rgb>& unshot) {
+  if (unshot.size() != surfaces.elements.size()) return {};
+  std::vector<float> power(unshot.size());
+  float most = 0.0f;
+  for (size_t e = 0; e < unshot.size(); ++e) {
+    const Rgb& u = unshot[e];
+    power[e] = std::abs(u.x) + std::abs(u.y) + std::abs(u.z);  // dynamic solvers shoot negative light too
+    power[e] *= surfaces.elements[e].area;
+    most = std::max(most, power[e]);
+  }
+  for (float& p : power) p = most > 0.0f && p > 0.0f ? std::clamp(1.0f + std::log10(p / most) / 6.0f, 0.0f, 1.0f) : 0.0f;
+  return power;
+}
+
 }  // namespace
 
 Viewer::Viewer(Scene scene, ViewerOptions options)
@@ -111,6 +131,8 @@ void Viewer::refreshFields() {
   const std::vector<Rgb> direct = elementCornerValues(surfaces, *cornerGroups_, minus(sol.directIrradiance, perPixelIrradiance_));
   const std::vector<Rgb> perPixel = elementCornerValues(surfaces, *cornerGroups_, perPixelIrradiance_);
   renderer_->setFields(field, direct, perPixel);
+  renderer_->setUnshot(unshotHeat(surfaces, sol.unshot));
+  unshotKnown_ = !sol.unshot.empty();
   lastRefresh_ = Clock::now();
   lastRefreshSeconds_ = std::chrono::duration<double>(lastRefresh_ - start).count();
   fieldsStale_ = false;
@@ -478,8 +500,10 @@ void Viewer::frame(double dt, int width, int height) {
   lastFrame_ = f;
   if (!pendingScreenshots_.empty()) {
     const Image shot = readRadiance();
+    ToneMap tone = options_.tone;
+    if (isFalseColourView(options_.mode)) tone = ToneMap{ToneMap::Curve::Clamp, 0.0f, false};  // colours as they are
     for (const std::filesystem::path& p : std::exchange(pendingScreenshots_, {})) {
-      writeImage(shot, p, options_.tone);
+      writeImage(shot, p, tone);
       messages_.push_back("wrote " + p.string());
     }
   }
@@ -513,6 +537,11 @@ Image Viewer::readRadiance() {
 
 void Viewer::present(int width, int height) {
 
+  if (isFalseColourView(options_.mode)) {
+    // Colours, not radiance: shown as they are, neither exposed nor curved.
+    tone_->draw(target_->radianceTexture(), width, height, float(1.0 / double(storedScale_)), ToneMap::Curve::Clamp);
+    return;
+  }
   const double exposure = std::exp2(double(options_.tone.exposure)) * (options_.tone.autoExposure ? exposureScale_ : 1.0);
   const float scale = float(exposure / double(storedScale_));
   tone_->draw(target_->radianceTexture(), width, height, scale, options_.tone.curve);

@@ -145,6 +145,7 @@ class Viewer {
   std::vector<std::string> messages_;
   bool quit_ = false;
   bool showHelp_ = false;
+  bool unshotKnown_ = false;  // the solver gives unshot radiosity (the unshot view)
   std::string lastError_;
 };
 

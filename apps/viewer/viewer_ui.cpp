@@ -78,6 +78,8 @@ void Viewer::drawUi() {
       if (m % 4) ImGui::SameLine();
       if (ImGui::RadioButton(viewModeName(ViewMode(m)), &mode, m)) act("view", {viewModeName(ViewMode(m))});
     }
+    if (options_.mode == ViewMode::Unshot && !unshotKnown_)
+      ImGui::TextUnformatted("this solver keeps no unshot radiosity (progressive and the dynamic solvers do)");
     float exposure = options_.tone.exposure;
     if (ImGui::SliderFloat("exposure", &exposure, -8.0f, 8.0f, "%.1f stops")) options_.tone.exposure = exposure;
     int curve = int(options_.tone.curve);

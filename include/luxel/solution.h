@@ -53,6 +53,10 @@ struct Solution {
   std::vector<Rgb> radiosity;          // B per element (exitance), ambient term included if asked
   std::vector<Rgb> irradiance;         // H per element: all light arriving, both sides
   std::vector<Rgb> directIrradiance;   // the part of H that comes straight from emitters and lights
+  // Unshot radiosity per element (progressive shooting, on either backend, and the dynamic solvers
+  // built on it: what is still to be shot, W/m^2), for a heat map of where the solve has work left;
+  // empty for methods that keep none (gathering, the hierarchy).
+  std::vector<Rgb> unshot;
   SolveStats stats;
 };
 

@@ -545,6 +545,7 @@ class GlProgressiveSolver final : public Solver {
     std::vector<Rgb> unshot(ne);
     for (size_t e = 0; e < ne; ++e) unshot[e] = Rgb(states[e].unshot);
     if (o_.ambient) addAmbientTerm(sys_, unshot, sol.radiosity, sol.irradiance);
+    sol.unshot = std::move(unshot);
     seconds_ += watch.seconds();
     sol.stats = stats();
     return sol;

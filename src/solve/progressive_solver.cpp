@@ -40,6 +40,7 @@ Solution ProgressiveSolver::solution() {
   for (uint32_t p = 0; p < sys_.patchCount(); ++p)
     if (!directAdded_[p] && channelSum(patchEmission_[p]) > 0.0) addDirect(p, column(p, 0));
   sol.directIrradiance = direct_;
+  sol.unshot = unshot_;
   sol.stats = stats();
   seconds_ += watch.seconds();
   return sol;

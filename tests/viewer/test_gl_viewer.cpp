@@ -215,6 +215,30 @@ TEST(GlViewer, SolvesOnTheGpuInTheViewersContext) {
   EXPECT_LT(d.worst, 0.05) << "region " << d.region << ": viewer " << d.a << ", luxel render " << d.b;
 }
 
+// The unshot view shows where progressive shooting has work left, and nothing for a gathering
+// solver, which keeps no unshot radiosity.
+TEST(GlViewer, UnshotViewShowsWhereTheSolveHasWorkLeft) {
+  std::string why;
+  const Scene scene = luxel::builtinScene("cornell");
+  for (const char* method : {"progressive", "gather"}) {
+    ViewerOptions o = optionsFor(scene, 64);
+    o.solve.method = method;
+    o.solve.settings = {};
+    o.mode = luxel::viewer::ViewMode::Unshot;
+    auto rig = viewerRig(scene, o, why);
+    if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+    rig->frame();  // one step: most of the light is still to be shot
+    rig->frame();
+    const Image heat = rig->picture();
+    size_t coloured = 0;
+    for (const luxel::Rgb& c : heat.pixels) coloured += c.x + c.y + c.z > 0.0f;
+    if (std::string(method) == "progressive")
+      EXPECT_GT(coloured, heat.pixels.size() / 2) << method;
+    else
+      EXPECT_EQ(coloured, 0u) << method;
+  }
+}
+
 // Held keys walk at a fifth of the scene's size a second, on the ground; a tap moves one frame's worth.
 TEST(GlViewer, KeysWalkAtTheScenesSpeed) {
   std::string why;
