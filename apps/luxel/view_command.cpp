@@ -11,6 +11,7 @@
 #include "output_paths.h"
 #include "scene_renderer.h"
 #include "view_script.h"
+#include "baked_glb.h"
 #include "viewer_run.h"
 
 namespace luxel::cli {
@@ -26,7 +27,9 @@ void addViewerOptions(CLI::App& c, ViewerArgs& a) {
   c.add_option("--size", a.size, "Window size WxH")->capture_default_str();
   c.add_option("--tonemap", a.toneCurve, "Tone curve: filmic, reinhard or clamp")->capture_default_str();
   c.add_option("--exposure", a.exposure, "Exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));
-  c.add_option("--view", a.viewMode, "final, indirect, direct, radiosity, patches, elements, density or unshot")->capture_default_str();
+  c.add_option("--view", a.viewMode,
+               "final, indirect, direct, radiosity, patches, elements, density, unshot or baked (default: baked for a glb "
+               "written by luxel bake, else final)");
   c.add_option("--shadows", a.shadows, "Shadows of point, spot and sun lights: maps (cube shadow maps) or volumes (stencil shadow volumes)")
       ->capture_default_str();
   addSolveOptions(c, a.solve);
@@ -54,7 +57,7 @@ void checkViewerArgs(const ViewerArgs& a) {
   if (a.target) parseVec3(*a.target, "target");
   if (a.up) parseVec3(*a.up, "up");
   parseToneCurve(a.toneCurve);
-  viewer::parseViewMode(a.viewMode);
+  if (!a.viewMode.empty()) viewer::parseViewMode(a.viewMode);
   viewer::parseShadowMethod(a.shadows);
   checkSolveArgs(a.solve);
   if (!a.screenshot.empty() && a.frames <= 0) throw Error("--screenshot needs --frames N: the frame to write");
@@ -103,7 +106,13 @@ int runViewer(const ViewerArgs& a) {
   o.height = ro.height;
   o.tone.curve = parseToneCurve(a.toneCurve);
   o.tone.exposure = a.exposure;
-  o.mode = viewer::parseViewMode(a.viewMode);
+  // A glb that luxel baked: its light is shown as an engine would, beside the live solve.
+  const std::string extension = std::filesystem::path(a.scene).extension().string();
+  if (extension == ".glb" || extension == ".gltf") {
+    auto baked = std::make_shared<viewer::BakedGlb>(viewer::readBakedGlb(a.scene));
+    if (baked->baked()) o.baked = std::move(baked);
+  }
+  o.mode = !a.viewMode.empty() ? viewer::parseViewMode(a.viewMode) : o.baked ? viewer::ViewMode::Baked : viewer::ViewMode::Final;
   o.shadows = viewer::parseShadowMethod(a.shadows);
   o.paused = a.paused;
   o.stepSeconds = a.stepMs / 1000.0;

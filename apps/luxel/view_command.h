@@ -16,7 +16,7 @@ namespace luxel::cli {
 struct ViewerArgs : ViewArgs {
   std::string scene;
   SolveArgs solve;
-  std::string viewMode = "final";
+  std::string viewMode;  // empty: baked for a glb written by luxel bake, else final
   std::string shadows = "maps";
   std::string script;
   std::string screenshot;

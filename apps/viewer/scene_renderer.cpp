@@ -19,7 +19,7 @@
 namespace luxel::viewer {
 namespace {
 
-constexpr const char* kModeNames[kViewModeCount] = {"final", "indirect", "direct", "radiosity", "patches", "elements", "density", "unshot"};
+constexpr const char* kModeNames[kViewModeCount] = {"final", "indirect", "direct", "radiosity", "patches", "elements", "density", "unshot", "baked"};
 constexpr uint32_t kHasTwin = 1u, kTriangle = 2u;
 constexpr int kSunSize = 2048;
 
@@ -45,7 +45,7 @@ constexpr Vec2 kTriangleCorners[4] = {{0, 0}, {1, 0}, {0, 1}, {0, 1}};
 ViewMode parseViewMode(const std::string& name) {
   for (int i = 0; i < kViewModeCount; ++i)
     if (name == kModeNames[i]) return ViewMode(i);
-  throw Error(fmt::format("unknown view '{}' (expected final, indirect, direct, radiosity, patches, elements, density or unshot)", name));
+  throw Error(fmt::format("unknown view '{}' (expected final, indirect, direct, radiosity, patches, elements, density, unshot or baked)", name));
 }
 
 const char* viewModeName(ViewMode mode) { return kModeNames[int(mode)]; }

@@ -20,10 +20,11 @@ class ShaderProgram;
 
 namespace luxel::viewer {
 
-enum class ViewMode { Final, Indirect, Direct, Radiosity, Patches, Elements, Density, Unshot };
+// Baked: what a glb from `luxel bake` carries, drawn as an engine would (baked_renderer.h).
+enum class ViewMode { Final, Indirect, Direct, Radiosity, Patches, Elements, Density, Unshot, Baked };
 ViewMode parseViewMode(const std::string& name);  // throws luxel::Error listing the modes
 const char* viewModeName(ViewMode mode);
-inline constexpr int kViewModeCount = 8;
+inline constexpr int kViewModeCount = 9;
 
 inline constexpr int kMaxPerPixelLights = 8;
 

@@ -301,6 +301,55 @@ void main() {
 }
 )";
 
+// A glb's baked light as an engine shows it (docs/baking.md): per-vertex radiance as it is;
+// per-vertex or lightmap irradiance H (RGBM: rgb * a * range) times base colour over pi, plus
+// emission. glTF texture coordinates have v = 0 at the image's top, as the images are stored.
+const char* kBakedVertex = R"(#version 450 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec2 aUv0;
+layout(location = 2) in vec2 aUv1;
+layout(location = 3) in vec3 aColor;
+uniform mat4 uViewProjection;
+out vec2 vUv0;
+out vec2 vUv1;
+out vec3 vColor;
+void main() {
+  vUv0 = aUv0;
+  vUv1 = aUv1;
+  vColor = aColor;
+  gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}
+)";
+const char* kBakedFragment = R"(#version 450 core
+const float kInvPi = 0.31830988618;
+in vec2 vUv0;
+in vec2 vUv1;
+in vec3 vColor;
+uniform int uKind;  // 0 nothing baked, 1 vertex radiance, 2 vertex irradiance, 3 lightmap
+uniform vec4 uBaseColor;
+uniform bool uBaseTexture;
+uniform vec3 uEmission;
+uniform float uRgbmRange;
+uniform float uOutputScale;
+layout(binding = 0) uniform sampler2D uBaseMap;   // sRGB, decoded by the sampler
+layout(binding = 1) uniform sampler2D uLightMap;  // RGBM, linear
+layout(location = 0) out vec4 outRadiance;
+layout(location = 1) out uint outElement;
+void main() {
+  vec3 base = uBaseColor.rgb;
+  if (uBaseTexture) base *= texture(uBaseMap, vUv0).rgb;
+  vec3 radiance = uEmission;
+  if (uKind == 1) radiance = vColor;
+  else if (uKind == 2) radiance += base * kInvPi * vColor;
+  else if (uKind == 3) {
+    vec4 rgbm = texture(uLightMap, vUv1);
+    radiance += base * kInvPi * rgbm.rgb * rgbm.a * uRgbmRange;
+  }
+  outRadiance = vec4(min(radiance * uOutputScale, vec3(60000.0)), 1.0);
+  outElement = 0u;
+}
+)";
+
 // Edges of elements or patches over the picture.
 const char* kLineVertex = R"(#version 450 core
 layout(location = 0) in vec3 aPosition;
@@ -350,7 +399,8 @@ const std::vector<ShaderSource>& builtinShaders() {
       {"sun-shadow.frag", kSunShadowFragment}, {"line.vert", kLineVertex},
       {"line.frag", kLineFragment},          {"sky.vert", kSkyVertex},
       {"sky.frag", kSkyFragment},            {"volume.vert", kVolumeVertex},
-      {"volume.geom", kVolumeGeometry},      {"volume.frag", kVolumeFragment},          {"tone.vert", kToneVertex},
+      {"volume.geom", kVolumeGeometry},      {"volume.frag", kVolumeFragment},
+      {"baked.vert", kBakedVertex},          {"baked.frag", kBakedFragment},          {"tone.vert", kToneVertex},
       {"tone.frag", kToneFragment},
   };
   return shaders;

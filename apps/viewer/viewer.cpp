@@ -65,6 +65,9 @@ Viewer::Viewer(Scene scene, ViewerOptions options)
   target_ = std::make_unique<HdrTarget>(options_.width, options_.height, /*fullFloat=*/false);
   tone_ = std::make_unique<ToneMapPass>(shaderSource("tone.vert", options_.shaderDir),
                                         shaderSource("tone.frag", options_.shaderDir));
+  if (options_.baked) bakedRenderer_ = std::make_unique<BakedRenderer>(*options_.baked, options_.shaderDir);
+  if (options_.mode == ViewMode::Baked && !bakedRenderer_)
+    throw Error(fmt::format("the baked view needs a glb written by luxel bake; '{}' is not one", options_.sceneName));
   startSession();
   camera_ = ViewCamera(options_.camera, loaded_.up, session_->surfaces().sceneExtent);
   pivot_ = sceneCentre();
@@ -320,7 +323,12 @@ void Viewer::performNow(const Action& a) {
     options_.discretise.elementSize = 0.0f;
     startSession();
   } else if (n == "view") {
-    options_.mode = parseViewMode(a.args[0]);
+    const ViewMode mode = parseViewMode(a.args[0]);
+    if (mode == ViewMode::Baked && !bakedRenderer_)
+      throw Error(fmt::format("{}{}view baked: '{}' is not a glb written by luxel bake (`luxel bake SCENE -o OUT.glb "
+                              "--lightmaps` writes one)",
+                              a.where, a.where.empty() ? "" : ": ", options_.sceneName));
+    options_.mode = mode;
   } else if (n == "exposure") {
     options_.tone.exposure = argFloat(a, 0);
   } else if (n == "shadows") {
@@ -494,7 +502,7 @@ void Viewer::frame(double dt, int width, int height) {
   // half floats hold without overflow; the tone pass divides it out again.
   storedScale_ = float(std::clamp(exposureScale_, 1e-30, 1e30));
   f.outputScale = storedScale_;
-  renderer_->draw(f);
+  drawPicture(f);
   // Metering the stored picture gives the exposure of the radiance divided by the scale it holds.
   if (frameIndex_ % 8 == 0) exposureScale_ = target_->meterExposure() * double(storedScale_);
   lastFrame_ = f;
@@ -531,8 +539,15 @@ Image Viewer::readRadiance() {
   shotTarget_->bind();
   SceneRenderer::Frame f = lastFrame_;
   f.outputScale = 1.0f;
-  renderer_->draw(f);
+  drawPicture(f);
   return shotTarget_->readRadiance();
+}
+
+void Viewer::drawPicture(const SceneRenderer::Frame& f) {
+  if (f.mode == ViewMode::Baked && bakedRenderer_)
+    bakedRenderer_->draw(f.viewProjection, f.outputScale);
+  else
+    renderer_->draw(f);
 }
 
 void Viewer::present(int width, int height) {

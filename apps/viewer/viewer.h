@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "baked_glb.h"
+#include "baked_renderer.h"
 #include "frame_stats.h"
 #include "mesh/corner_groups.h"
 #include "hdr_target.h"
@@ -42,6 +44,8 @@ struct ViewerOptions {
   bool shareContext = true;
   float texelsPerMetre = 0.0f;  // the density view's checker (0: luxel bake's default for the scene)
   bool showUi = true;
+  // What `luxel bake` put in the glb being viewed (the baked view), or null.
+  std::shared_ptr<const BakedGlb> baked;
 };
 
 class Viewer {
@@ -112,6 +116,8 @@ class Viewer {
   ViewerOptions options_;
   std::unique_ptr<Session> session_;
   std::unique_ptr<SceneRenderer> renderer_;
+  std::unique_ptr<BakedRenderer> bakedRenderer_;  // when options_.baked
+  void drawPicture(const SceneRenderer::Frame& frame);  // the scene, or the glb's bake
   std::unique_ptr<HdrTarget> target_;
   std::unique_ptr<ToneMapPass> tone_;
   ViewCamera camera_;

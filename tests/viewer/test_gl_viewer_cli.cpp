@@ -62,6 +62,33 @@ TEST(GlViewerCli, HeadlessRunsAScriptAndSavesTheScene) {
   EXPECT_EQ(luxel(dir, {"render", "edited.json", "--camera", "viewer", "-o", "edited.png", "--size", "16x16", "--elements", "300", "-q"}).code, 0);
 }
 
+// A glb that luxel baked opens in the baked view, drawn as an engine would (docs/baking.md), and
+// shows what `luxel render` shows of the same bake: its lightmaps (render --mode lightmap; the glb's
+// are RGBM PNGs, 8 bits) or its vertex colours (render --mode radiosity; linear over the glb's
+// triangles where the render is bilinear over quads). Within 5% per region, the light itself left
+// out (as in GlViewer.RadiosityViewIsWhatLuxelRenderShows).
+TEST(GlViewerCli, BakedGlbShowsWhatLuxelRenderShowsOfTheBake) {
+  const fs::path dir = scratchDir();
+  const std::vector<std::string> camera = {"--eye", "0.278,0.273,-0.75", "--target", "0.278,0.273,0.2", "--fov", "40",
+                                           "--size", "256x256"};
+  for (const auto& [bake, mode] : {std::pair<std::string, std::string>{"--lightmaps", "lightmap"}, {"--vertex-colors", "radiosity"}}) {
+    const std::string glb = "cornell" + bake + ".glb";
+    ASSERT_EQ(luxel(dir, {"bake", "cornell", "-o", glb, bake, "-q"}).code, 0);
+    const CliRun view = luxel(dir, with({"view", glb, "--headless", "--paused", "--frames", "2", "--screenshot", "view" + bake + ".exr"}, camera));
+    if (view.code != 0 && view.err.find("OpenGL 4.5") != std::string::npos) GTEST_SKIP() << "no OpenGL 4.5 context: " << view.err;
+    ASSERT_EQ(view.code, 0) << view.err;
+    const CliRun render = luxel(dir, with({"render", "cornell", "--mode", mode, "-o", "render" + bake + ".exr", "-q"}, camera));
+    ASSERT_EQ(render.code, 0) << render.err;
+    const luxel::test::RegionDifference d = luxel::test::compareRegions(
+        luxel::readExr(dir / ("view" + bake + ".exr")), luxel::readExr(dir / ("render" + bake + ".exr")), 8, 0.1, 3.0);
+    EXPECT_LT(d.worst, 0.05) << bake << ": region " << d.region << ": view " << d.a << ", render " << d.b;
+  }
+  // The baked view needs a bake.
+  const std::vector<std::string> before = listDir(dir);
+  expectFailure(luxel(dir, {"view", "cornell", "--view", "baked", "--headless", "--frames", "1"}), dir, before,
+                {"the baked view needs a glb written by luxel bake"});
+}
+
 TEST(GlViewerCli, ScriptMistakesFailBeforeAnyWindowNamingTheLine) {
   const fs::path dir = scratchDir();
   writeFile(dir / "bad.txt", "0 solve.pause\n\n2 light.move 0 1\n");

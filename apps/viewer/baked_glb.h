@@ -1,0 +1,52 @@
+// What `luxel bake` put in a glb, read back as an engine reads it (tinygltf): the meshes as written,
+// their materials, and the baked light (docs/baking.md): per-vertex radiance or irradiance
+// (COLOR_0 times the scene's vertexColorScale) or lightmaps (RGBM PNG pages on TEXCOORD_1, named in
+// each material copy's extras). The viewer's "baked" view draws it, so a bake can be checked in
+// the same window as the live solve.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/scene.h"
+
+namespace luxel::viewer {
+
+struct BakedGlb {
+  struct Primitive {
+    std::vector<Vec3> positions;  // world space (node transforms applied)
+    std::vector<Vec2> uv0, uv1;   // empty when absent
+    std::vector<Rgb> colors;      // COLOR_0 times vertexColorScale; empty when absent
+    std::vector<uint32_t> indices;
+    int material = -1;
+  };
+  struct Material {
+    glm::vec4 baseColor{1.0f};
+    int baseTexture = -1;  // image index (sRGB)
+    Rgb emission{0.0f};    // emissive factor times KHR_materials_emissive_strength
+    int lightmap = -1;     // image index (linear RGBM)
+    float rgbmRange = 1.0f;
+    bool doubleSided = false;
+  };
+  struct Image {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+  };
+  std::vector<Primitive> primitives;
+  std::vector<Material> materials;
+  std::vector<Image> images;
+  std::string vertexColors;  // "radiance", "irradiance", or empty (no vertex colours)
+  bool hasLightmaps = false;
+
+  bool baked() const { return !vertexColors.empty() || hasLightmaps; }
+};
+
+// Reads `path` (.glb or .gltf). Throws luxel::Error naming the file when tinygltf cannot read it
+// or an accessor is not what glTF allows.
+BakedGlb readBakedGlb(const std::filesystem::path& path);
+
+}  // namespace luxel::viewer

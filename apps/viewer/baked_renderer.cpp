@@ -1,0 +1,159 @@
+#include "baked_renderer.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/gl_context.h"
+#include "gl/shader_program.h"
+#include "view_shaders.h"
+
+namespace luxel::viewer {
+namespace {
+
+struct Vertex {
+  Vec3 position;
+  Vec2 uv0, uv1;
+  Rgb color;
+};
+
+// The baked view's "kinds" (baked.frag): what a primitive carries.
+constexpr int kNothing = 0, kVertexRadiance = 1, kVertexIrradiance = 2, kLightmap = 3;
+
+}  // namespace
+
+struct BakedRenderer::Gl {
+  std::unique_ptr<gl::ShaderProgram> program;
+  GLuint vao = 0, vbo = 0, ibo = 0;
+  struct Draw {
+    GLsizei first = 0, count = 0;
+    int material = -1;
+    int kind = kNothing;
+  };
+  std::vector<Draw> draws;
+  std::vector<BakedGlb::Material> materials;
+  std::vector<GLuint> srgb, linear;  // per image: as a base colour (sRGB) and as a lightmap (linear)
+  ~Gl() {
+    GLuint buffers[] = {vbo, ibo};
+    glDeleteBuffers(2, buffers);
+    glDeleteVertexArrays(1, &vao);
+    for (GLuint t : srgb) glDeleteTextures(1, &t);
+    for (GLuint t : linear) glDeleteTextures(1, &t);
+  }
+};
+
+BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& shaderDir) : gl_(std::make_unique<Gl>()) {
+  Gl& g = *gl_;
+  g.program = std::make_unique<gl::ShaderProgram>("viewer baked glb", shaderSource("baked.vert", shaderDir),
+                                                  shaderSource("baked.frag", shaderDir));
+  g.materials = glb.materials;
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;
+  for (const BakedGlb::Primitive& p : glb.primitives) {
+    Gl::Draw d;
+    d.first = GLsizei(indices.size());
+    d.material = p.material;
+    const BakedGlb::Material* m = p.material >= 0 ? &glb.materials[size_t(p.material)] : nullptr;
+    if (!p.colors.empty())
+      d.kind = glb.vertexColors == "irradiance" ? kVertexIrradiance : kVertexRadiance;
+    else if (m && m->lightmap >= 0 && !p.uv1.empty())
+      d.kind = kLightmap;
+    const uint32_t base = uint32_t(vertices.size());
+    for (size_t i = 0; i < p.positions.size(); ++i)
+      vertices.push_back({p.positions[i], p.uv0.empty() ? Vec2(0.0f) : p.uv0[i], p.uv1.empty() ? Vec2(0.0f) : p.uv1[i],
+                          p.colors.empty() ? Rgb(0.0f) : p.colors[i]});
+    for (uint32_t i : p.indices) indices.push_back(base + i);
+    d.count = GLsizei(indices.size()) - d.first;
+    g.draws.push_back(d);
+  }
+  glCreateBuffers(1, &g.vbo);
+  glNamedBufferStorage(g.vbo, GLsizeiptr(std::max<size_t>(16, vertices.size() * sizeof(Vertex))), vertices.empty() ? nullptr : vertices.data(), 0);
+  glCreateBuffers(1, &g.ibo);
+  glNamedBufferStorage(g.ibo, GLsizeiptr(std::max<size_t>(16, indices.size() * sizeof(uint32_t))), indices.empty() ? nullptr : indices.data(), 0);
+  glCreateVertexArrays(1, &g.vao);
+  glVertexArrayVertexBuffer(g.vao, 0, g.vbo, 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(g.vao, g.ibo);
+  auto attribute = [&](GLuint index, GLint size, size_t offset) {
+    glEnableVertexArrayAttrib(g.vao, index);
+    glVertexArrayAttribFormat(g.vao, index, size, GL_FLOAT, GL_FALSE, GLuint(offset));
+    glVertexArrayAttribBinding(g.vao, index, 0);
+  };
+  attribute(0, 3, offsetof(Vertex, position));
+  attribute(1, 2, offsetof(Vertex, uv0));
+  attribute(2, 2, offsetof(Vertex, uv1));
+  attribute(3, 3, offsetof(Vertex, color));
+  // Base colour images are sRGB with mipmaps and repeat, lightmaps linear, clamped, unfiltered
+  // across levels (docs/baking.md: sampled clamp-to-edge without mipmaps).
+  for (const BakedGlb::Image& im : glb.images) {
+    GLuint s = 0, l = 0;
+    if (im.width > 0 && im.height > 0) {
+      const int levels = 1 + int(std::floor(std::log2(double(std::max(im.width, im.height)))));
+      glCreateTextures(GL_TEXTURE_2D, 1, &s);
+      glTextureStorage2D(s, levels, GL_SRGB8_ALPHA8, im.width, im.height);
+      glTextureSubImage2D(s, 0, 0, 0, im.width, im.height, GL_RGBA, GL_UNSIGNED_BYTE, im.rgba.data());
+      glGenerateTextureMipmap(s);
+      glTextureParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+      glTextureParameteri(s, GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glTextureParameteri(s, GL_TEXTURE_WRAP_T, GL_REPEAT);
+      glCreateTextures(GL_TEXTURE_2D, 1, &l);
+      glTextureStorage2D(l, 1, GL_RGBA8, im.width, im.height);
+      glTextureSubImage2D(l, 0, 0, 0, im.width, im.height, GL_RGBA, GL_UNSIGNED_BYTE, im.rgba.data());
+      glTextureParameteri(l, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(l, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(l, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(l, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    g.srgb.push_back(s);
+    g.linear.push_back(l);
+  }
+  gl::Context::check("viewer: the baked glb");
+}
+
+BakedRenderer::~BakedRenderer() = default;
+
+void BakedRenderer::draw(const glm::mat4& viewProjection, float outputScale) {
+  Gl& g = *gl_;
+  const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const GLuint clearId[4] = {0, 0, 0, 0};
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);  // reversed depth, as SceneRenderer
+  glClearBufferfv(GL_COLOR, 0, clearRadiance);
+  glClearBufferuiv(GL_COLOR, 1, clearId);
+  glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glFrontFace(GL_CCW);
+  glCullFace(GL_BACK);
+  g.program->use();
+  const GLuint p = g.program->id();
+  auto loc = [&](const char* name) { return glGetUniformLocation(p, name); };
+  glUniformMatrix4fv(loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+  glUniform1f(loc("uOutputScale"), outputScale);
+  glBindVertexArray(g.vao);
+  for (const Gl::Draw& d : g.draws) {
+    const BakedGlb::Material m = d.material >= 0 ? g.materials[size_t(d.material)] : BakedGlb::Material{};
+    if (m.doubleSided) glDisable(GL_CULL_FACE);
+    else glEnable(GL_CULL_FACE);
+    glUniform1i(loc("uKind"), d.kind);
+    glUniform4fv(loc("uBaseColor"), 1, glm::value_ptr(m.baseColor));
+    glUniform3fv(loc("uEmission"), 1, glm::value_ptr(m.emission));
+    glUniform1f(loc("uRgbmRange"), m.rgbmRange);
+    const bool baseTexture = m.baseTexture >= 0 && size_t(m.baseTexture) < g.srgb.size() && g.srgb[size_t(m.baseTexture)];
+    glUniform1i(loc("uBaseTexture"), baseTexture);
+    if (baseTexture) glBindTextureUnit(0, g.srgb[size_t(m.baseTexture)]);
+    if (d.kind == kLightmap && m.lightmap >= 0 && size_t(m.lightmap) < g.linear.size()) glBindTextureUnit(1, g.linear[size_t(m.lightmap)]);
+    glDrawElements(GL_TRIANGLES, d.count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(size_t(d.first) * sizeof(uint32_t)));
+  }
+  glDisable(GL_CULL_FACE);
+  glBindVertexArray(0);
+  glDepthFunc(GL_LESS);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+}
+
+}  // namespace luxel::viewer
