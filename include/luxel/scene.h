@@ -41,6 +41,20 @@ struct Material {
   int reflectanceTexture = -1;  // index into Scene::textures, -1 for none
   Rgb emission{0.0f};          // emitted radiance; multiplies the emission texture
   int emissionTexture = -1;
+  // A Blinn-Phong highlight, for display only: the viewer draws it for the lights it shades per
+  // pixel (point, spot and directional; seed 004 section 3.1). The radiosity solve, `luxel render`
+  // and the bakes are purely diffuse and never read these two fields.
+  //  - specular: the highlight's reflectance colour, linear, each in [0,1] (OBJ Ks).
+  //  - shininess: the Blinn-Phong exponent s (OBJ Ns), in [0, 10000]; 0 draws no highlight.
+  // The exponent is used as written, unnormalised, as in 004's Listing 1 and the fixed-function
+  // model the files' Ks and Ns were tuned for: a light of irradiance E (its N.L included) adds
+  //   radiance = specular / pi * pow(max(N.H, 0), shininess) * E,   H = normalize(toLight + toEye),
+  // beside the diffuse reflectance / pi * E, so Ks and Kd keep the proportion their author saw. No
+  // (s+8)/(8 pi) normalisation: that would make Ns 96 highlights 13 times brighter than authored.
+  // Unnormalised, the lobe reflects at most `specular` of the light (pow(...) <= 1), so
+  // reflectance + specular <= 1 never creates energy. See hasSpecular().
+  Rgb specular{0.0f};
+  float shininess = 0.0f;
   // Surfaces take part in light transport through their front face only (counter-clockwise
   // winding, geometric normal): they emit, receive and reflect there. A two-sided material gets a
   // back face as well, with its own radiosity, so light never passes through a zero-thickness
@@ -49,7 +63,16 @@ struct Material {
   bool twoSided = false;
 
   bool isEmissive() const { return emission.r > 0.0f || emission.g > 0.0f || emission.b > 0.0f; }
+  // Whether the viewer draws a highlight: a positive exponent and a specular colour that is not black.
+  bool hasSpecular() const {
+    return shininess > 0.0f && (specular.r > 0.0f || specular.g > 0.0f || specular.b > 0.0f);
+  }
 };
+
+// The largest Blinn-Phong exponent (Material::shininess) a scene may give. MTL's Ns goes to 1000;
+// pow(N.H, 10000) halves within 0.7 degrees of the half vector, a highlight near a mirror's, and
+// larger exponents only risk underflow in a shader's pow.
+inline constexpr float kMaxShininess = 10000.0f;
 
 // Faces are quads or triangles. A triangle repeats its last vertex (v[3] == v[2]), which is the
 // layout Embree's quad geometry accepts directly.
@@ -149,7 +172,8 @@ struct Scene {
   size_t faceCount() const;
   size_t triangleCount() const;  // quads count as two
   // Throws luxel::Error naming the mesh and face when indices, materials or values are invalid
-  // (out of range, NaN, negative emission, reflectance outside [0,1], empty scene).
+  // (out of range, NaN, negative emission, reflectance or specular outside [0,1], shininess
+  // outside [0, kMaxShininess], empty scene).
   void validate() const;
   // The parts of validate() for materials and lights alone (an edit of either checks only these).
   void validateMaterials() const;

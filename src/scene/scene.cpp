@@ -119,7 +119,13 @@ void Scene::validateMaterials() const {
         throw Error(fmt::format("scene '{}': material '{}': emission {:g} is over the limit of {:g} (a million "
                                 "times the sun's radiance; the light would overflow in float)",
                                 name, m.name, m.emission[c], kMaxRadiance));
+      if (!std::isfinite(m.specular[c]) || m.specular[c] < 0.0f || m.specular[c] > 1.0f)
+        throw Error(fmt::format("scene '{}': material '{}': specular {} is outside [0,1]", name,
+                                m.name, m.specular[c]));
     }
+    if (!std::isfinite(m.shininess) || m.shininess < 0.0f || m.shininess > kMaxShininess)
+      throw Error(fmt::format("scene '{}': material '{}': shininess {} is outside [0, {:g}]", name,
+                              m.name, m.shininess, kMaxShininess));
     for (int t : {m.reflectanceTexture, m.emissionTexture})
       if (t >= int(textures.size()))
         throw Error(fmt::format("scene '{}': material '{}': texture index {} out of range", name,

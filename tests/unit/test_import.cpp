@@ -16,7 +16,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -372,6 +374,120 @@ TEST(ImportObj, CornellBoxOriginal) {
     for (uint32_t i : v) EXPECT_NEAR(m.positions[i].y, 1.98f, 1e-6f);
   }
   EXPECT_TRUE(foundLight);
+}
+
+// ---- the display-only highlight: Ks, Ns, illum and shading models -------------------------------
+
+namespace {
+
+// One triangle per material, each at its own depth (the same triangle twice would be removed as a
+// coincident copy).
+std::string trianglePerMaterial(const std::string& mtllib, const std::vector<std::string>& names) {
+  std::string obj = "mtllib " + mtllib + "\n";
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::string z = std::to_string(i);
+    const std::string v = std::to_string(3 * i + 1);
+    obj += "v 0 0 " + z + "\nv 1 0 " + z + "\nv 0 1 " + z + "\nusemtl " + names[i] + "\nf " + v + " " +
+           std::to_string(3 * i + 2) + " " + std::to_string(3 * i + 3) + "\n";
+  }
+  return obj;
+}
+
+}  // namespace
+
+TEST(ImportSpecular, KsAndNsGiveTheHighlightWhereIllumAsksForOne) {
+  const fs::path dir = tmpDir("specular");
+  writeFile(dir / "m.mtl",
+            "newmtl shiny\nKd 0.5 0.5 0.5\nKs 0.5 0.4 0.3\nNs 96\nillum 2\n"
+            // illum 4 (glass) and the other models from 3 up all have highlights, though Assimp's
+            // shading model calls them Gouraud.
+            "newmtl glass\nKd 0.5 0.5 0.5\nKs 0.1 0.1 0.1\nNs 256\nillum 4\n"
+            // illum 1 is "colour on, ambient on": no highlight, whatever Ks and Ns say; 0 neither.
+            "newmtl matte\nKd 0.5 0.5 0.5\nKs 0.5 0.5 0.5\nNs 10\nillum 1\n"
+            "newmtl unlit\nKd 0.5 0.5 0.5\nKs 0.5 0.5 0.5\nNs 10\nillum 0\n"
+            // No illum: Assimp's default, 1.
+            "newmtl unsaid\nKd 0.5 0.5 0.5\nKs 0.5 0.5 0.5\nNs 10\n"
+            // A colour but exponent 0: kept as written, but no highlight is drawn.
+            "newmtl blunt\nKd 0.5 0.5 0.5\nKs 0.5 0.5 0.5\nNs 0\nillum 2\n"
+            // Above the limits: clamped, with a warning each.
+            "newmtl hot\nKd 0.5 0.5 0.5\nKs 1.5 0.5 0.25\nNs 20000\nillum 2\n"
+            "newmtl plain\nKd 0.5 0.5 0.5\n");
+  writeFile(dir / "m.obj",
+            trianglePerMaterial("m.mtl", {"shiny", "glass", "matte", "unlit", "unsaid", "blunt", "hot", "plain"}));
+  const Scene s = luxel::importMeshFile(dir / "m.obj");
+  s.validate();
+
+  expectRgb(material(s, "shiny").specular, Rgb(0.5f, 0.4f, 0.3f));
+  EXPECT_EQ(material(s, "shiny").shininess, 96.0f);
+  EXPECT_TRUE(material(s, "shiny").hasSpecular());
+  expectRgb(material(s, "glass").specular, Rgb(0.1f));
+  EXPECT_EQ(material(s, "glass").shininess, 256.0f);
+  for (const char* none : {"matte", "unlit", "unsaid", "plain"}) {
+    EXPECT_EQ(material(s, none).specular, Rgb(0.0f)) << none;
+    EXPECT_EQ(material(s, none).shininess, 0.0f) << none;
+    EXPECT_FALSE(material(s, none).hasSpecular()) << none;
+  }
+  expectRgb(material(s, "blunt").specular, Rgb(0.5f));
+  EXPECT_EQ(material(s, "blunt").shininess, 0.0f);
+  EXPECT_FALSE(material(s, "blunt").hasSpecular());
+  // The diffuse part is untouched by any of it.
+  for (const luxel::Material& m : s.materials) expectRgb(m.reflectance, Rgb(0.5f));
+
+  expectRgb(material(s, "hot").specular, Rgb(1.0f, 0.5f, 0.25f));
+  EXPECT_EQ(material(s, "hot").shininess, luxel::kMaxShininess);
+  const std::string where = (dir / "m.obj").string() + ": material 'hot': ";
+  ASSERT_EQ(s.warnings.size(), 2u);
+  EXPECT_EQ(s.warnings[0], where + "specular colour (1.5, 0.5, 0.25) clamped to [0, 1]");
+  EXPECT_EQ(s.warnings[1], where + "shininess 20000 clamped to 10000");
+}
+
+// McGuire's glossy box: the sphere and the short box have highlights (illum 2, Ks 0.9 and 0.8,
+// Ns 40); the walls give Ks 0 and Ns 10, which draws none.
+TEST(ImportSpecular, McGuiresGlossyCornellBox) {
+  const fs::path path = fs::path(LUXEL_TEST_SCENES) / "mcguire-cornell-box" / "CornellBox-Glossy.obj";
+  SKIP_IF_MISSING(path);
+  const Scene s = luxel::importMeshFile(path);
+  expectRgb(material(s, "sphere").specular, Rgb(0.9f));
+  EXPECT_EQ(material(s, "sphere").shininess, 40.0f);
+  expectRgb(material(s, "shortBox").specular, Rgb(0.8f));
+  EXPECT_EQ(material(s, "leftWall").specular, Rgb(0.0f));
+  EXPECT_EQ(material(s, "leftWall").shininess, 10.0f);
+  EXPECT_FALSE(material(s, "leftWall").hasSpecular());
+}
+
+// FBX and COLLADA carry the highlight as Phong materials; a COLLADA <lambert> has none, even with
+// a <specular> in it. glTF has no Phong terms and gets none.
+TEST(ImportSpecular, FbxAndColladaKeepItLambertAndGltfHaveNone) {
+  const fs::path dir = tmpDir("specular-formats");
+  writeFile(dir / "m.mtl", "newmtl shiny\nKd 0.5 0.5 0.5\nKs 0.5 0.4 0.3\nNs 96\nillum 2\n");
+  writeFile(dir / "m.obj", trianglePerMaterial("m.mtl", {"shiny"}));
+  Assimp::Importer importer;
+  const aiScene* ai = importer.ReadFile((dir / "m.obj").string(), aiProcess_ValidateDataStructure);
+  ASSERT_NE(ai, nullptr) << importer.GetErrorString();
+  Assimp::Exporter exporter;
+  for (const auto& [id, file] : {std::pair{"fbxa", "m.fbx"}, std::pair{"collada", "m.dae"}, std::pair{"gltf2", "m.gltf"}}) {
+    const fs::path out = dir / file;
+    ASSERT_EQ(exporter.Export(ai, id, out.string()), AI_SUCCESS) << exporter.GetErrorString();
+    const Scene scene = luxel::importMeshFile(out);
+    const luxel::Material& m = material(scene, "shiny");
+    if (id == std::string("gltf2")) {
+      EXPECT_FALSE(m.hasSpecular());
+      EXPECT_EQ(m.specular, Rgb(0.0f));
+      continue;
+    }
+    expectRgb(m.specular, Rgb(0.5f, 0.4f, 0.3f));
+    EXPECT_EQ(m.shininess, 96.0f) << id;
+  }
+  std::ifstream in(dir / "m.dae", std::ios::binary);
+  std::string dae((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NE(dae.find("<phong>"), std::string::npos);
+  for (const auto& [from, to] : {std::pair{"<phong>", "<lambert>"}, std::pair{"</phong>", "</lambert>"}})
+    for (size_t at; (at = dae.find(from)) != std::string::npos;) dae.replace(at, std::string(from).size(), to);
+  writeFile(dir / "lambert.dae", dae);
+  const Scene lambertScene = luxel::importMeshFile(dir / "lambert.dae");
+  const luxel::Material& lambert = material(lambertScene, "shiny");
+  EXPECT_FALSE(lambert.hasSpecular());
+  EXPECT_EQ(lambert.specular, Rgb(0.0f));
 }
 
 // ---- every format through Assimp's exporters ----------------------------------------------------

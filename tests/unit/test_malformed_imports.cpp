@@ -223,6 +223,30 @@ TEST(ImportMalformed, UndefinedUsemtlIsAWarningNamingTheMaterial) {
   EXPECT_TRUE(importMesh(bytesOf(obj), "obj", side, "room.obj").warnings.empty());
 }
 
+// A specular colour or exponent that is negative or NaN (Assimp reads "nan" as NaN) is a broken
+// file: an Error naming the file and the material. Above range is clamped with a warning
+// (ImportSpecular.KsAndNsGiveTheHighlightWhereIllumAsksForOne).
+TEST(ImportMalformed, NegativeOrNanSpecularIsAnErrorNamingTheMaterial) {
+  const std::string obj = "mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl chrome\nf 1 2 3\n";
+  auto error = [&](const std::string& mtl) {
+    MemoryResourceReader side;
+    side.add("s.mtl", "newmtl chrome\nKd 0.5 0.5 0.5\nillum 2\n" + mtl);
+    return errorOf([&] { importMesh(bytesOf(obj), "obj", side, "shiny.obj"); });
+  };
+  EXPECT_EQ(error("Ks 0.5 -0.25 0.5\nNs 32\n"),
+            "shiny.obj: material 'chrome': specular colour (0.5, -0.25, 0.5) is negative or not a number");
+  EXPECT_EQ(error("Ks nan 0.5 0.5\nNs 32\n"),
+            "shiny.obj: material 'chrome': specular colour (nan, 0.5, 0.5) is negative or not a number");
+  EXPECT_EQ(error("Ks 0.5 0.5 0.5\nNs -4\n"), "shiny.obj: material 'chrome': shininess -4 is negative or not a number");
+  EXPECT_EQ(error("Ks 0.5 0.5 0.5\nNs nan\n"), "shiny.obj: material 'chrome': shininess nan is negative or not a number");
+  // Where illum asks for no highlight, Ks and Ns are not read, so not judged either.
+  MemoryResourceReader side;
+  side.add("s.mtl", "newmtl chrome\nKd 0.5 0.5 0.5\nillum 1\nKs -1 -1 -1\nNs nan\n");
+  const Scene matte = importMesh(bytesOf(obj), "obj", side, "shiny.obj");
+  EXPECT_FALSE(matte.materials.at(0).hasSpecular());
+  EXPECT_EQ(matte.materials.at(0).shininess, 0.0f);
+}
+
 // Assimp's own words name its parser's stages and tokens, or say nothing about the file.
 TEST(ImportMalformed, AssimpMessagesAreTranslatedKeepingTheFileName) {
   const std::string fbx = "; FBX 7.4.0 project file\n\"foo\": {{\n";

@@ -219,6 +219,31 @@ TEST(SceneFile, EmissionStrengthScalesAnImportedEmission) {
   expectVec(s.materials[0].emission, Vec3(8.5f, 6.0f, 2.0f));
 }
 
+// The viewer's highlight (display only): a grey or a colour and an exponent, over an imported Ks/Ns.
+TEST(SceneFile, SpecularAndShininessSetTheHighlight) {
+  fs::path dir = tmpDir("specular");
+  writeFile(dir / "quad.obj", "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl paint\nf 1 2 3\n"
+                              "v 0 0 1\nv 1 0 1\nv 1 1 1\nusemtl gloss\nf 4 5 6\n");
+  writeFile(dir / "quad.mtl", "newmtl paint\nKd 0.5 0.5 0.5\nKs 0.2 0.2 0.2\nNs 8\nillum 2\n"
+                              "newmtl gloss\nKd 0.5 0.5 0.5\nKs 0.7 0.7 0.7\nNs 50\nillum 2\n");
+  writeFile(dir / "scene.json", R"({ "meshes": [ { "file": "quad.obj" } ],
+    "materials": { "paint": { "specular": [0.1, 0.2, 0.3], "shininess": 64 },
+                   "gloss": { "specular": 0.25 },
+                   "new": { "shininess": 0 } } })");
+  Scene s = luxel::loadSceneFile(dir / "scene.json");
+  const luxel::Material& paint = s.materials[size_t(s.findMaterial("paint"))];
+  expectVec(paint.specular, Vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(paint.shininess, 64.0f);
+  EXPECT_TRUE(paint.hasSpecular());
+  const luxel::Material& gloss = s.materials[size_t(s.findMaterial("gloss"))];
+  expectVec(gloss.specular, Vec3(0.25f));
+  EXPECT_EQ(gloss.shininess, 50.0f);  // the file's Ns, not given here
+  const luxel::Material& added = s.materials[size_t(s.findMaterial("new"))];
+  EXPECT_EQ(added.specular, Vec3(0.0f));
+  EXPECT_FALSE(added.hasSpecular());
+  EXPECT_TRUE(s.warnings.empty());
+}
+
 TEST(SceneFile, EveryLightType) {
   Scene s = loadWithQuad("lights", R"({
     "meshes": [ { "file": "models/quad.obj" } ],
@@ -359,6 +384,25 @@ TEST(SceneFileErrors, BadValues) {
   expectError("rotate",
               R"({ "meshes": [ { "file": "models/quad.obj", "rotate": { "axis": [0,1,0] } } ] })",
               {"/meshes/0/rotate", "angle"});
+}
+
+TEST(SceneFileErrors, SpecularAndShininess) {
+  expectError("specular-above", R"({ "materials": { "m": { "specular": [1.5, 0, 0] } } })",
+              {"/materials/m/specular", "specular (1.5, 0, 0) is above 1"});
+  expectError("specular-negative", R"({ "materials": { "m": { "specular": -0.5 } } })",
+              {"/materials/m/specular", "must not be negative, got -0.5"});
+  expectError("specular-component", R"({ "materials": { "m": { "specular": [0.5, -1, 0] } } })",
+              {"/materials/m/specular/1", "must not be negative"});
+  expectError("specular-type", R"({ "materials": { "m": { "specular": "white" } } })",
+              {"/materials/m/specular", "expected a number or an array of 3 numbers, got string"});
+  expectError("shininess-negative", R"({ "materials": { "m": { "shininess": -1 } } })",
+              {"/materials/m/shininess", "must not be negative, got -1"});
+  expectError("shininess-above", R"({ "materials": { "m": { "shininess": 20000 } } })",
+              {"/materials/m/shininess", "shininess 20000 is above 10000"});
+  expectError("shininess-type", R"({ "materials": { "m": { "shininess": [32] } } })",
+              {"/materials/m/shininess", "expected a number, got an array of 1"});
+  expectError("shininess-huge", R"({ "materials": { "m": { "shininess": 1e300 } } })",
+              {"/materials/m/shininess", "number out of range"});
 }
 
 TEST(SceneFileErrors, MissingFilesNameBoth) {

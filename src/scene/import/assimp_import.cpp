@@ -7,6 +7,7 @@
 // double-translates glTF cameras in Assimp 5.2 (their importer copies the node translation into
 // aiCamera::mPosition as well) and does not fix the winding of mirrored instances.
 #include <assimp/Importer.hpp>
+#include <assimp/ObjMaterial.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -238,6 +239,8 @@ class AssimpImport {
     int twoSided = 0;
     if (am.Get(AI_MATKEY_TWOSIDED, twoSided) == AI_SUCCESS) mat.twoSided = twoSided != 0;
 
+    importSpecular(am, mat);
+
     mat.reflectanceTexture =
         materialTexture(am, mat.name, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE});
     // glTF's emissive factor defaults to black, and black times the texture is black: skip the
@@ -245,6 +248,63 @@ class AssimpImport {
     if (mat.isEmissive())
       mat.emissionTexture = materialTexture(am, mat.name, {aiTextureType_EMISSIVE});
     return mat;
+  }
+
+  // The display-only Blinn-Phong highlight (Material::specular and shininess): the specular colour
+  // (OBJ Ks, FBX SpecularColor times SpecularFactor, COLLADA <specular>) and exponent (OBJ Ns).
+  // None where the material asks for diffuse shading only: OBJ illum 0 and 1 (Assimp keeps the
+  // file's illum, 1 when the MTL gives none; its shading model says Gouraud for illum 3 to 10,
+  // which all have highlights), or a shading model without one (COLLADA <lambert> and
+  // <constant>, FBX lambert). glTF's metallic-roughness materials have no Phong terms: none.
+  void importSpecular(const aiMaterial& am, Material& mat) {
+    if (format_ == Format::Gltf) return;
+    if (int illum = 1; am.Get(AI_MATKEY_OBJ_ILLUM, illum) == AI_SUCCESS) {
+      if (illum < 2) return;
+    } else if (int model = 0; am.Get(AI_MATKEY_SHADING_MODEL, model) == AI_SUCCESS) {
+      switch (model) {
+        case aiShadingMode_Flat:
+        case aiShadingMode_Gouraud:
+        case aiShadingMode_OrenNayar:
+        case aiShadingMode_Minnaert:
+        case aiShadingMode_NoShading:
+          return;
+        default:
+          break;
+      }
+    }
+    aiColor3D ks(0.0f, 0.0f, 0.0f);
+    if (am.Get(AI_MATKEY_COLOR_SPECULAR, ks) != AI_SUCCESS) return;
+    float strength = 1.0f, shininess = 0.0f;
+    am.Get(AI_MATKEY_SHININESS_STRENGTH, strength);
+    am.Get(AI_MATKEY_SHININESS, shininess);
+
+    // NaN or a negative value is a broken file, not a colour to guess at.
+    auto bad = [](float v) { return !(v >= 0.0f); };
+    if (bad(ks.r) || bad(ks.g) || bad(ks.b))
+      throw Error(fmt::format("{}: material '{}': specular colour ({}, {}, {}) is negative or not a number",
+                              file_, mat.name, ks.r, ks.g, ks.b));
+    if (bad(strength))
+      throw Error(fmt::format("{}: material '{}': specular strength {} is negative or not a number", file_,
+                              mat.name, strength));
+    if (bad(shininess))
+      throw Error(fmt::format("{}: material '{}': shininess {} is negative or not a number", file_,
+                              mat.name, shininess));
+
+    const Rgb specular = Rgb(ks.r, ks.g, ks.b) * strength;
+    Rgb clamped;
+    bool above = false;
+    for (int c = 0; c < 3; ++c) {
+      clamped[c] = std::isnan(specular[c]) ? 0.0f : std::min(specular[c], 1.0f);  // NaN: inf * 0
+      above |= specular[c] > 1.0f;
+    }
+    if (above)
+      scene_.warnings.push_back(fmt::format("{}: material '{}': specular colour ({}, {}, {}) clamped to [0, 1]",
+                                            file_, mat.name, specular.x, specular.y, specular.z));
+    mat.specular = clamped;
+    mat.shininess = std::min(shininess, kMaxShininess);
+    if (shininess > kMaxShininess)
+      scene_.warnings.push_back(fmt::format("{}: material '{}': shininess {} clamped to {:g}", file_,
+                                            mat.name, shininess, kMaxShininess));
   }
 
   static bool haveMaterialName(const aiMaterial& am) {

@@ -554,7 +554,8 @@ class SceneFileLoader {
     in_.object(spec, ptr);
     in_.keys(
         spec, ptr,
-        {"reflectance", "emission", "emissionStrength", "twoSided", "texture", "emissionTexture"});
+        {"reflectance", "emission", "emissionStrength", "twoSided", "texture", "emissionTexture", "specular",
+         "shininess"});
     std::vector<size_t> targets;
     for (size_t i = 0; i < scene_.materials.size(); ++i)
       if (scene_.materials[i].name == name) targets.push_back(i);
@@ -565,8 +566,8 @@ class SceneFileLoader {
       scene_.materials.push_back(added);
     }
 
-    std::optional<Rgb> reflectance, emission;
-    std::optional<float> strength;
+    std::optional<Rgb> reflectance, emission, specular;
+    std::optional<float> strength, shininess;
     std::optional<bool> twoSided;
     std::optional<int> texture, emissionTexture;  // -1 removes
     if (auto it = spec.find("reflectance"); it != spec.end()) {
@@ -586,6 +587,21 @@ class SceneFileLoader {
       strength = in_.nonNegative(*it, Reader::child(ptr, "emissionStrength"));
     if (auto it = spec.find("twoSided"); it != spec.end())
       twoSided = in_.boolean(*it, Reader::child(ptr, "twoSided"));
+    // The viewer's highlight (display only, scene.h): unlike an imported file's, values out of
+    // range are an error here, where the user typed them.
+    if (auto it = spec.find("specular"); it != spec.end()) {
+      std::string p = Reader::child(ptr, "specular");
+      Rgb k = in_.color(*it, p);
+      if (k.x > 1.0f || k.y > 1.0f || k.z > 1.0f)
+        in_.fail(p, fmt::format("specular ({}, {}, {}) is above 1", k.x, k.y, k.z));
+      specular = k;
+    }
+    if (auto it = spec.find("shininess"); it != spec.end()) {
+      std::string p = Reader::child(ptr, "shininess");
+      float v = in_.nonNegative(*it, p);
+      if (v > kMaxShininess) in_.fail(p, fmt::format("shininess {} is above {:g}", v, kMaxShininess));
+      shininess = v;
+    }
     if (auto it = spec.find("texture"); it != spec.end())
       texture = readTexture(*it, Reader::child(ptr, "texture"));
     if (auto it = spec.find("emissionTexture"); it != spec.end())
@@ -597,6 +613,8 @@ class SceneFileLoader {
       if (emission) m.emission = *emission;
       if (strength) m.emission *= *strength;
       if (twoSided) m.twoSided = *twoSided;
+      if (specular) m.specular = *specular;
+      if (shininess) m.shininess = *shininess;
       if (texture) m.reflectanceTexture = *texture;
       if (emissionTexture) m.emissionTexture = *emissionTexture;
     }
