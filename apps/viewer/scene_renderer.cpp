@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "gl/gl_context.h"
 #include "gl/shader_program.h"
 #include "luxel/error.h"
+#include "mesh/corner_groups.h"
 #include "view_shaders.h"
 
 namespace luxel::viewer {
@@ -25,7 +27,8 @@ constexpr int kSunSize = 2048;
 
 struct Vertex {
   Vec3 position;
-  Vec3 normal;
+  Vec3 normal;        // the element's (flat): light arriving, as the solver and the ray caster see it
+  Vec3 smoothNormal;  // averaged over the corner's smooth surface: the highlight's, on curved meshes
   Vec2 uv;
   Vec2 corner;
   uint32_t element;
@@ -55,9 +58,9 @@ bool drawnPerPixel(const Light& l) {
 }
 
 struct SceneRenderer::Gl {
-  // One per view and count of per-pixel lights, made when first drawn.
-  std::unique_ptr<gl::ShaderProgram> scenes[kViewModeCount][kMaxPerPixelLights + 1];
-  std::unique_ptr<gl::ShaderProgram> lightOnly[kViewModeCount];  // the shadow-volume path's per-light pass
+  // One per view, count of per-pixel lights, per-vertex or per-pixel shading and pass, made when
+  // first drawn, by their defines.
+  std::map<std::string, std::unique_ptr<gl::ShaderProgram>> scenes;
   std::unique_ptr<gl::ShaderProgram> volume;
   GLuint casterVao = 0, casters = 0;
   GLsizei casterVertexCount = 0;
@@ -129,19 +132,21 @@ SceneRenderer::~SceneRenderer() = default;
 
 namespace {
 
-std::string sceneDefines(ViewMode mode, int lights, bool lightOnly = false) {
-  return fmt::format("#define VIEW {}\n#define LIGHTS {}\n#define LIGHT_ONLY {}\n", int(mode), lights, lightOnly ? 1 : 0);
+std::string sceneDefines(ViewMode mode, int lights, bool lightOnly, bool perVertex) {
+  return fmt::format("#define VIEW {}\n#define LIGHTS {}\n#define LIGHT_ONLY {}\n#define PER_VERTEX {}\n", int(mode), lights,
+                     lightOnly ? 1 : 0, perVertex ? 1 : 0);
 }
 
 }  // namespace
 
 gl::ShaderProgram& SceneRenderer::sceneProgram(ViewMode mode, int lights, bool lightOnly) {
-  std::unique_ptr<gl::ShaderProgram>& p = lightOnly ? gl_->lightOnly[int(mode)] : gl_->scenes[int(mode)][lights];
+  const std::string defines = sceneDefines(mode, lights, lightOnly, perVertex_);
+  std::unique_ptr<gl::ShaderProgram>& p = gl_->scenes[defines];
   if (!p)
     p = std::make_unique<gl::ShaderProgram>(
-        fmt::format("viewer scene ({} view, {} lights{})", viewModeName(mode), lights, lightOnly ? ", one light's pass" : ""),
-        shaderSource("scene.vert", shaderDir_, sceneDefines(mode, lights, lightOnly)),
-        shaderSource("scene.frag", shaderDir_, sceneDefines(mode, lights, lightOnly)));
+        fmt::format("viewer scene ({} view, {} lights{}{})", viewModeName(mode), lights, lightOnly ? ", one light's pass" : "",
+                    perVertex_ ? ", per vertex" : ""),
+        shaderSource("scene.vert", shaderDir_, defines), shaderSource("scene.frag", shaderDir_, defines));
   return *p;
 }
 
@@ -149,18 +154,16 @@ void SceneRenderer::buildPrograms() {
   auto src = [&](const char* name) { return shaderSource(name, shaderDir_); };
   // The final view now, so that a shader that does not compile fails at once; the others when
   // first shown.
-  auto scene = std::make_unique<gl::ShaderProgram>("viewer scene (final view)",
-                                                   shaderSource("scene.vert", shaderDir_, sceneDefines(ViewMode::Final, 0)),
-                                                   shaderSource("scene.frag", shaderDir_, sceneDefines(ViewMode::Final, 0)));
+  const std::string finalDefines = sceneDefines(ViewMode::Final, 0, false, false);
+  auto scene = std::make_unique<gl::ShaderProgram>("viewer scene (final view)", shaderSource("scene.vert", shaderDir_, finalDefines),
+                                                   shaderSource("scene.frag", shaderDir_, finalDefines));
   auto cube = std::make_unique<gl::ShaderProgram>("viewer cube shadow", src("shadow.vert"), src("cube-shadow.frag"));
   auto sun = std::make_unique<gl::ShaderProgram>("viewer sun shadow", src("shadow.vert"), src("sun-shadow.frag"));
   auto line = std::make_unique<gl::ShaderProgram>("viewer edges", src("line.vert"), src("line.frag"));
   auto sky = std::make_unique<gl::ShaderProgram>("viewer sky", src("sky.vert"), src("sky.frag"));
-  for (auto& row : gl_->scenes)
-    for (auto& p : row) p.reset();
-  for (auto& p : gl_->lightOnly) p.reset();
+  gl_->scenes.clear();
   gl_->volume = std::make_unique<gl::ShaderProgram>("viewer shadow volumes", src("volume.vert"), src("volume.geom"), src("volume.frag"));
-  gl_->scenes[0][0] = std::move(scene);
+  gl_->scenes[finalDefines] = std::move(scene);
   gl_->cubeShadow = std::move(cube);
   gl_->sunShadow = std::move(sun);
   gl_->line = std::move(line);
@@ -185,6 +188,7 @@ void SceneRenderer::setGeometry(const Scene& scene, const SurfaceSet& surfaces) 
   indices.reserve(order.size() * 6);
   g.batches.clear();
   Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  const CornerGroups groups(surfaces, kDefaultCreaseCosine);
   for (uint32_t e : order) {
     const Element& el = surfaces.elements[e];
     const SurfaceFace& face = surfaces.faces[el.face];
@@ -196,7 +200,10 @@ void SceneRenderer::setGeometry(const Scene& scene, const SurfaceSet& surfaces) 
     const uint32_t base = uint32_t(vertices.size());
     for (int k = 0; k < 4; ++k) {
       const int c = std::min(k, el.polygon.count - 1);
-      vertices.push_back({el.polygon.v[size_t(c)], el.normal, face.uv(el.param[size_t(c)]),
+      Vec3 smooth(0.0f);
+      for (uint32_t m : groups.at(e, c)) smooth += surfaces.elements[m].area * surfaces.elements[m].normal;
+      smooth = glm::length(smooth) > 0.0f ? glm::normalize(smooth) : el.normal;
+      vertices.push_back({el.polygon.v[size_t(c)], el.normal, smooth, face.uv(el.param[size_t(c)]),
                           triangle ? kTriangleCorners[k] : kQuadCorners[k], e, flags});
       lo = glm::min(lo, el.polygon.v[size_t(c)]);
       hi = glm::max(hi, el.polygon.v[size_t(c)]);
@@ -242,6 +249,7 @@ void SceneRenderer::setGeometry(const Scene& scene, const SurfaceSet& surfaces) 
   attribute(3, 2, GL_FLOAT, offsetof(Vertex, corner), false);
   attribute(4, 1, GL_UNSIGNED_INT, offsetof(Vertex, element), true);
   attribute(5, 1, GL_UNSIGNED_INT, offsetof(Vertex, flags), true);
+  attribute(6, 3, GL_FLOAT, offsetof(Vertex, smoothNormal), false);
 
   // Edges for the wireframe views: elements' and patches' outlines.
   std::vector<Vec3> lines;
@@ -452,6 +460,8 @@ void SceneRenderer::drawSurfaces(gl::ShaderProgram& program, const Frame& f, int
     const Material& m = g.materials[b.material];
     glUniform3fv(loc("uReflectance"), 1, glm::value_ptr(m.reflectance));
     glUniform3fv(loc("uEmission"), 1, glm::value_ptr(m.emission));
+    glUniform3fv(loc("uSpecular"), 1, glm::value_ptr(m.specular));
+    glUniform1f(loc("uShininess"), m.shininess);
     const bool rt = m.reflectanceTexture >= 0 && size_t(m.reflectanceTexture) < g.textures.size();
     const bool et = m.isEmissive() && m.emissionTexture >= 0 && size_t(m.emissionTexture) < g.textures.size();
     glUniform1i(loc("uReflectanceTexture"), rt);
@@ -559,6 +569,8 @@ ShadowMethod parseShadowMethod(const std::string& name) {
 }
 
 const char* shadowMethodName(ShadowMethod m) { return m == ShadowMethod::Maps ? "maps" : "volumes"; }
+
+void SceneRenderer::setPerVertex(bool perVertex) { perVertex_ = perVertex; }
 
 void SceneRenderer::setShadowMethod(ShadowMethod method, const Scene& scene) {
   if (method == shadowMethod_) return;

@@ -61,6 +61,10 @@ class SceneRenderer {
   // Changes how shadows are drawn (the maps are drawn again when chosen).
   void setShadowMethod(ShadowMethod method, const Scene& scene);
   ShadowMethod shadowMethod() const { return shadowMethod_; }
+  // Per-pixel lights shaded at each element corner and interpolated (Gouraud; 004's per-vertex
+  // option) instead of at each pixel.
+  void setPerVertex(bool perVertex);
+  bool perVertex() const { return perVertex_; }
   // Compiles the shaders again (from the shader folder when there is one). Throws luxel::Error
   // with the compiler's log and keeps the old programs when one does not compile.
   void reloadShaders();
@@ -89,6 +93,7 @@ class SceneRenderer {
   void drawVolumes(const Frame& frame, int light);
   void drawEdges(const Frame& frame);
   ShadowMethod shadowMethod_ = ShadowMethod::Maps;
+  bool perVertex_ = false;
   void drawShadows(const Scene& scene);
   std::unique_ptr<Gl> gl_;
   std::filesystem::path shaderDir_;

@@ -28,6 +28,7 @@ const std::vector<ActionSpec>& actionSpecs() {
       {"view", 1, 1, "MODE", "final, indirect, direct, radiosity, patches, elements, density, unshot, baked"},
       {"exposure", 1, 1, "STOPS", "exposure in stops over the automatic exposure"},
       {"edges", 1, 1, "elements|patches|off", "draw (or stop drawing) the elements' or patches' outlines"},
+      {"shading", 1, 1, "pixel|vertex", "shade point, spot and sun lights per pixel, or per vertex (Gouraud)"},
       {"shaders.reload", 0, 0, "", "compile the shaders again (from --shaders DIR when given)"},
       {"tonemap", 1, 1, "filmic|reinhard|clamp", "the tone curve"},
       {"shadows", 1, 1, "maps|volumes", "shadows of per-pixel lights: cube shadow maps or stencil shadow volumes"},

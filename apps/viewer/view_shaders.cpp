@@ -25,6 +25,7 @@ layout(location = 2) in vec2 aUv;
 layout(location = 3) in vec2 aCorner;
 layout(location = 4) in uint aElement;
 layout(location = 5) in uint aFlags;
+layout(location = 6) in vec3 aSmoothNormal;
 // Per element corner (4 per element): the interpolated field (everything but the per-pixel
 // lights), its direct part, and the per-pixel lights' own part (for the radiosity view).
 struct Corner { vec4 field; vec4 direct; vec4 perPixel; };
@@ -41,6 +42,12 @@ flat out uint vFlags;
 // The element's four corner values of what this view shows, read once per vertex rather than once
 // per pixel (the fragment shader only blends them).
 flat out vec3 vC0, vC1, vC2, vC3;
+uniform vec3 uEye;
+uniform float uShininess;
+#pragma luxel include lights.glsl
+out vec3 vDiffuse;    // PER_VERTEX: the lights shaded here
+out vec3 vHighlight;
+out vec3 vSmoothNormal;
 vec3 shown(uint i) {
   Corner c = corners[i];
   if (VIEW == kIndirect) return max(c.field.rgb - c.direct.rgb, vec3(0.0));
@@ -57,44 +64,21 @@ void main() {
   vFlags = aFlags;
   uint base = aElement * 4u;
   vC0 = shown(base); vC1 = shown(base + 1u); vC2 = shown(base + 2u); vC3 = shown(base + 3u);
+  vDiffuse = vec3(0.0);
+  vHighlight = vec3(0.0);
+  vSmoothNormal = aSmoothNormal;
+  if (PER_VERTEX != 0 && (VIEW == kFinal || VIEW == kDirect))
+    shadeLights(aPosition, normalize(aNormal), normalize(aSmoothNormal), normalize(uEye - aPosition), uShininess, vDiffuse, vHighlight);
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
 )";
 
-const char* kSceneFragment = R"(#version 450 core
-const float kInvPi = 0.31830988618;
-const uint kHasTwin = 1u, kTriangle = 2u;
+// The per-pixel lights (point, spot, sun), shared by scene.vert (per-vertex shading) and
+// scene.frag: uniforms, shadow maps, and the light a surface point gets from each.
+const char* kLights = R"(
 const int kMaxLights = 8;
-// Views (ViewMode).
-const int kFinal = 0, kIndirect = 1, kDirect = 2, kRadiosity = 3, kPatches = 4, kElements = 5, kDensity = 6, kUnshot = 7;
-
-in vec3 vPosition;
-in vec2 vUv;
-in vec2 vCorner;
-flat in vec3 vNormal;
-flat in uint vElement;
-flat in uint vFlags;
-flat in vec3 vC0, vC1, vC2, vC3;
-
-layout(std430, binding = 1) readonly buffer Patches { uint patchOf[]; };
-layout(std430, binding = 2) readonly buffer Unshot { float unshotHeat[]; };
-
-uniform vec3 uReflectance;
-uniform vec3 uEmission;
-uniform bool uReflectanceTexture;
-uniform bool uEmissionTexture;
-layout(binding = 0) uniform sampler2D uReflectanceMap;
-layout(binding = 1) uniform sampler2D uEmissionMap;
 layout(binding = 2) uniform samplerCubeArrayShadow uCubeShadows;
 layout(binding = 3) uniform sampler2DArrayShadow uSunShadows;
-
-// The view is compiled in (scene.frag is built once per view with VIEW defined): a rasteriser on
-// the CPU runs every branch of a shader whose branches depend on a uniform, and the seven views'
-// code cost llvmpipe twice the time of one.
-const int kView = VIEW;
-uniform vec3 uEye;
-uniform float uTexelSize;  // the density view's checker cell, scene units
-
 // How many per-pixel lights, compiled in too (LIGHTS) for the same reason as the view.
 const int kLightCount = LIGHTS;
 uniform vec4 uLightPosition[kMaxLights];   // xyz: position (point, spot) or the way light travels (sun); w: type 0 point, 1 spot, 2 sun
@@ -104,26 +88,6 @@ uniform float uLightCosInner[kMaxLights];
 uniform float uShadowFar[kMaxLights];      // cube maps: the distance depth 1 stands for
 uniform float uShadowTexel[kMaxLights];    // tan of half a texel's angle (cube) or a texel's size (sun)
 uniform mat4 uSunMatrix[kMaxLights];       // world to the sun map's [0,1]^3
-
-// Radiance times uOutputScale (about the exposure, so that a half-float picture holds it: values
-// near 0.18, clamped below half float's largest); a = 1 where a surface is seen (auto exposure's
-// coverage).
-layout(location = 0) out vec4 outRadiance;
-uniform float uOutputScale;
-void store(vec3 radiance) { outRadiance = vec4(min(radiance * uOutputScale, vec3(60000.0)), 1.0); }
-layout(location = 1) out uint outElement;   // element + 1, 0 for the background (picking)
-
-// What the view shows of the solution here: the corner values blended as the ray caster does.
-vec3 fieldValue() {
-  float u = vCorner.x, v = vCorner.y;
-  if ((vFlags & kTriangle) != 0u) return (1.0 - u - v) * vC0 + u * vC1 + v * vC2;
-  return (1.0 - u) * (1.0 - v) * vC0 + u * (1.0 - v) * vC1 + u * v * vC2 + (1.0 - u) * v * vC3;
-}
-
-vec3 hashColour(uint x) {
-  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
-  return vec3(float(x & 255u), float((x >> 8) & 255u), float((x >> 16) & 255u)) / 255.0 * 0.8 + 0.2;
-}
 
 // Irradiance from light i at this point, shadowed by its map: the same formulas as the solver's
 // sampleLight (transport/light_sampling.cpp), front side only.
@@ -167,6 +131,82 @@ vec3 lightIrradiance(int i, vec3 p, vec3 n) {
   return power * (falloff * c / r2) * visible;
 }
 
+// The per-pixel lights' irradiance at p with the element's normal n (diffuse), and the same weighted
+// by the Blinn-Phong lobe pow(S.H, shininess) about the smooth normal s (Material::specular's
+// convention: radiance = specular / pi * that): a curved mesh's highlight does not show its facets.
+void shadeLights(vec3 p, vec3 n, vec3 s, vec3 toEye, float shininess, out vec3 diffuse, out vec3 highlight) {
+  diffuse = vec3(0.0);
+  highlight = vec3(0.0);
+  for (int i = 0; i < kLightCount; ++i) {
+    vec3 e = lightIrradiance(i, p, n);
+    diffuse += e;
+    if (shininess > 0.0 && e != vec3(0.0)) {
+      vec3 toLight = uLightPosition[i].w == 2.0 ? -uLightPosition[i].xyz : normalize(uLightPosition[i].xyz - p);
+      highlight += e * pow(max(dot(s, normalize(toLight + toEye)), 0.0), shininess);
+    }
+  }
+}
+)";
+
+const char* kSceneFragment = R"(#version 450 core
+const float kInvPi = 0.31830988618;
+const uint kHasTwin = 1u, kTriangle = 2u;
+// Views (ViewMode).
+const int kFinal = 0, kIndirect = 1, kDirect = 2, kRadiosity = 3, kPatches = 4, kElements = 5, kDensity = 6, kUnshot = 7;
+
+in vec3 vPosition;
+in vec2 vUv;
+in vec2 vCorner;
+flat in vec3 vNormal;
+flat in uint vElement;
+flat in uint vFlags;
+flat in vec3 vC0, vC1, vC2, vC3;
+
+layout(std430, binding = 1) readonly buffer Patches { uint patchOf[]; };
+layout(std430, binding = 2) readonly buffer Unshot { float unshotHeat[]; };
+
+uniform vec3 uReflectance;
+uniform vec3 uEmission;
+uniform bool uReflectanceTexture;
+uniform bool uEmissionTexture;
+layout(binding = 0) uniform sampler2D uReflectanceMap;
+layout(binding = 1) uniform sampler2D uEmissionMap;
+
+// The view is compiled in (scene.frag is built once per view with VIEW defined): a rasteriser on
+// the CPU runs every branch of a shader whose branches depend on a uniform, and the seven views'
+// code cost llvmpipe twice the time of one.
+const int kView = VIEW;
+uniform vec3 uEye;
+uniform float uTexelSize;  // the density view's checker cell, scene units
+uniform vec3 uSpecular;     // the material's highlight (Material::specular, shininess)
+uniform float uShininess;
+#pragma luxel include lights.glsl
+// PER_VERTEX: the lights are shaded at the element corners and interpolated (004's per-vertex
+// option, Gouraud); else per pixel.
+in vec3 vDiffuse;
+in vec3 vHighlight;
+in vec3 vSmoothNormal;
+
+// Radiance times uOutputScale (about the exposure, so that a half-float picture holds it: values
+// near 0.18, clamped below half float's largest); a = 1 where a surface is seen (auto exposure's
+// coverage).
+layout(location = 0) out vec4 outRadiance;
+uniform float uOutputScale;
+void store(vec3 radiance) { outRadiance = vec4(min(radiance * uOutputScale, vec3(60000.0)), 1.0); }
+layout(location = 1) out uint outElement;   // element + 1, 0 for the background (picking)
+
+// What the view shows of the solution here: the corner values blended as the ray caster does.
+vec3 fieldValue() {
+  float u = vCorner.x, v = vCorner.y;
+  if ((vFlags & kTriangle) != 0u) return (1.0 - u - v) * vC0 + u * vC1 + v * vC2;
+  return (1.0 - u) * (1.0 - v) * vC0 + u * (1.0 - v) * vC1 + u * v * vC2 + (1.0 - u) * v * vC3;
+}
+
+vec3 hashColour(uint x) {
+  x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
+  return vec3(float(x & 255u), float((x >> 8) & 255u), float((x >> 16) & 255u)) / 255.0 * 0.8 + 0.2;
+}
+
 void main() {
   outElement = vElement + 1u;
   if (!gl_FrontFacing) {
@@ -204,17 +244,24 @@ void main() {
     return;
   }
 
-  vec3 perPixel = vec3(0.0);
-  if (kView == kFinal || kView == kDirect)
-    for (int i = 0; i < kLightCount; ++i) perPixel += lightIrradiance(i, vPosition, n);
+  vec3 perPixel = vec3(0.0), highlight = vec3(0.0);
+  if (kView == kFinal || kView == kDirect) {
+    if (PER_VERTEX != 0) {
+      perPixel = vDiffuse;
+      highlight = vHighlight;
+    } else {
+      shadeLights(vPosition, n, normalize(vSmoothNormal), normalize(uEye - vPosition), uShininess, perPixel, highlight);
+    }
+  }
+  vec3 shine = uSpecular * kInvPi * highlight;  // display only: the solve is diffuse
   if (LIGHT_ONLY != 0) {
     // One light's pass of the shadow-volume path, added where the stencil says it is seen.
-    store(rho * kInvPi * perPixel);
+    store(rho * kInvPi * perPixel + shine);
     return;
   }
   // Final: the field and the per-pixel lights; indirect: the field less its direct part; direct:
   // the field's direct part and the per-pixel lights; radiosity: every light from the elements.
-  vec3 radiance = rho * kInvPi * (fieldValue() + perPixel);
+  vec3 radiance = rho * kInvPi * (fieldValue() + perPixel) + shine;
   if (kView != kIndirect) radiance += le;
   store(radiance);
 }
@@ -400,7 +447,8 @@ const std::vector<ShaderSource>& builtinShaders() {
       {"line.frag", kLineFragment},          {"sky.vert", kSkyVertex},
       {"sky.frag", kSkyFragment},            {"volume.vert", kVolumeVertex},
       {"volume.geom", kVolumeGeometry},      {"volume.frag", kVolumeFragment},
-      {"baked.vert", kBakedVertex},          {"baked.frag", kBakedFragment},          {"tone.vert", kToneVertex},
+      {"baked.vert", kBakedVertex},          {"baked.frag", kBakedFragment},
+      {"lights.glsl", kLights},          {"tone.vert", kToneVertex},
       {"tone.frag", kToneFragment},
   };
   return shaders;
@@ -418,8 +466,26 @@ std::string withDefines(std::string source, const std::string& defines) {
 
 }  // namespace
 
+// Replaces each `#pragma luxel include NAME` line with shader NAME (from the overrides folder too),
+// one level deep: the lights' code is written once for both stages.
+std::string withIncludes(const std::string& source, const std::filesystem::path& overrides) {
+  static const std::string kInclude = "#pragma luxel include ";
+  std::string out;
+  size_t at = 0;
+  while (true) {
+    const size_t found = source.find(kInclude, at);
+    if (found == std::string::npos) break;
+    const size_t end = source.find('\n', found);
+    std::string name = source.substr(found + kInclude.size(), (end == std::string::npos ? source.size() : end) - found - kInclude.size());
+    while (!name.empty() && (name.back() == ' ' || name.back() == '\r')) name.pop_back();
+    out += source.substr(at, found - at) + shaderFile(name, overrides) + "\n";
+    at = end == std::string::npos ? source.size() : end + 1;
+  }
+  return out + source.substr(at);
+}
+
 std::string shaderSource(const std::string& name, const std::filesystem::path& overrides, const std::string& defines) {
-  return withDefines(shaderFile(name, overrides), defines);
+  return withDefines(withIncludes(shaderFile(name, overrides), overrides), defines);
 }
 
 std::string shaderFile(const std::string& name, const std::filesystem::path& overrides) {

@@ -334,6 +334,10 @@ void Viewer::performNow(const Action& a) {
   } else if (n == "shadows") {
     renderer_->setShadowMethod(parseShadowMethod(a.args[0]), session_->scene());
     options_.shadows = renderer_->shadowMethod();
+  } else if (n == "shading") {
+    if (a.args[0] != "pixel" && a.args[0] != "vertex")
+      throw Error(fmt::format("{}{}shading: '{}' is not pixel or vertex", a.where, a.where.empty() ? "" : ": ", a.args[0]));
+    renderer_->setPerVertex(a.args[0] == "vertex");
   } else if (n == "tonemap") {
     options_.tone.curve = parseToneCurve(a.args[0]);
   } else if (n == "edges") {

@@ -89,6 +89,10 @@ void Viewer::drawUi() {
     if (ImGui::RadioButton("shadow maps", &shadows, 0)) act("shadows", {"maps"});
     ImGui::SameLine();
     if (ImGui::RadioButton("shadow volumes", &shadows, 1)) act("shadows", {"volumes"});
+    int shading = renderer_->perVertex() ? 1 : 0;
+    if (ImGui::RadioButton("per pixel", &shading, 0)) act("shading", {"pixel"});
+    ImGui::SameLine();
+    if (ImGui::RadioButton("per vertex", &shading, 1)) act("shading", {"vertex"});
     ImGui::Checkbox("element edges", &elementEdges_);
     ImGui::SameLine();
     ImGui::Checkbox("patch edges", &patchEdges_);
