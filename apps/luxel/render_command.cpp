@@ -76,12 +76,16 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
-void addViewOptions(CLI::App& c, ViewArgs& a) {
+void addCameraOptions(CLI::App& c, ViewArgs& a) {
   c.add_option("--camera", a.camera, "A named camera of the scene");
   c.add_option("--eye", a.eye, "Camera position X,Y,Z");
   c.add_option("--target", a.target, "Point the camera looks at X,Y,Z");
   c.add_option("--up", a.up, "Camera up vector X,Y,Z");
   c.add_option("--fov", a.fov, "Vertical field of view in degrees")->check(finiteRange(0.01, 179.0));
+}
+
+void addViewOptions(CLI::App& c, ViewArgs& a) {
+  addCameraOptions(c, a);
   c.add_option("--size", a.size, "Image size WxH")->capture_default_str();
   c.add_option("--spp", a.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
   c.add_option("--tonemap", a.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();

@@ -38,7 +38,9 @@ struct RenderArgs : ViewArgs {
   std::string tracePath;
 };
 
-// Adds --camera, --eye, --target, --up, --fov, --size, --spp, --tonemap and --exposure (each
+// Adds --camera, --eye, --target, --up and --fov.
+void addCameraOptions(CLI::App& command, ViewArgs& args);
+// Adds those and --size, --spp, --tonemap and --exposure (each
 // command adds its own --mode, whose choices differ).
 void addViewOptions(CLI::App& command, ViewArgs& args);
 // Checks the view options that need no scene (the mode only when it is hq or radiosity): throws Error.

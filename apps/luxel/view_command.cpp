@@ -19,11 +19,7 @@ namespace luxel::cli {
 void addViewerOptions(CLI::App& c, ViewerArgs& a) {
   a.size = "1280x720";
   c.add_option("scene", a.scene, "Built-in name, a scene file (.json) or a mesh file");
-  c.add_option("--camera", a.camera, "A named camera of the scene");
-  c.add_option("--eye", a.eye, "Camera position X,Y,Z");
-  c.add_option("--target", a.target, "Point the camera looks at X,Y,Z");
-  c.add_option("--up", a.up, "Camera up vector X,Y,Z");
-  c.add_option("--fov", a.fov, "Vertical field of view in degrees")->check(finiteRange(0.01, 179.0));
+  addCameraOptions(c, a);
   c.add_option("--size", a.size, "Window size WxH")->capture_default_str();
   c.add_option("--tonemap", a.toneCurve, "Tone curve: filmic, reinhard or clamp")->capture_default_str();
   c.add_option("--exposure", a.exposure, "Exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));

@@ -109,13 +109,31 @@ SceneRenderer::SceneRenderer(const Scene& scene, const SurfaceSet& surfaces, std
   glCreateVertexArrays(1, &gl_->lineVao);
   glCreateVertexArrays(1, &gl_->skyVao);
   glCreateVertexArrays(1, &gl_->casterVao);
-  // Textures once: moves and new cuts keep the scene's images.
+  // Textures once: moves and new cuts keep the scene's images. Reflectance images (within [0, 1])
+  // go to the GPU as 8-bit sRGB, decoded by the sampler: what the file held, at a quarter of float
+  // RGB's bytes, which llvmpipe's trilinear filtering spends its time fetching (Sibenik's frame);
+  // images with values above 1 (Radiance .hdr) as half floats.
   for (const Texture& t : scene.textures) {
     GLuint tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
     const int levels = 1 + int(std::floor(std::log2(double(std::max(t.width, t.height)))));
-    glTextureStorage2D(tex, levels, GL_RGB32F, t.width, t.height);
-    glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGB, GL_FLOAT, t.texels.data());
+    bool unit = true;
+    for (const Rgb& c : t.texels) unit = unit && c.x <= 1.0f && c.y <= 1.0f && c.z <= 1.0f;
+    if (unit) {
+      std::vector<uint8_t> srgb(t.texels.size() * 4, 255);
+      auto encode = [](float v) {
+        v = std::clamp(v, 0.0f, 1.0f);
+        const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+        return uint8_t(std::lround(e * 255.0f));
+      };
+      for (size_t i = 0; i < t.texels.size(); ++i)
+        srgb[i * 4] = encode(t.texels[i].x), srgb[i * 4 + 1] = encode(t.texels[i].y), srgb[i * 4 + 2] = encode(t.texels[i].z);
+      glTextureStorage2D(tex, levels, GL_SRGB8_ALPHA8, t.width, t.height);
+      glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, srgb.data());
+    } else {
+      glTextureStorage2D(tex, levels, GL_RGB16F, t.width, t.height);
+      glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGB, GL_FLOAT, t.texels.data());
+    }
     glGenerateTextureMipmap(tex);
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -132,20 +150,20 @@ SceneRenderer::~SceneRenderer() = default;
 
 namespace {
 
-std::string sceneDefines(ViewMode mode, int lights, bool lightOnly, bool perVertex) {
-  return fmt::format("#define VIEW {}\n#define LIGHTS {}\n#define LIGHT_ONLY {}\n#define PER_VERTEX {}\n", int(mode), lights,
-                     lightOnly ? 1 : 0, perVertex ? 1 : 0);
+std::string sceneDefines(ViewMode mode, int lights, bool lightOnly, bool perVertex, bool highlight) {
+  return fmt::format("#define VIEW {}\n#define LIGHTS {}\n#define LIGHT_ONLY {}\n#define PER_VERTEX {}\n#define HIGHLIGHT {}\n",
+                     int(mode), lights, lightOnly ? 1 : 0, perVertex ? 1 : 0, highlight ? 1 : 0);
 }
 
 }  // namespace
 
-gl::ShaderProgram& SceneRenderer::sceneProgram(ViewMode mode, int lights, bool lightOnly) {
-  const std::string defines = sceneDefines(mode, lights, lightOnly, perVertex_);
+gl::ShaderProgram& SceneRenderer::sceneProgram(ViewMode mode, int lights, bool lightOnly, bool highlight) {
+  const std::string defines = sceneDefines(mode, lights, lightOnly, perVertex_, highlight);
   std::unique_ptr<gl::ShaderProgram>& p = gl_->scenes[defines];
   if (!p)
     p = std::make_unique<gl::ShaderProgram>(
-        fmt::format("viewer scene ({} view, {} lights{}{})", viewModeName(mode), lights, lightOnly ? ", one light's pass" : "",
-                    perVertex_ ? ", per vertex" : ""),
+        fmt::format("viewer scene ({} view, {} lights{}{}{})", viewModeName(mode), lights, lightOnly ? ", one light's pass" : "",
+                    perVertex_ ? ", per vertex" : "", highlight ? ", highlights" : ""),
         shaderSource("scene.vert", shaderDir_, defines), shaderSource("scene.frag", shaderDir_, defines));
   return *p;
 }
@@ -154,7 +172,7 @@ void SceneRenderer::buildPrograms() {
   auto src = [&](const char* name) { return shaderSource(name, shaderDir_); };
   // The final view now, so that a shader that does not compile fails at once; the others when
   // first shown.
-  const std::string finalDefines = sceneDefines(ViewMode::Final, 0, false, false);
+  const std::string finalDefines = sceneDefines(ViewMode::Final, 0, false, false, false);
   auto scene = std::make_unique<gl::ShaderProgram>("viewer scene (final view)", shaderSource("scene.vert", shaderDir_, finalDefines),
                                                    shaderSource("scene.frag", shaderDir_, finalDefines));
   auto cube = std::make_unique<gl::ShaderProgram>("viewer cube shadow", src("shadow.vert"), src("cube-shadow.frag"));
@@ -427,28 +445,36 @@ void SceneRenderer::drawSky(const Frame& f) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void SceneRenderer::drawSurfaces(gl::ShaderProgram& program, const Frame& f, int first, int count, bool withShadowMaps) {
+void SceneRenderer::drawSurfaces(const Frame& f, int lights, bool lightOnly, int first, bool withShadowMaps) {
   Gl& g = *gl_;
-  const GLuint prog = program.id();
-  program.use();
-  auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
-  glUniformMatrix4fv(loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
-  glUniform3fv(loc("uEye"), 1, glm::value_ptr(f.eye));
-  glUniform1f(loc("uOutputScale"), f.outputScale);
-  glUniform1f(loc("uTexelSize"), f.texelSize);
-  if (count > 0) {
-    glm::vec4 power[kMaxPerPixelLights];
-    for (int i = 0; i < count; ++i) {
-      power[i] = g.lightPower[first + i];
-      if (!withShadowMaps) power[i].w = -1.0f;  // no map: the stencil decides
+  const int count = lights;
+  // Two programs: with the highlight (materials that have one) and without, which llvmpipe would
+  // otherwise pay for on every surface (a branch on a uniform runs under a mask).
+  gl::ShaderProgram* programs[2] = {&sceneProgram(f.mode, lights, lightOnly, false),
+                                    count > 0 ? &sceneProgram(f.mode, lights, lightOnly, true) : nullptr};
+  glm::vec4 power[kMaxPerPixelLights];
+  for (int i = 0; i < count; ++i) {
+    power[i] = g.lightPower[first + i];
+    if (!withShadowMaps) power[i].w = -1.0f;  // no map: the stencil decides
+  }
+  for (gl::ShaderProgram* program : programs) {
+    if (!program) continue;
+    program->use();
+    const GLuint prog = program->id();
+    auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
+    glUniformMatrix4fv(loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
+    glUniform3fv(loc("uEye"), 1, glm::value_ptr(f.eye));
+    glUniform1f(loc("uOutputScale"), f.outputScale);
+    glUniform1f(loc("uTexelSize"), f.texelSize);
+    if (count > 0) {
+      glUniform4fv(loc("uLightPosition"), count, glm::value_ptr(g.lightPosition[first]));
+      glUniform4fv(loc("uLightPower"), count, glm::value_ptr(power[0]));
+      glUniform4fv(loc("uLightSpot"), count, glm::value_ptr(g.lightSpot[first]));
+      glUniform1fv(loc("uLightCosInner"), count, g.cosInner + first);
+      glUniform1fv(loc("uShadowFar"), count, g.shadowFar + first);
+      glUniform1fv(loc("uShadowTexel"), count, g.shadowTexel + first);
+      glUniformMatrix4fv(loc("uSunMatrix"), count, GL_FALSE, glm::value_ptr(g.sunMatrix[first]));
     }
-    glUniform4fv(loc("uLightPosition"), count, glm::value_ptr(g.lightPosition[first]));
-    glUniform4fv(loc("uLightPower"), count, glm::value_ptr(power[0]));
-    glUniform4fv(loc("uLightSpot"), count, glm::value_ptr(g.lightSpot[first]));
-    glUniform1fv(loc("uLightCosInner"), count, g.cosInner + first);
-    glUniform1fv(loc("uShadowFar"), count, g.shadowFar + first);
-    glUniform1fv(loc("uShadowTexel"), count, g.shadowTexel + first);
-    glUniformMatrix4fv(loc("uSunMatrix"), count, GL_FALSE, glm::value_ptr(g.sunMatrix[first]));
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.corners);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.patchOf);
@@ -456,8 +482,13 @@ void SceneRenderer::drawSurfaces(gl::ShaderProgram& program, const Frame& f, int
   if (g.cubeShadows) glBindTextureUnit(2, g.cubeShadows);
   if (g.sunShadows) glBindTextureUnit(3, g.sunShadows);
   glBindVertexArray(g.vao);
+  gl::ShaderProgram* bound = nullptr;
   for (const Gl::Batch& b : g.batches) {
     const Material& m = g.materials[b.material];
+    gl::ShaderProgram* program = m.hasSpecular() && programs[1] ? programs[1] : programs[0];
+    if (program != bound) program->use(), bound = program;
+    const GLuint prog = program->id();
+    auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
     glUniform3fv(loc("uReflectance"), 1, glm::value_ptr(m.reflectance));
     glUniform3fv(loc("uEmission"), 1, glm::value_ptr(m.emission));
     glUniform3fv(loc("uSpecular"), 1, glm::value_ptr(m.specular));
@@ -524,12 +555,12 @@ void SceneRenderer::draw(const Frame& f) {
   const bool perPixelView = f.mode == ViewMode::Final || f.mode == ViewMode::Direct;
   const bool volumes = shadowMethod_ == ShadowMethod::Volumes && perPixelView && g.lightCount > 0;
   if (!volumes) {
-    drawSurfaces(sceneProgram(f.mode, perPixelView ? g.lightCount : 0), f, 0, perPixelView ? g.lightCount : 0, true);
+    drawSurfaces(f, perPixelView ? g.lightCount : 0, false, 0, true);
   } else {
     // 004's path: the light that needs no shadows first (the field and emission), then for each
     // light its shadow volumes into the stencil (z-fail: counted where they lie behind what is
     // seen) and its light added where the count is zero.
-    drawSurfaces(sceneProgram(f.mode, 0), f, 0, 0, false);
+    drawSurfaces(f, 0, false, 0, false);
     glDepthMask(GL_FALSE);
     glEnable(GL_STENCIL_TEST);
     for (int i = 0; i < g.lightCount; ++i) {
@@ -548,7 +579,7 @@ void SceneRenderer::draw(const Frame& f) {
       glDepthFunc(GL_GEQUAL);  // the surfaces seen, drawn again (invariant positions)
       glEnablei(GL_BLEND, 0);
       glBlendFunci(0, GL_ONE, GL_ONE);
-      drawSurfaces(sceneProgram(f.mode, 1, true), f, i, 1, false);
+      drawSurfaces(f, 1, true, i, false);
       glDisablei(GL_BLEND, 0);
     }
     glDisable(GL_STENCIL_TEST);

@@ -86,10 +86,11 @@ class SceneRenderer {
  private:
   struct Gl;
   void buildPrograms();
-  gl::ShaderProgram& sceneProgram(ViewMode mode, int lights, bool lightOnly = false);
+  gl::ShaderProgram& sceneProgram(ViewMode mode, int lights, bool lightOnly, bool highlight);
   void drawSky(const Frame& frame);
-  // The surfaces with `program`, its per-pixel lights [first, first + count).
-  void drawSurfaces(gl::ShaderProgram& program, const Frame& frame, int first, int count, bool withShadowMaps);
+  // The surfaces with `lights` per-pixel lights from index `first` (one light's additive pass when
+  // `lightOnly`), shadowed by the maps when `withShadowMaps`.
+  void drawSurfaces(const Frame& frame, int lights, bool lightOnly, int first, bool withShadowMaps);
   void drawVolumes(const Frame& frame, int light);
   void drawEdges(const Frame& frame);
   ShadowMethod shadowMethod_ = ShadowMethod::Maps;

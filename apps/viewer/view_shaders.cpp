@@ -45,9 +45,13 @@ flat out vec3 vC0, vC1, vC2, vC3;
 uniform vec3 uEye;
 uniform float uShininess;
 #pragma luxel include lights.glsl
-out vec3 vDiffuse;    // PER_VERTEX: the lights shaded here
+#if HIGHLIGHT
+out vec3 vSmoothNormal;  // only for highlights: every varying costs llvmpipe per pixel
+#endif
+#if PER_VERTEX
+out vec3 vDiffuse;    // the lights shaded here (only then: every varying costs llvmpipe per pixel)
 out vec3 vHighlight;
-out vec3 vSmoothNormal;
+#endif
 vec3 shown(uint i) {
   Corner c = corners[i];
   if (VIEW == kIndirect) return max(c.field.rgb - c.direct.rgb, vec3(0.0));
@@ -64,11 +68,15 @@ void main() {
   vFlags = aFlags;
   uint base = aElement * 4u;
   vC0 = shown(base); vC1 = shown(base + 1u); vC2 = shown(base + 2u); vC3 = shown(base + 3u);
+#if HIGHLIGHT
+  vSmoothNormal = aSmoothNormal;
+#endif
+#if PER_VERTEX
   vDiffuse = vec3(0.0);
   vHighlight = vec3(0.0);
-  vSmoothNormal = aSmoothNormal;
-  if (PER_VERTEX != 0 && (VIEW == kFinal || VIEW == kDirect))
+  if (VIEW == kFinal || VIEW == kDirect)
     shadeLights(aPosition, normalize(aNormal), normalize(aSmoothNormal), normalize(uEye - aPosition), uShininess, vDiffuse, vHighlight);
+#endif
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
 )";
@@ -140,7 +148,7 @@ void shadeLights(vec3 p, vec3 n, vec3 s, vec3 toEye, float shininess, out vec3 d
   for (int i = 0; i < kLightCount; ++i) {
     vec3 e = lightIrradiance(i, p, n);
     diffuse += e;
-    if (shininess > 0.0 && e != vec3(0.0)) {
+    if (HIGHLIGHT != 0 && e != vec3(0.0)) {
       vec3 toLight = uLightPosition[i].w == 2.0 ? -uLightPosition[i].xyz : normalize(uLightPosition[i].xyz - p);
       highlight += e * pow(max(dot(s, normalize(toLight + toEye)), 0.0), shininess);
     }
@@ -183,9 +191,13 @@ uniform float uShininess;
 #pragma luxel include lights.glsl
 // PER_VERTEX: the lights are shaded at the element corners and interpolated (004's per-vertex
 // option, Gouraud); else per pixel.
+#if HIGHLIGHT
+in vec3 vSmoothNormal;
+#endif
+#if PER_VERTEX
 in vec3 vDiffuse;
 in vec3 vHighlight;
-in vec3 vSmoothNormal;
+#endif
 
 // Radiance times uOutputScale (about the exposure, so that a half-float picture holds it: values
 // near 0.18, clamped below half float's largest); a = 1 where a surface is seen (auto exposure's
@@ -246,12 +258,16 @@ void main() {
 
   vec3 perPixel = vec3(0.0), highlight = vec3(0.0);
   if (kView == kFinal || kView == kDirect) {
-    if (PER_VERTEX != 0) {
-      perPixel = vDiffuse;
-      highlight = vHighlight;
-    } else {
-      shadeLights(vPosition, n, normalize(vSmoothNormal), normalize(uEye - vPosition), uShininess, perPixel, highlight);
-    }
+#if PER_VERTEX
+    perPixel = vDiffuse;
+    highlight = vHighlight;
+#else
+#if HIGHLIGHT
+    shadeLights(vPosition, n, normalize(vSmoothNormal), normalize(uEye - vPosition), uShininess, perPixel, highlight);
+#else
+    shadeLights(vPosition, n, n, vec3(0.0), 0.0, perPixel, highlight);
+#endif
+#endif
   }
   vec3 shine = uSpecular * kInvPi * highlight;  // display only: the solve is diffuse
   if (LIGHT_ONLY != 0) {
