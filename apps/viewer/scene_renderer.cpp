@@ -23,7 +23,6 @@ namespace {
 
 constexpr const char* kModeNames[kViewModeCount] = {"final", "indirect", "direct", "radiosity", "patches", "elements", "density", "unshot", "baked"};
 constexpr uint32_t kHasTwin = 1u, kTriangle = 2u;
-constexpr int kSunSize = 2048;
 
 struct Vertex {
   Vec3 position;
@@ -104,6 +103,11 @@ struct SceneRenderer::Gl {
 
 SceneRenderer::SceneRenderer(const Scene& scene, const SurfaceSet& surfaces, std::filesystem::path shaderDir)
     : gl_(std::make_unique<Gl>()), shaderDir_(std::move(shaderDir)) {
+  // Shadow maps are drawn again at every light edit: on llvmpipe a 1024^2 cube cost a lamp's move
+  // 22 ms more than 512^2 (docs/performance.md, "The interactive viewer"); a GPU draws 2048^2 faces
+  // in well under a millisecond.
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (renderer && !gl::isSoftwareRasteriser(renderer)) shadowSize_ = 2048, sunSize_ = 4096;
   buildPrograms();
   glCreateVertexArrays(1, &gl_->vao);
   glCreateVertexArrays(1, &gl_->lineVao);
@@ -360,7 +364,7 @@ void SceneRenderer::setLights(const Scene& scene, const std::vector<uint32_t>& p
     layers = want;
   };
   ensure(g.cubeShadows, GL_TEXTURE_CUBE_MAP_ARRAY, g.cubeLayers, cubes, shadowSize_, 6 * cubes);
-  ensure(g.sunShadows, GL_TEXTURE_2D_ARRAY, g.sunLayers, suns, kSunSize, suns);
+  ensure(g.sunShadows, GL_TEXTURE_2D_ARRAY, g.sunLayers, suns, sunSize_, suns);
   if (shadowMethod_ == ShadowMethod::Maps) drawShadows(scene);
   gl::Context::check("viewer: shadow maps");
   (void)perPixel;
@@ -394,9 +398,9 @@ void SceneRenderer::drawShadows(const Scene&) {
       // Clip space to [0,1]^3 for the lookup.
       const glm::mat4 bias = glm::translate(glm::mat4(1.0f), Vec3(0.5f)) * glm::scale(glm::mat4(1.0f), Vec3(0.5f));
       g.sunMatrix[i] = bias * vp;
-      g.shadowTexel[i] = 2.0f * g.radius / float(kSunSize);
+      g.shadowTexel[i] = 2.0f * g.radius / float(sunSize_);
       glNamedFramebufferTextureLayer(g.shadowFbo, GL_DEPTH_ATTACHMENT, g.sunShadows, 0, slot);
-      glViewport(0, 0, kSunSize, kSunSize);
+      glViewport(0, 0, sunSize_, sunSize_);
       glClear(GL_DEPTH_BUFFER_BIT);
       g.sunShadow->use();
       glUniformMatrix4fv(glGetUniformLocation(g.sunShadow->id(), "uViewProjection"), 1, GL_FALSE, glm::value_ptr(vp));

@@ -98,7 +98,8 @@ class SceneRenderer {
   void drawShadows(const Scene& scene);
   std::unique_ptr<Gl> gl_;
   std::filesystem::path shaderDir_;
-  int shadowSize_ = 1024;
+  int shadowSize_ = 512;  // cube map faces: 512 on a CPU rasteriser, 2048 on a GPU (the constructor)
+  int sunSize_ = 2048;     // the sun's map: 2048, or 4096 on a GPU
   double lastShadowMs_ = 0.0;
 };
 

@@ -102,9 +102,10 @@ void Session::setMaterial(uint32_t material, const Rgb& reflectance, const Rgb& 
 Camera Session::camera(const std::string& name, float fovY) const { return chooseCamera(state_->scene, name, fovY); }
 
 std::vector<Rgb> Session::lightIrradiance(std::span<const uint32_t> lights) {
-  std::vector<Rgb> out(state_->surfaces.elements.size(), Rgb(0.0f));
-  state_->host->transport().lightIrradiance(lights, out);
-  return out;
+  for (uint32_t i : lights)
+    if (i >= state_->scene.lights.size())
+      throw Error(fmt::format("light {} does not exist: the scene has {} lights", i, state_->scene.lights.size()));
+  return state_->host->lightIrradiance(lights);
 }
 
 Camera chooseCamera(const Scene& scene, const std::string& name, float fovY) {

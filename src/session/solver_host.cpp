@@ -133,11 +133,54 @@ void SolverHost::useContext() {
   if (glContext_) glContext_->makeCurrent();
 }
 
+namespace {
+
+bool sameLight(const Light& a, const Light& b) {
+  return a.type == b.type && a.color == b.color && a.intensity == b.intensity && a.position == b.position &&
+         a.direction == b.direction && a.innerConeAngle == b.innerConeAngle && a.outerConeAngle == b.outerConeAngle &&
+         a.angularRadius == b.angularRadius;
+}
+
+}  // namespace
+
 void SolverHost::computeAnalytic() {
   const Stopwatch watch;
-  analytic_.assign(surfaces_.elements.size(), Rgb(0.0f));
-  transport_->analyticIrradiance(analytic_);
+  const size_t ne = surfaces_.elements.size();
+  analytic_.assign(ne, Rgb(0.0f));
+  if (scene_.lights.size() > kMaxKeptLightParts) {
+    lightParts_.clear();
+    transport_->analyticIrradiance(analytic_);
+  } else {
+    lightParts_.resize(scene_.lights.size());
+    for (uint32_t i = 0; i < scene_.lights.size(); ++i) {
+      LightPart& part = lightParts_[i];
+      if (part.geometry != geometry_ || part.irradiance.size() != ne || !sameLight(part.light, scene_.lights[i])) {
+        part.light = scene_.lights[i];
+        part.geometry = geometry_;
+        part.irradiance.assign(ne, Rgb(0.0f));
+        const uint32_t one[] = {i};
+        transport_->lightIrradiance(one, part.irradiance);
+      }
+      for (size_t e = 0; e < ne; ++e) analytic_[e] += part.irradiance[e];
+    }
+  }
   analyticSeconds_ += watch.seconds();
+}
+
+std::vector<Rgb> SolverHost::lightIrradiance(std::span<const uint32_t> lights) {
+  const size_t ne = surfaces_.elements.size();
+  std::vector<Rgb> out(ne, Rgb(0.0f));
+  bool kept = true;
+  for (uint32_t i : lights)
+    kept = kept && i < lightParts_.size() && i < scene_.lights.size() && lightParts_[i].geometry == geometry_ &&
+           lightParts_[i].irradiance.size() == ne && sameLight(lightParts_[i].light, scene_.lights[i]);
+  if (!kept) {
+    transport_->lightIrradiance(lights, out);
+    return out;
+  }
+  for (uint32_t i : lights)
+    for (size_t e = 0; e < ne; ++e) out[e] += lightParts_[i].irradiance[e];
+  return out;
 }
 
 void SolverHost::retire() {
@@ -151,6 +194,7 @@ void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
   useContext();
   if (objects.empty()) return;
   transport_->objectsMoved(objects);
+  ++geometry_;  // every light's part is traced again: the move changed what it sees
   computeAnalytic();
   system_->refresh(analytic_);
   checkpointKey_.reset(), finalCheckpointWritten_ = false;
@@ -190,6 +234,7 @@ bool SolverHost::refine(const ProgressCallback& progress) {
   retire();
   for (uint32_t e : split) surfaces_.splitElement(e, scene_);
   transport_->elementsChanged();
+  ++geometry_;
   refined_ += split.size() * 3;
   ++refinePasses_;
   reportProgress(progress, "refine", 1.0, fmt::format("split {} elements", split.size()));

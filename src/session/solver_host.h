@@ -53,6 +53,9 @@ class SolverHost {
   // setMaterial): the analytic light is recomputed, and the solver continues if it can follow the
   // change or starts afresh otherwise.
   void sourcesChanged();
+  // The irradiance the scene lights `lights` bring each element: the sum of their parts of the
+  // analytic light when they are at hand, else traced again (the same samples either way).
+  std::vector<Rgb> lightIrradiance(std::span<const uint32_t> lights);
   // The solution so far, with every statistic filled in (energy balance included).
   Solution solution();
   SolveStats stats() const;
@@ -73,6 +76,8 @@ class SolverHost {
   void checkpoint(bool now);
   // Analytic irradiance (unless current), system and solver for the current surfaces.
   void makeSolver(bool analyticIsCurrent = false);
+  // The analytic light: each scene light's part traced again unless it is kept from before for the
+  // same light at the same index on the same geometry (a light edit traces only the lights edited).
   void computeAnalytic();
   void retire();  // adds the current solver's work to the totals, before it is replaced
   bool refine(const ProgressCallback& progress);
@@ -92,6 +97,16 @@ class SolverHost {
   std::unique_ptr<Transport> ownTransport_;
   Transport* transport_ = nullptr;
   std::vector<Rgb> analytic_;
+  // Each light's part of analytic_, for scenes of up to kMaxKeptLightParts lights: the light it was
+  // traced for, and the geometry it was traced on (geometry_ counts moves and refinements).
+  struct LightPart {
+    Light light;
+    uint64_t geometry = 0;
+    std::vector<Rgb> irradiance;
+  };
+  static constexpr size_t kMaxKeptLightParts = 16;
+  std::vector<LightPart> lightParts_;
+  uint64_t geometry_ = 0;
   std::unique_ptr<RadiositySystem> system_;
   std::unique_ptr<Solver> solver_;
   // Work of solvers replaced by refinement, and the host's own time.
