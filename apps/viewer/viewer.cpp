@@ -89,6 +89,7 @@ void Viewer::startSession() {
   auto next = std::make_unique<Session>(std::move(scene), options_.discretise, so);
   session_ = std::move(next);
   cornerGroups_.reset();
+  measureScene();
   if (!renderer_) {
     renderer_ = std::make_unique<SceneRenderer>(session_->scene(), session_->surfaces(), options_.shaderDir);
     renderer_->setShadowMethod(options_.shadows, session_->scene());
@@ -111,6 +112,7 @@ void Viewer::afterSourcesChanged() {
 
 void Viewer::afterGeometryChanged() {
   cornerGroups_.reset();
+  measureScene();
   renderer_->setGeometry(session_->scene(), session_->surfaces());
   perPixelIrradiance_ = session_->lightIrradiance(perPixel_);
   renderer_->setLights(session_->scene(), perPixel_);
@@ -144,12 +146,14 @@ void Viewer::refreshFields() {
 
 void Viewer::markEdit(const std::string& what) { pendingEdits_.push_back({what, Clock::now(), false}); }
 
-Vec3 Viewer::sceneCentre() const {
+Vec3 Viewer::sceneCentre() const { return centre_; }
+
+void Viewer::measureScene() {
   const SurfaceSet& s = session_->surfaces();
   Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (const SurfaceFace& f : s.faces)
     for (int k = 0; k < (f.triangle ? 3 : 4); ++k) lo = glm::min(lo, f.corners[size_t(k)]), hi = glm::max(hi, f.corners[size_t(k)]);
-  return s.faces.empty() ? Vec3(0.0f) : 0.5f * (lo + hi);
+  centre_ = s.faces.empty() ? Vec3(0.0f) : 0.5f * (lo + hi);
 }
 
 std::string Viewer::renderer() const { return reinterpret_cast<const char*>(glGetString(GL_RENDERER)); }

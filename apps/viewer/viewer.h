@@ -109,7 +109,9 @@ class Viewer {
   void moveObject(uint32_t object, const glm::mat4& delta, bool aboutCentre);
   uint32_t objectByName(const Action& a, const std::string& name) const;
   void screenshot(const std::filesystem::path& path);
-  Vec3 sceneCentre() const;
+  Vec3 sceneCentre() const;  // of the bounds, measured when the geometry changes
+  void measureScene();
+  Vec3 centre_{0.0f};
 
   Scene original_;  // the scene as loaded, untouched: what `save` writes edits against
   Scene loaded_;    // the scene as loaded, dynamic flags as edited (a new session starts from it)
