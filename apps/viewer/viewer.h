@@ -6,6 +6,7 @@
 #pragma once
 
 #include <chrono>
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -153,6 +154,13 @@ class Viewer {
   std::vector<std::string> messages_;
   bool quit_ = false;
   bool showHelp_ = false;
+  // What the panels keep between frames.
+  struct UiState {
+    std::deque<float> unshot, frameMs;  // plotted histories
+    int budget = 0;                     // the element budget being typed
+    float sun[2] = {45.0f, 45.0f};      // azimuth, elevation
+    char savePath[256] = "edited-scene.json";
+  } ui_;
   bool unshotKnown_ = false;  // the solver gives unshot radiosity (the unshot view)
   std::string lastError_;
 };

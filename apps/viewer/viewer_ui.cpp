@@ -28,8 +28,8 @@ constexpr const char* kBindings[][2] = {
 }  // namespace
 
 void Viewer::drawUi() {
-  static std::deque<float> unshot;
-  static std::deque<float> frameMs;
+  std::deque<float>& unshot = ui_.unshot;
+  std::deque<float>& frameMs = ui_.frameMs;
   const SolveStats st = session_->stats();
   unshot.push_back(float(std::log10(std::max(st.unshotFraction, 1e-12))));
   if (unshot.size() > 300) unshot.pop_front();
@@ -66,7 +66,7 @@ void Viewer::drawUi() {
     if (ImGui::RadioButton("GPU", &backend, 1) && session_->backend() != "gl") act("solve.backend", {"gl"});
     ImGui::PlotLines("log10 unshot", u.data(), int(u.size()), 0, nullptr, -8.0f, 0.0f, ImVec2(0, 50));
     ImGui::Text("%zu shots, %.2f s solving", size_t(st.shots), st.secondsTotal);
-    static int budget = 0;
+    int& budget = ui_.budget;
     if (budget == 0) budget = int(session_->surfaces().elements.size());
     ImGui::InputInt("elements", &budget, 1000, 10000);
     ImGui::SameLine();
@@ -106,7 +106,7 @@ void Viewer::drawUi() {
   }
   if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (ImGui::Button("Lamp at camera")) act("light.add-at-camera");
-    static float sun[2] = {45.0f, 45.0f};
+    float* sun = ui_.sun;
     ImGui::SameLine();
     if (ImGui::SliderFloat2("sun az/el", sun, -180.0f, 180.0f, "%.0f")) act("sun", {fmt::format("{}", sun[0]), fmt::format("{}", sun[1])});
     const Scene& scene = session_->scene();
@@ -148,8 +148,8 @@ void Viewer::drawUi() {
     if (ImGui::Button("+z")) act("selected.move", {"0", "0", s});
     if (ImGui::Button("turn 15")) act("selected.rotate", {"0", "1", "0", "15"});
   }
-  static char savePath[256] = "edited-scene.json";
-  ImGui::InputText("##save", savePath, sizeof savePath);
+  char* savePath = ui_.savePath;
+  ImGui::InputText("##save", savePath, sizeof ui_.savePath);
   ImGui::SameLine();
   if (ImGui::Button("Save scene")) act("save", {savePath});
   if (!lastError_.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", lastError_.c_str());
