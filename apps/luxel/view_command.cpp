@@ -77,7 +77,6 @@ int runViewer(const ViewerArgs& a) {
   run.screenshot = a.screenshot;
   run.frames = a.frames;
   run.statsPath = a.statsPath;
-  run.headless = a.headless;
   run.hiddenWindow = a.hidden;
   run.vsync = a.vsync;
 

@@ -9,6 +9,7 @@
 
 #include "gl/gl_context.h"
 #include "gl/shader_program.h"
+#include "gl_texture.h"
 #include "view_shaders.h"
 
 namespace luxel::viewer {
@@ -90,21 +91,8 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
   for (const BakedGlb::Image& im : glb.images) {
     GLuint s = 0, l = 0;
     if (im.width > 0 && im.height > 0) {
-      const int levels = 1 + int(std::floor(std::log2(double(std::max(im.width, im.height)))));
-      glCreateTextures(GL_TEXTURE_2D, 1, &s);
-      glTextureStorage2D(s, levels, GL_SRGB8_ALPHA8, im.width, im.height);
-      glTextureSubImage2D(s, 0, 0, 0, im.width, im.height, GL_RGBA, GL_UNSIGNED_BYTE, im.rgba.data());
-      glGenerateTextureMipmap(s);
-      glTextureParameteri(s, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-      glTextureParameteri(s, GL_TEXTURE_WRAP_S, GL_REPEAT);
-      glTextureParameteri(s, GL_TEXTURE_WRAP_T, GL_REPEAT);
-      glCreateTextures(GL_TEXTURE_2D, 1, &l);
-      glTextureStorage2D(l, 1, GL_RGBA8, im.width, im.height);
-      glTextureSubImage2D(l, 0, 0, 0, im.width, im.height, GL_RGBA, GL_UNSIGNED_BYTE, im.rgba.data());
-      glTextureParameteri(l, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-      glTextureParameteri(l, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-      glTextureParameteri(l, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-      glTextureParameteri(l, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+      s = makeTexture({GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE, true, GL_REPEAT}, im.width, im.height, im.rgba.data());
+      l = makeTexture({GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, false, GL_CLAMP_TO_EDGE}, im.width, im.height, im.rgba.data());
     }
     g.srgb.push_back(s);
     g.linear.push_back(l);

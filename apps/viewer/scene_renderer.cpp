@@ -3,7 +3,6 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -14,8 +13,10 @@
 
 #include "gl/gl_context.h"
 #include "gl/shader_program.h"
+#include "gl_texture.h"
 #include "luxel/error.h"
 #include "mesh/corner_groups.h"
+#include "scene/texture_decode.h"
 #include "view_shaders.h"
 
 namespace luxel::viewer {
@@ -118,32 +119,17 @@ SceneRenderer::SceneRenderer(const Scene& scene, const SurfaceSet& surfaces, std
   // RGB's bytes, which llvmpipe's trilinear filtering spends its time fetching (Sibenik's frame);
   // images with values above 1 (Radiance .hdr) as half floats.
   for (const Texture& t : scene.textures) {
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    const int levels = 1 + int(std::floor(std::log2(double(std::max(t.width, t.height)))));
     bool unit = true;
     for (const Rgb& c : t.texels) unit = unit && c.x <= 1.0f && c.y <= 1.0f && c.z <= 1.0f;
     if (unit) {
       std::vector<uint8_t> srgb(t.texels.size() * 4, 255);
-      auto encode = [](float v) {
-        v = std::clamp(v, 0.0f, 1.0f);
-        const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-        return uint8_t(std::lround(e * 255.0f));
-      };
+      auto encode = [](float v) { return uint8_t(std::lround(linearToSrgb(v) * 255.0f)); };
       for (size_t i = 0; i < t.texels.size(); ++i)
         srgb[i * 4] = encode(t.texels[i].x), srgb[i * 4 + 1] = encode(t.texels[i].y), srgb[i * 4 + 2] = encode(t.texels[i].z);
-      glTextureStorage2D(tex, levels, GL_SRGB8_ALPHA8, t.width, t.height);
-      glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, srgb.data());
+      gl_->textures.push_back(makeTexture({GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE, true, GL_REPEAT}, t.width, t.height, srgb.data()));
     } else {
-      glTextureStorage2D(tex, levels, GL_RGB16F, t.width, t.height);
-      glTextureSubImage2D(tex, 0, 0, 0, t.width, t.height, GL_RGB, GL_FLOAT, t.texels.data());
+      gl_->textures.push_back(makeTexture({GL_RGB16F, GL_RGB, GL_FLOAT, true, GL_REPEAT}, t.width, t.height, t.texels.data()));
     }
-    glGenerateTextureMipmap(tex);
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    gl_->textures.push_back(tex);
   }
   glCreateFramebuffers(1, &gl_->shadowFbo);
   setGeometry(scene, surfaces);
@@ -365,14 +351,12 @@ void SceneRenderer::setLights(const Scene& scene, const std::vector<uint32_t>& p
   };
   ensure(g.cubeShadows, GL_TEXTURE_CUBE_MAP_ARRAY, g.cubeLayers, cubes, shadowSize_, 6 * cubes);
   ensure(g.sunShadows, GL_TEXTURE_2D_ARRAY, g.sunLayers, suns, sunSize_, suns);
-  if (shadowMethod_ == ShadowMethod::Maps) drawShadows(scene);
+  if (shadowMethod_ == ShadowMethod::Maps) drawShadows();
   gl::Context::check("viewer: shadow maps");
-  (void)perPixel;
 }
 
-void SceneRenderer::drawShadows(const Scene&) {
+void SceneRenderer::drawShadows() {
   Gl& g = *gl_;
-  const auto start = std::chrono::steady_clock::now();
   glBindFramebuffer(GL_FRAMEBUFFER, g.shadowFbo);
   glDrawBuffer(GL_NONE);
   glReadBuffer(GL_NONE);
@@ -425,8 +409,6 @@ void SceneRenderer::drawShadows(const Scene&) {
       glDrawElements(GL_TRIANGLES, g.indexCount, GL_UNSIGNED_INT, nullptr);
     }
   }
-  glFinish();
-  lastShadowMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 void SceneRenderer::drawSky(const Frame& f) {
@@ -607,10 +589,10 @@ const char* shadowMethodName(ShadowMethod m) { return m == ShadowMethod::Maps ? 
 
 void SceneRenderer::setPerVertex(bool perVertex) { perVertex_ = perVertex; }
 
-void SceneRenderer::setShadowMethod(ShadowMethod method, const Scene& scene) {
+void SceneRenderer::setShadowMethod(ShadowMethod method) {
   if (method == shadowMethod_) return;
   shadowMethod_ = method;
-  if (method == ShadowMethod::Maps) drawShadows(scene);
+  if (method == ShadowMethod::Maps) drawShadows();
 }
 
 }  // namespace luxel::viewer

@@ -45,8 +45,8 @@ class SceneRenderer {
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
-  // The elements' places, normals and materials again (after a move or a new cut), and the
-  // scene's textures when `textures` (after a new scene).
+  // The elements' places, normals and materials again (after a move or a new cut); the scene's
+  // textures were read once, by the constructor.
   void setGeometry(const Scene& scene, const SurfaceSet& surfaces);
   // Per element corner (4 per element, elementCornerValues' layout): the field drawn by
   // interpolation (all irradiance but the per-pixel lights'), its direct part, and the per-pixel
@@ -59,7 +59,7 @@ class SceneRenderer {
   // their shadow maps, drawn again now.
   void setLights(const Scene& scene, const std::vector<uint32_t>& perPixel);
   // Changes how shadows are drawn (the maps are drawn again when chosen).
-  void setShadowMethod(ShadowMethod method, const Scene& scene);
+  void setShadowMethod(ShadowMethod method);
   ShadowMethod shadowMethod() const { return shadowMethod_; }
   // Per-pixel lights shaded at each element corner and interpolated (Gouraud; 004's per-vertex
   // option) instead of at each pixel.
@@ -80,8 +80,6 @@ class SceneRenderer {
   // Draws into the bound framebuffer (an HdrTarget's: radiance and element ids), which it clears.
   void draw(const Frame& frame);
 
-  double lastShadowMs() const { return lastShadowMs_; }
-  int shadowMapSize() const { return shadowSize_; }
 
  private:
   struct Gl;
@@ -95,12 +93,11 @@ class SceneRenderer {
   void drawEdges(const Frame& frame);
   ShadowMethod shadowMethod_ = ShadowMethod::Maps;
   bool perVertex_ = false;
-  void drawShadows(const Scene& scene);
+  void drawShadows();
   std::unique_ptr<Gl> gl_;
   std::filesystem::path shaderDir_;
   int shadowSize_ = 512;  // cube map faces: 512 on a CPU rasteriser, 2048 on a GPU (the constructor)
   int sunSize_ = 2048;     // the sun's map: 2048, or 4096 on a GPU
-  double lastShadowMs_ = 0.0;
 };
 
 }  // namespace luxel::viewer

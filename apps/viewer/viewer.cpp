@@ -92,7 +92,7 @@ void Viewer::startSession() {
   measureScene();
   if (!renderer_) {
     renderer_ = std::make_unique<SceneRenderer>(session_->scene(), session_->surfaces(), options_.shaderDir);
-    renderer_->setShadowMethod(options_.shadows, session_->scene());
+    renderer_->setShadowMethod(options_.shadows);
   } else
     renderer_->setGeometry(session_->scene(), session_->surfaces());
   afterSourcesChanged();
@@ -336,7 +336,7 @@ void Viewer::performNow(const Action& a) {
   } else if (n == "exposure") {
     options_.tone.exposure = argFloat(a, 0);
   } else if (n == "shadows") {
-    renderer_->setShadowMethod(parseShadowMethod(a.args[0]), session_->scene());
+    renderer_->setShadowMethod(parseShadowMethod(a.args[0]));
     options_.shadows = renderer_->shadowMethod();
   } else if (n == "shading") {
     if (a.args[0] != "pixel" && a.args[0] != "vertex")

@@ -18,7 +18,6 @@ struct RunOptions {
   std::filesystem::path screenshot;  // written after `frames` frames (then the viewer exits)
   int64_t frames = 0;                 // > 0: exit after this many frames
   std::filesystem::path statsPath;    // frame-time statistics (frame_stats.h), written at exit
-  bool headless = false;
   bool hiddenWindow = false;          // a window that is never shown (tests under Xvfb)
   bool vsync = false;
 };
@@ -28,8 +27,5 @@ struct RunOptions {
 // display or no OpenGL 4.5 context can be had, saying which.
 int runInWindow(Scene scene, ViewerOptions options, const RunOptions& run);
 int runHeadless(Scene scene, ViewerOptions options, const RunOptions& run);
-
-// Whether a window can be opened here (GLFW initialises: an X11 or Wayland display).
-bool windowAvailable(std::string* why = nullptr);
 
 }  // namespace luxel::viewer

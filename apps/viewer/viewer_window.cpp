@@ -138,15 +138,6 @@ void onScroll(GLFWwindow* w, double, double dy) {
 
 }  // namespace
 
-bool windowAvailable(std::string* why) {
-  if (!glfwInit()) {
-    if (why) *why = glfwFailure();
-    return false;
-  }
-  glfwTerminate();
-  return true;
-}
-
 int runInWindow(Scene scene, ViewerOptions options, const RunOptions& run) {
   if (!glfwInit())
     throw Error(fmt::format("luxel view: no window can be opened here ({}); set DISPLAY, run it under xvfb-run, or "

@@ -18,6 +18,7 @@
 #include "io/atomic_file.h"
 #include "luxel/bake.h"
 #include "luxel/error.h"
+#include "scene/texture_decode.h"
 
 namespace luxel {
 namespace {
@@ -75,11 +76,6 @@ int addIndexAccessor(tinygltf::Model& model, const std::vector<uint32_t>& indice
   a.type = TINYGLTF_TYPE_SCALAR;
   model.accessors.push_back(a);
   return int(model.accessors.size()) - 1;
-}
-
-float linearToSrgb(float x) {
-  x = std::clamp(x, 0.0f, 1.0f);
-  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
 }
 
 void appendBytes(void* context, void* data, int size) {

@@ -21,6 +21,7 @@
 
 #include "luxel/error.h"
 #include "luxel/image.h"
+#include "scene/texture_decode.h"
 
 namespace luxel {
 namespace {
@@ -85,11 +86,6 @@ float acesFilmic(float x) {
   return std::clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0f, 1.0f);
 }
 
-// IEC 61966-2-1 encoding: linear below 0.0031308, a 1/2.4 power with offset above.
-float srgbEncode(float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
 
 Rgb applyCurve(const Rgb& c, ToneMap::Curve curve) {
   switch (curve) {
@@ -130,7 +126,7 @@ std::vector<Rgb> toneMap(const Image& image, const ToneMap& options) {
     const Rgb& p = image.pixels[i];
     const Rgb exposed(sanitize(p.x * s), sanitize(p.y * s), sanitize(p.z * s));
     const Rgb mapped = applyCurve(exposed, options.curve);
-    out[i] = Rgb(srgbEncode(mapped.x), srgbEncode(mapped.y), srgbEncode(mapped.z));
+    out[i] = Rgb(linearToSrgb(mapped.x), linearToSrgb(mapped.y), linearToSrgb(mapped.z));
   }
   return out;
 }

@@ -76,6 +76,11 @@ float srgbToLinear(float encoded) {
   return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
+float linearToSrgb(float v) {
+  v = std::clamp(v, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
 Rgb Texture::sample(Vec2 uv) const {
   if (width <= 0 || height <= 0 || texels.size() < size_t(width) * size_t(height))
     return Rgb(1.0f);  // no image: neutral, since textures multiply a colour

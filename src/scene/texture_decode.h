@@ -24,5 +24,8 @@ void checkTextureSize(const std::string& path, long long width, long long height
 
 // The sRGB transfer function inverted (IEC 61966-2-1), for one 8-bit channel value / 255.
 float srgbToLinear(float encoded);
+// The sRGB transfer function (IEC 61966-2-1), `linear` clamped to [0, 1] first: what PNG output,
+// glTF's colour textures and the viewer's 8-bit textures store.
+float linearToSrgb(float linear);
 
 }  // namespace luxel

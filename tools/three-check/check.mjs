@@ -29,6 +29,8 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import zlib from 'node:zlib';
 
+import { writeDebugPng } from './debug_png.mjs';
+
 const SKIP = 77;
 const here = path.dirname(fileURLToPath(import.meta.url));
 const started = Date.now();
@@ -236,28 +238,7 @@ function writePng(file, pixels) {
   for (let y = 0; y < size; ++y)
     for (let x = 0; x < size; ++x)
       for (let c = 0; c < 3; ++c) rgb[(y * size + x) * 3 + c] = srgb(4 * pixels[((size - 1 - y) * size + x) * 4 + c]);
-  for (const r of Object.values(regions)) {
-    const [x0, y0, x1, y1] = box(r);
-    for (let y = y0 - 1; y <= y1; ++y)
-      for (let x = x0 - 1; x <= x1; ++x)
-        if (y === y0 - 1 || y === y1 || x === x0 - 1 || x === x1) rgb.set([255, 0, 255], (y * size + x) * 3);
-  }
-  const rows = [];
-  for (let y = 0; y < size; ++y) rows.push(Buffer.from([0]), rgb.subarray(y * size * 3, (y + 1) * size * 3));
-  const chunk = (type, data) => {
-    const b = Buffer.alloc(12 + data.length);
-    b.writeUInt32BE(data.length, 0);
-    b.write(type, 4, 'ascii');
-    data.copy(b, 8);
-    b.writeUInt32BE(zlib.crc32(b.subarray(4, 8 + data.length)), 8 + data.length);
-    return b;
-  };
-  const ihdr = Buffer.alloc(13);
-  ihdr.writeUInt32BE(size, 0);
-  ihdr.writeUInt32BE(size, 4);
-  ihdr.set([8, 2, 0, 0, 0], 8);
-  writeFileSync(file, Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', ihdr),
-    chunk('IDAT', zlib.deflateSync(Buffer.concat(rows))), chunk('IEND', Buffer.alloc(0))]));
+  writeDebugPng(file, size, rgb, Object.values(regions).map(box));
 }
 {
   const t = new THREE.DataTexture(info.pixels, size, size, THREE.RGBAFormat, THREE.FloatType);
