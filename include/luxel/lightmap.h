@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "luxel/directional_lightmap.h"
 #include "luxel/image.h"
 #include "luxel/progress.h"
 #include "luxel/render.h"
@@ -98,6 +99,9 @@ struct LightmapBakeOptions {
   float seamAngle = 45.0f;
   // Dilation passes into the empty texels round every chart (the atlas gutter).
   int dilation = 2;
+  // Also keep where each texel's light comes from (luxel/directional_lightmap.h): needs a solver
+  // that records directions (CPU progressive or gather).
+  DirectionalMode directional = DirectionalMode::None;
 };
 
 struct LightmapBake {
@@ -120,6 +124,12 @@ struct LightmapBake {
   float seamMaxAfter = 0.0f;
   double secondsSurfaces = 0, secondsValidity = 0, secondsSolve = 0, secondsPost = 0;
   double secondsSeams = 0;     // the part of secondsPost spent finding and stitching seams
+  double secondsDirectional = 0;  // the directions of the light, after the solve
+  // Directional bakes: the incident radiance's SH, directionalCoefficients(directional) planes
+  // laid out as `pages` ([coefficient][page][texel]), filled, stitched and dilated as the pages
+  // are (and windowed for ShL2); empty for DirectionalMode::None.
+  DirectionalMode directional = DirectionalMode::None;
+  std::vector<std::vector<std::vector<Rgb>>> sh;
 };
 
 LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options = {},
@@ -135,6 +145,7 @@ struct LightmapRecipe {
   size_t texelBudget = 0;
   int pageSize = 0;
   SolveOptions solve;
+  DirectionalMode directional = DirectionalMode::None;  // LightmapBakeOptions::directional
 };
 constexpr int kMaxDefaultPageSize = 1024;
 // Most texels a recipe may ask for (every texel is an element of the solve, ~300 bytes with its

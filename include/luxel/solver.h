@@ -114,6 +114,16 @@ class Solver {
   // along (shooting the difference); false, the default, when its owner must replace it.
   virtual bool sourcesChanged() { return false; }
 
+  // Where the interreflected light comes from, for directional bakes: the incident radiance at each
+  // element in real spherical harmonics, `count` (4: L1, or 9: L2) coefficients per element,
+  // out[e * count + i] = integral of L(w) Y_i(w) over the sphere, w in world space, for all the
+  // light of solution().irradiance except the analytic lights' (the owner adds those from the
+  // transport). Returns false, the default, when the method keeps no record of directions.
+  virtual bool incidentSh(int count, std::span<Rgb> out) {
+    (void)count, (void)out;
+    return false;
+  }
+
   // Checkpoints (luxel/checkpoint.h). A solver that can be checkpointed says so, writes
   // everything step() needs to go on from where it is, and reads it back into a solver made
   // afresh for the same system and options, which then continues to the same result, bit for

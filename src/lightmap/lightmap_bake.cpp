@@ -11,10 +11,13 @@
 #include <stb_image_write.h>
 #include <tbb/parallel_for.h>
 
+#include "core/spherical_harmonics.h"
 #include "lightmap/seam_edges.h"
 #include "lightmap/texel_geometry.h"
+#include "luxel/directional_lightmap.h"
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
+#include "session/solver_host.h"
 #include "trace/ray_tracer.h"
 
 namespace luxel {
@@ -23,7 +26,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-float channelSum(Rgb c) { return c.r + c.g + c.b; }
+float channelTotal(Rgb c) { return c.r + c.g + c.b; }
 
 // Per element: 1 when at most maxShare of its hemisphere rays hit the back of a single-sided face.
 std::vector<uint8_t> validity(const Scene& scene, const SurfaceSet& set, int rays, float maxShare) {
@@ -100,8 +103,20 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
   bake.secondsValidity = since(t0);
 
   t0 = Clock::now();
-  bake.solution = solve(scene, set, options.solve, progress);
-  bake.secondsSolve = since(t0);
+  const int shCount = directionalCoefficients(options.directional);
+  std::vector<Rgb> incident;  // per element, shCount coefficients
+  {
+    SolverHost host(scene, set, options.solve);
+    while (host.step({}, progress)) {
+    }
+    bake.solution = host.solution();
+    bake.secondsSolve = since(t0);
+    if (shCount > 0) {
+      const auto shStart = Clock::now();
+      incident = host.incidentSh(shCount);
+      bake.secondsDirectional = since(shStart);
+    }
+  }
 
   t0 = Clock::now();
   const auto pages = size_t(atlas.pageCount);
@@ -111,9 +126,16 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
   std::vector<std::vector<int32_t>> chartOf(pages, std::vector<int32_t>(n, -1));
   std::vector<std::vector<int32_t>> elementOf(pages, std::vector<int32_t>(n, -1));
   const auto& texels = bake.surfaces.texels;
+  bake.directional = options.directional;
+  bake.sh.assign(size_t(shCount), std::vector<std::vector<Rgb>>(pages, std::vector<Rgb>(n, Rgb(0.0f))));
+  // Every texel value is a plane: the irradiance first, then each SH coefficient. Filling,
+  // stitching and dilation treat them alike, so a texel's coefficients stay those of its value.
+  std::vector<std::vector<std::vector<Rgb>>*> planes{&bake.pages};
+  for (auto& plane : bake.sh) planes.push_back(&plane);
   for (size_t e = 0; e < set.elements.size(); ++e) {
     const auto& t = texels[e];
     const size_t i = size_t(t.y) * size_t(size) + t.x;
+    for (int k = 0; k < shCount; ++k) bake.sh[size_t(k)][t.page][i] = incident[e * size_t(shCount) + size_t(k)];
     bake.pages[t.page][i] = bake.solution.irradiance[e];
     bake.state[t.page][i] = bake.valid[e] ? LightmapBake::Solved : LightmapBake::Filled;
     chartOf[t.page][i] = int32_t(bake.surfaces.faceChart[set.elements[e].face]);
@@ -131,26 +153,30 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
     size_t left = bake.invalidTexels;
     while (left > 0) {
       std::vector<std::pair<size_t, size_t>> wave;
-      std::vector<Rgb> values;
+      std::vector<Rgb> values;  // planes.size() per texel of the wave
       for (size_t e = 0; e < set.elements.size(); ++e) {
         const auto& t = texels[e];
         const size_t i = size_t(t.y) * size_t(size) + t.x;
         if (known[t.page][i]) continue;
-        Rgb sum(0.0f);
+        std::vector<Rgb> sum(planes.size(), Rgb(0.0f));
         int count = 0;
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
             const int x = int(t.x) + dx, y = int(t.y) + dy;
             if ((dx == 0 && dy == 0) || x < 0 || y < 0 || x >= size || y >= size) continue;
             const size_t j = size_t(y) * size_t(size) + size_t(x);
-            if (known[t.page][j] && chartOf[t.page][j] == chartOf[t.page][i]) sum += bake.pages[t.page][j], ++count;
+            if (!known[t.page][j] || chartOf[t.page][j] != chartOf[t.page][i]) continue;
+            for (size_t k = 0; k < planes.size(); ++k) sum[k] += (*planes[k])[t.page][j];
+            ++count;
           }
-        if (count > 0) wave.emplace_back(t.page, i), values.push_back(sum / float(count));
+        if (count == 0) continue;
+        wave.emplace_back(t.page, i);
+        for (const Rgb& v : sum) values.push_back(v / float(count));
       }
       if (wave.empty()) break;
-      for (size_t k = 0; k < wave.size(); ++k) {
-        bake.pages[wave[k].first][wave[k].second] = values[k];
-        known[wave[k].first][wave[k].second] = 1;
+      for (size_t w = 0; w < wave.size(); ++w) {
+        for (size_t k = 0; k < planes.size(); ++k) (*planes[k])[wave[w].first][wave[w].second] = values[w * planes.size() + k];
+        known[wave[w].first][wave[w].second] = 1;
       }
       left -= wave.size();
     }
@@ -216,12 +242,13 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
       }
     }
     bake.seamSamples = pairs.size();
-    auto value = [&](size_t k) -> Rgb& { return bake.pages[k / n][k % n]; };
+    std::vector<std::vector<Rgb>>* plane = &bake.pages;
+    auto value = [&](size_t k) -> Rgb& { return (*plane)[k / n][k % n]; };
     auto worst = [&] {
       float w = 0.0f;
       for (auto [a, b] : pairs) {
-        const float mean = 0.5f * (channelSum(value(a)) + channelSum(value(b)));
-        if (mean > 0.0f) w = std::max(w, channelSum(glm::abs(value(a) - value(b))) / mean);
+        const float mean = 0.5f * (channelTotal(value(a)) + channelTotal(value(b)));
+        if (mean > 0.0f) w = std::max(w, channelTotal(glm::abs(value(a) - value(b))) / mean);
       }
       return w;
     };
@@ -244,42 +271,66 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
       pairCount[slots[i].first] += 1.0f, pairCount[slots[i].second] += 1.0f;
     }
     std::vector<Rgb> sum(seamTexels.size());
-    for (int pass = 0; pass < 64 && !pairs.empty(); ++pass) {
-      std::fill(sum.begin(), sum.end(), Rgb(0.0f));
-      for (size_t i = 0; i < pairs.size(); ++i) {
-        const Rgb m = 0.5f * (value(pairs[i].first) + value(pairs[i].second));
-        sum[slots[i].first] += m, sum[slots[i].second] += m;
+    for (auto* current : planes) {
+      plane = current;
+      for (int pass = 0; pass < 64 && !pairs.empty(); ++pass) {
+        std::fill(sum.begin(), sum.end(), Rgb(0.0f));
+        for (size_t i = 0; i < pairs.size(); ++i) {
+          const Rgb m = 0.5f * (value(pairs[i].first) + value(pairs[i].second));
+          sum[slots[i].first] += m, sum[slots[i].second] += m;
+        }
+        for (size_t k = 0; k < seamTexels.size(); ++k) value(seamTexels[k]) = sum[k] / pairCount[k];
+        if (worst() < 1e-5f) break;
       }
-      for (size_t k = 0; k < seamTexels.size(); ++k) value(seamTexels[k]) = sum[k] / pairCount[k];
-      if (worst() < 1e-5f) break;
+      if (current == &bake.pages) bake.seamMaxAfter = worst();
     }
-    bake.seamMaxAfter = worst();
     bake.secondsSeams = since(seamStart);
   }
 
   // Dilation into the empty texels round the charts.
   for (int pass = 0; pass < options.dilation; ++pass) {
     for (size_t p = 0; p < pages; ++p) {
-      std::vector<std::pair<size_t, Rgb>> fill;
+      std::vector<size_t> fill;
+      std::vector<Rgb> values;  // planes.size() per filled texel
+      std::vector<Rgb> sum(planes.size());
       for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
           const size_t i = size_t(y) * size_t(size) + size_t(x);
           if (bake.state[p][i] != LightmapBake::Empty) continue;
-          Rgb sum(0.0f);
+          std::fill(sum.begin(), sum.end(), Rgb(0.0f));
           int count = 0;
           for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
               const int xx = x + dx, yy = y + dy;
               if (xx < 0 || yy < 0 || xx >= size || yy >= size) continue;
               const size_t j = size_t(yy) * size_t(size) + size_t(xx);
-              if (bake.state[p][j] != LightmapBake::Empty) sum += bake.pages[p][j], ++count;
+              if (bake.state[p][j] == LightmapBake::Empty) continue;
+              for (size_t k = 0; k < planes.size(); ++k) sum[k] += (*planes[k])[p][j];
+              ++count;
             }
-          if (count > 0) fill.emplace_back(i, sum / float(count));
+          if (count == 0) continue;
+          fill.push_back(i);
+          for (const Rgb& v : sum) values.push_back(v / float(count));
         }
-      for (auto& [i, v] : fill) bake.pages[p][i] = v, bake.state[p][i] = LightmapBake::Dilated;
+      for (size_t f = 0; f < fill.size(); ++f) {
+        for (size_t k = 0; k < planes.size(); ++k) (*planes[k])[p][fill[f]] = values[f * planes.size() + k];
+        bake.state[p][fill[f]] = LightmapBake::Dilated;
+      }
       bake.dilatedTexels += fill.size();
     }
   }
+  // L2 is read linearly: window each texel's coefficients until no normal gets negative light.
+  if (options.directional == DirectionalMode::ShL2)
+    for (size_t p = 0; p < pages; ++p)
+      tbb::parallel_for(size_t(0), n, [&](size_t i) {
+        if (bake.state[p][i] == LightmapBake::Empty) return;
+        Rgb c[kShCoefficients];
+        for (int k = 0; k < kShCoefficients; ++k) c[k] = bake.sh[size_t(k)][p][i];
+        const float s = shNonNegativeWindow(c, kShCoefficients);
+        if (s >= 1.0f) return;
+        shApplyWindow(c, kShCoefficients, s);
+        for (int k = 0; k < kShCoefficients; ++k) bake.sh[size_t(k)][p][i] = c[k];
+      });
   bake.secondsPost = since(t0);
   return bake;
 }

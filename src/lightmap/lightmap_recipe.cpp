@@ -39,6 +39,7 @@ BakedLightmaps bakeLightmaps(const Scene& scene, const LightmapRecipe& recipe, c
   LightmapBakeOptions lo;
   lo.solve = recipe.solve;
   lo.dilation = ao.gutter;
+  lo.directional = recipe.directional;
   out.bake = bakeLightmaps(scene, out.atlas, lo, progress);
   // Shown with the solve's warnings, where every caller already looks.
   auto& warnings = out.bake.solution.stats.warnings;

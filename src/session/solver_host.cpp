@@ -357,6 +357,21 @@ Solution SolverHost::solution() {
   return sol;
 }
 
+std::vector<Rgb> SolverHost::incidentSh(int count) {
+  useContext();
+  const size_t ne = surfaces_.elements.size();
+  std::vector<Rgb> sh(ne * size_t(count)), lights(ne * size_t(count));
+  if (!solver_->incidentSh(count, sh))
+    throw Error(fmt::format("the {} solver ({}) keeps no record of where light comes from: directional bakes need "
+                            "--method progressive or gather on the CPU",
+                            entry_->description.name, backend()));
+  std::vector<uint32_t> all(scene_.lights.size());
+  for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  transport_->lightSh(all, count, lights);
+  for (size_t i = 0; i < sh.size(); ++i) sh[i] += lights[i];
+  return sh;
+}
+
 Solution solve(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options, const ProgressCallback& progress) {
   SolverHost host(scene, surfaces, options);
   while (host.step({}, progress)) {

@@ -56,6 +56,11 @@ class SolverHost {
   // The irradiance the scene lights `lights` bring each element: the sum of their parts of the
   // analytic light when they are at hand, else traced again (the same samples either way).
   std::vector<Rgb> lightIrradiance(std::span<const uint32_t> lights);
+  // Where the light of solution().irradiance comes from, for directional bakes: the incident
+  // radiance at each element in spherical harmonics, `count` (4 or 9) per element (Solver::
+  // incidentSh for the interreflected light, Transport::lightSh for the analytic lights). Throws
+  // Error naming the solver when it keeps no record of directions.
+  std::vector<Rgb> incidentSh(int count);
   // The solution so far, with every statistic filled in (energy balance included).
   Solution solution();
   SolveStats stats() const;

@@ -13,6 +13,7 @@
 
 #include "core/stopwatch.h"
 #include "luxel/error.h"
+#include "solve/incident_sh.h"
 #include "solve/solver_registry.h"
 #include "solve/step_control.h"
 #include "transport/form_factor_options.h"
@@ -100,6 +101,20 @@ class GatherSolver final : public Solver {
     }
     sol.stats = stats();
     return sol;
+  }
+
+  // Each row's factors against the patches' current radiosity (the Gauss-Seidel sweep's own sums).
+  bool incidentSh(int count, std::span<Rgb> out) override {
+    const size_t np = sys_.patchCount();
+    const std::vector<Rgb> patchRadiosity = sys_.patchMeans(radiosity_);
+    std::fill(out.begin(), out.end(), Rgb(0.0f));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rowsDone_, 16), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t e = r.begin(); e < r.end(); ++e)
+        for (uint32_t p = 0; p < np; ++p)
+          addPatchSh(sys_.surfaces, uint32_t(e), p, matrix_[e * np + p], patchRadiosity[p], count,
+                     out.data() + e * size_t(count));
+    });
+    return true;
   }
 
   // The matrix rows computed so far are the costly part of the state, and are saved with it.

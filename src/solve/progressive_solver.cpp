@@ -9,6 +9,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/spherical_harmonics.h"
+#include "solve/incident_sh.h"
 #include "solve/solver_registry.h"
 #include "solve/step_control.h"
 #include "core/stopwatch.h"
@@ -44,6 +46,50 @@ Solution ProgressiveSolver::solution() {
   sol.stats = stats();
   seconds_ += watch.seconds();
   return sol;
+}
+
+bool ProgressiveSolver::incidentSh(int count, std::span<Rgb> out) {
+  const size_t ne = sys_.elementCount();
+  std::fill(out.begin(), out.end(), Rgb(0.0f));
+  // What each patch has shot so far: its elements' radiosity less what they still hold.
+  std::vector<Rgb> shotTotal(ne);
+  for (size_t e = 0; e < ne; ++e) shotTotal[e] = radiosity_[e] - unshot_[e];
+  const std::vector<Rgb> shot = sys_.patchMeans(shotTotal);
+  std::vector<uint32_t> shooters;
+  for (uint32_t p = 0; p < sys_.patchCount(); ++p)
+    if (shot[p] != Rgb(0.0f)) shooters.push_back(p);
+  // A block of columns at a time: those the cache lost are computed again, block by block.
+  constexpr size_t kBlock = 32;
+  std::vector<std::vector<float>> computed(kBlock);
+  for (size_t first = 0; first < shooters.size(); first += kBlock) {
+    const size_t n = std::min(kBlock, shooters.size() - first);
+    const float* cols[kBlock];
+    for (size_t k = 0; k < n; ++k) {
+      const uint32_t p = shooters[first + k];
+      if (cache_[p].empty()) {
+        computed[k].resize(ne);
+        transport_.columns({&p, 1}, computed[k]);
+        cols[k] = computed[k].data();
+      } else {
+        cols[k] = cache_[p].data();
+      }
+    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 64), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t e = r.begin(); e < r.end(); ++e)
+        for (size_t k = 0; k < n; ++k)
+          addPatchSh(sys_.surfaces, uint32_t(e), shooters[first + k], cols[k][e], shot[shooters[first + k]], count,
+                     out.data() + e * size_t(count));
+    });
+  }
+  // The ambient term, where it is on, arrives evenly over the hemisphere.
+  if (s_.ambient) {
+    std::vector<Rgb> radiosity = radiosity_, irradiance = irradiance_;
+    addAmbientTerm(sys_, unshot_, radiosity, irradiance);
+    for (size_t e = 0; e < ne; ++e)
+      shAddUniformHemisphere(out.data() + e * size_t(count), count, sys_.surfaces.elements[e].normal,
+                             irradiance[e] - irradiance_[e]);
+  }
+  return true;
 }
 
 void ProgressiveSolver::saveState(StateWriter& out) const {

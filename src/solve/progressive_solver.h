@@ -61,6 +61,10 @@ class ProgressiveSolver : public Solver {
 
   SolveStats stats() const override;
 
+  // From the cached columns and what each patch has shot in all (a shot's light arrives along the
+  // same factor whenever it is shot, so the sum over shots is one pass, after the solve).
+  bool incidentSh(int count, std::span<Rgb> out) override;
+
  protected:
   void updatePatchUnshot();
 

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/random.h"
+#include "core/spherical_harmonics.h"
 #include "luxel/error.h"
 #include "transport/form_factor.h"
 #include "transport/light_sampling.h"
@@ -469,8 +470,8 @@ void CpuTransport::analyticIrradiance(std::span<Rgb> out) {
   lightIrradiance(all, out);
 }
 
-void CpuTransport::lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) {
-  std::fill(out.begin(), out.end(), Rgb(0.0f));
+template <typename Visit>
+void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& visit) {
   for (uint32_t li : lights)
     if (li >= scene_.lights.size())
       throw Error(fmt::format("light {} does not exist: the scene has {} lights", li, scene_.lights.size()));
@@ -480,12 +481,12 @@ void CpuTransport::lightIrradiance(std::span<const uint32_t> lights, std::span<R
   const int m = k * k;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces_.elements.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RTCRay> rays;
-    std::vector<Rgb> values;
+    std::vector<LightSample> samples, reached;
     for (size_t ei = r.begin(); ei < r.end(); ++ei) {
       const Element& e = surfaces_.elements[ei];
       const Sides sides = Sides::Front;
       rays.clear();
-      values.clear();
+      samples.clear();
       for (const uint32_t li : lights) {
         // Seeded by the light's index in the scene, so that a light's samples do not depend on
         // which other lights are asked for.
@@ -501,14 +502,38 @@ void CpuTransport::lightIrradiance(std::span<const uint32_t> lights, std::span<R
           if (!ls.valid()) continue;
           Vec3 xo = x + e.normal * (glm::dot(e.normal, ls.direction) >= 0.0f ? rayOffset_ : -rayOffset_);
           rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
-          values.push_back(ls.irradiance / float(m));
+          ls.irradiance /= float(m);
+          samples.push_back(ls);
         }
       }
       tracer_.occluded(rays);
-      Rgb sum(0.0f);
+      reached.clear();
       for (size_t i = 0; i < rays.size(); ++i)
-        if (!isOccluded(rays[i])) sum += values[i];
-      out[ei] = sum;
+        if (!isOccluded(rays[i])) reached.push_back(samples[i]);
+      visit(ei, std::span<const LightSample>(reached));
+    }
+  });
+}
+
+void CpuTransport::lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) {
+  std::fill(out.begin(), out.end(), Rgb(0.0f));
+  visitLightSamples(lights, [&](size_t e, std::span<const LightSample> reached) {
+    Rgb sum(0.0f);
+    for (const LightSample& ls : reached) sum += ls.irradiance;
+    out[e] = sum;
+  });
+}
+
+void CpuTransport::lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) {
+  if (count != kShL1Coefficients && count != kShCoefficients)
+    throw Error(fmt::format("spherical harmonics of {} coefficients: 4 (L1) or 9 (L2)", count));
+  std::fill(out.begin(), out.end(), Rgb(0.0f));
+  visitLightSamples(lights, [&](size_t e, std::span<const LightSample> reached) {
+    Rgb* c = out.data() + e * size_t(count);
+    const Vec3 n = surfaces_.elements[e].normal;
+    for (const LightSample& ls : reached) {
+      const Vec3 w = glm::normalize(ls.direction);
+      shAddDirection(c, count, w, ls.irradiance / std::max(glm::dot(n, w), kShMinimumCosine));
     }
   });
 }

@@ -28,6 +28,7 @@ class CpuTransport final : public Transport {
   void pairs(std::span<const ElementPatch> pairs, std::span<float> out) override;
   void analyticIrradiance(std::span<Rgb> out) override;
   void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) override;
+  void lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) override;
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
   void elementsChanged() override;
   // Moves the objects' ray tracer instances (a commit, no rebuild) and forgets what depended on
@@ -58,6 +59,10 @@ class CpuTransport final : public Transport {
   RayTracer tracer_;
   float rayOffset_ = 0.0f;
   enum class PairVisibility : uint8_t { Unknown, Clear, Partial };
+  // Traces the samples of `lights` at every element and calls visit(element, samples) with the
+  // ones that reach it: lightIrradiance and lightSh read the same samples.
+  template <typename Visit>
+  void visitLightSamples(std::span<const uint32_t> lights, Visit&& visit);
   PairVisibility classify(uint32_t receiverPatch, uint32_t sourcePatch);
   // The unoccluded factor A of each pair, by each receiver element's midpoint rule.
   void computeAnalytic(std::span<const Pair> pairs, float* out) const;

@@ -33,6 +33,9 @@ class MonteCarloTransport final : public Transport {
   void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) override {
     lights_.lightIrradiance(lights, out);
   }
+  void lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) override {
+    lights_.lightSh(lights, count, out);
+  }
   uint64_t raysTraced() const override { return tracer_.raysTraced(); }
   void elementsChanged() override { matrix_.clear(); }
   // A reference for static scenes: its ray tracer holds the patches, not the scene's objects.

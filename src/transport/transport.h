@@ -16,6 +16,10 @@ namespace luxel {
 
 class RayTracer;
 
+// The smallest receiver cosine a sample's irradiance is divided by to become radiance times solid
+// angle (Transport::lightSh).
+inline constexpr float kShMinimumCosine = 0.05f;
+
 class Transport {
  public:
   virtual ~Transport() = default;
@@ -43,6 +47,12 @@ class Transport {
   // the same samples, so the parts of every light add up to the whole (a viewer that shows some
   // lights per pixel takes their part out of the interpolated field).
   virtual void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) = 0;
+  // Where that light comes from: the incident radiance of the lights `lights` at each element in
+  // spherical harmonics (core/spherical_harmonics.h), `count` (4 or 9) coefficients per element,
+  // out[e * count + i]. The same samples as lightIrradiance: each one that reaches the element
+  // adds its irradiance / cos(theta) along its direction (cos clamped at kShMinimumCosine, so that
+  // sky samples at the horizon do not explode). Throws Error where the backend cannot.
+  virtual void lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out);
 
   // The ray tracer over the scene's faces, for solvers that trace their own rays (the
   // hierarchical solver); null where the backend has none.

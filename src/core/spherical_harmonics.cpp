@@ -1,0 +1,139 @@
+// Spherical-harmonic helpers: see core/spherical_harmonics.h.
+#include "core/spherical_harmonics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace luxel {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+// Five directions whose band-2 values form an invertible 5 x 5 matrix, and its inverse.
+struct Band2Frame {
+  std::array<Vec3, 5> directions;
+  Eigen::Matrix<float, 5, 5> inverse;
+  Band2Frame() {
+    const float s = 1.0f / std::sqrt(2.0f);
+    directions = {Vec3(1, 0, 0), Vec3(0, 0, 1), Vec3(s, s, 0), Vec3(s, 0, s), Vec3(0, s, s)};
+    Eigen::Matrix<float, 5, 5> m;
+    for (int i = 0; i < 5; ++i) {
+      const auto y = shBasis(directions[size_t(i)]);
+      for (int j = 0; j < 5; ++j) m(i, j) = y[size_t(4 + j)];
+    }
+    inverse = m.inverse();
+  }
+};
+
+const Band2Frame& band2Frame() {
+  static const Band2Frame frame;
+  return frame;
+}
+
+// Unit directions spread evenly over the sphere (a Fibonacci lattice), for the deringing search.
+const std::vector<Vec3>& sphereDirections() {
+  static const std::vector<Vec3> dirs = [] {
+    constexpr int n = 2562;
+    std::vector<Vec3> d(n);
+    const float golden = kPi * (3.0f - std::sqrt(5.0f));
+    for (int i = 0; i < n; ++i) {
+      const float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
+      const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+      d[size_t(i)] = Vec3(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
+    }
+    return d;
+  }();
+  return dirs;
+}
+
+// The smallest irradiance over the lattice of one channel, band l scaled by s^l.
+float minimumIrradiance(const float* c, int count, float s) {
+  float scaled[kShCoefficients];
+  for (int i = 0; i < count; ++i) scaled[i] = c[i] * std::pow(s, float(shBand(i)));
+  float lowest = INFINITY;
+  for (const Vec3& d : sphereDirections()) lowest = std::min(lowest, shIrradiance(scaled, count, d));
+  return lowest;
+}
+
+float channelWindow(const float* c, int count) {
+  if (!(c[0] > 0.0f)) return 0.0f;
+  if (count <= kShL1Coefficients) {
+    // E(n) = m0 / 4 + s |m1| / 2 cos: non-negative when s |m1| <= m0 / 2.
+    const float m0 = c[0] / kShY0, m1 = glm::length(shBand1Vector(c[1], c[2], c[3]));
+    return m1 > 0.5f * m0 ? 0.5f * m0 / m1 : 1.0f;
+  }
+  const float margin = 0.005f * kPi * kShY0 * c[0];  // 0.5% of the mean irradiance, pi m0 / 4pi
+  if (minimumIrradiance(c, count, 1.0f) >= margin) return 1.0f;
+  float lo = 0.0f, hi = 1.0f;  // lo always passes: only band 0 left
+  for (int it = 0; it < 20; ++it) {
+    const float mid = 0.5f * (lo + hi);
+    (minimumIrradiance(c, count, mid) >= margin ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+}  // namespace
+
+float shL1DirectionalIrradiance(float c0, Vec3 band1, Vec3 n) {
+  const float m0 = std::max(0.0f, c0 / kShY0);
+  const float length = std::min(glm::length(band1), m0);
+  if (!(length > 0.0f)) return 0.25f * m0;
+  return 0.25f * (m0 - length) + std::max(0.0f, glm::dot(n, band1)) * (length / glm::length(band1));
+}
+
+void shRotate(const Rgb* in, int count, const glm::mat3& rotation, Rgb* out) {
+  out[0] = in[0];
+  if (count < kShL1Coefficients) return;
+  // Band 1: coefficient vector (c3, c1, c2) turns with the function.
+  for (int ch = 0; ch < 3; ++ch) {
+    const Vec3 v = rotation * Vec3(in[3][ch], in[1][ch], in[2][ch]);
+    out[1][ch] = v.y, out[2][ch] = v.z, out[3][ch] = v.x;
+  }
+  if (count < kShCoefficients) return;
+  // Band 2: f'(d_i) = f(R^T d_i) at the five frame directions, then back to coefficients.
+  const Band2Frame& frame = band2Frame();
+  const glm::mat3 back = glm::transpose(rotation);
+  Eigen::Matrix<float, 5, 5> values;  // [direction][input coefficient]
+  for (int i = 0; i < 5; ++i) {
+    const auto y = shBasis(back * frame.directions[size_t(i)]);
+    for (int j = 0; j < 5; ++j) values(i, j) = y[size_t(4 + j)];
+  }
+  const Eigen::Matrix<float, 5, 5> m = frame.inverse * values;
+  for (int ch = 0; ch < 3; ++ch)
+    for (int i = 0; i < 5; ++i) {
+      float sum = 0.0f;
+      for (int j = 0; j < 5; ++j) sum += m(i, j) * in[4 + j][ch];
+      out[4 + i][ch] = sum;
+    }
+}
+
+void shAddUniformHemisphere(Rgb* c, int count, Vec3 n, Rgb e) {
+  // Radiance L = e / pi over the hemisphere: integral of L = 2 pi L = 2 e, integral of L w = pi L n
+  // = e n; band 2: integral of Y20 over the hemisphere about its axis is 0 (P2 integrates to 0
+  // over [0, 1]), and the other band-2 functions are odd about the axis, so band 2 gets nothing.
+  c[0] += (2.0f * kShY0) * e;
+  if (count >= kShL1Coefficients) {
+    c[1] += (kShY1 * n.y) * e;
+    c[2] += (kShY1 * n.z) * e;
+    c[3] += (kShY1 * n.x) * e;
+  }
+}
+
+float shNonNegativeWindow(const Rgb* c, int count) {
+  float s = 1.0f;
+  for (int ch = 0; ch < 3; ++ch) {
+    float channel[kShCoefficients];
+    for (int i = 0; i < count; ++i) channel[i] = c[i][ch];
+    s = std::min(s, channelWindow(channel, count));
+  }
+  return s;
+}
+
+void shApplyWindow(Rgb* c, int count, float s) {
+  for (int i = 1; i < count; ++i) c[i] *= std::pow(s, float(shBand(i)));
+}
+
+}  // namespace luxel
