@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 
 #include "luxel/bake.h"
+#include "luxel/directional_lightmap.h"
 #include "luxel/error.h"
 #include "luxel/image.h"
 #include "luxel/import.h"
@@ -60,6 +61,8 @@ void checkBakeArgs(const BakeArgs& a) {
   if (!a.vertexColorsFor.empty() && !a.lightmaps)
     throw Error("--vertex-colors-for needs --lightmaps (the other meshes get lightmaps); --vertex-colors alone "
                 "colours every mesh");
+  if (parseDirectionalMode(a.directional) != DirectionalMode::None && !a.lightmaps)
+    throw Error("--directional bakes directional lightmaps: it needs --lightmaps");
   if (a.html) {
     if (lowerExtension(fs::path(a.output)) != ".glb")
       throw Error(fmt::format("--html writes a page beside the glb and embeds it: -o must name a .glb file (not '{}')",
@@ -106,6 +109,7 @@ int runBake(const BakeArgs& a) {
     recipe.texelBudget = size_t(a.solve.elements);
     recipe.pageSize = a.lightmapSize;
     recipe.solve = so;
+    recipe.directional = parseDirectionalMode(a.directional);
     const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
     const LightmapAtlas& atlas = baked.atlas;
     const LightmapBake& bake = baked.bake;
@@ -201,6 +205,11 @@ void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
   bake.add_option("--lightmap-size", a.lightmapSize,
                   "Lightmap page size in texels (default: each bake's pages sized to their content, up to 1024)")
       ->check(CLI::Range(16, 16384));
+  bake.add_option("--directional", a.directional,
+                  "With --lightmaps: none, sh-l1 (L1 spherical harmonics), sh-l2 or dominant (one direction): where "
+                  "each texel's light comes from, for normal maps (the LUXEL_lightmap_directional extension)")
+      ->check(CLI::IsMember({"none", "sh-l1", "sh-l2", "dominant"}))
+      ->capture_default_str();
   bake.add_option("--vertex-colors-for", a.vertexColorsFor,
                   "With --lightmaps: meshes whose names match these globs (comma-separated) get vertex colours "
                   "(COLOR_0, irradiance) instead of a lightmap")

@@ -22,6 +22,9 @@ struct BakeArgs {
   bool lightmaps = false;
   float texelsPerMetre = 0.0f;  // 0: --elements texels when given, else luxel::defaultTexelsPerMetre
   int lightmapSize = 0;         // 0: pages sized to their content, up to 1024
+  // --directional MODE (with --lightmaps): also where each texel's light comes from, as the
+  // LUXEL_lightmap_directional extension (luxel/directional_lightmap.h, docs/baking.md).
+  std::string directional = "none";
   // --vertex-colors-for PATTERN[,PATTERN...] (with --lightmaps): meshes whose names match a glob
   // get COLOR_0 (irradiance from their texels) instead of a lightmap. Each must match a mesh.
   std::vector<std::string> vertexColorsFor;

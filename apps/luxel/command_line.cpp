@@ -30,6 +30,11 @@ std::unique_ptr<CommandLine> makeCommandLine() {
   render->add_option("--stats", ra.statsPath, "Write statistics as JSON");
   render->add_option("--progress-trace", ra.tracePath, "Write every progress report, timed, as tab-separated lines");
   render->add_option("--mode", ra.mode, "hq (exact direct light per pixel), radiosity (the seeds' display) or lightmap (bake lightmaps and show them as an engine would)")->capture_default_str();
+  render->add_option("--directional", ra.directional,
+                     "With --mode lightmap: none, sh-l1, sh-l2 or dominant (directional lightmaps, read at the "
+                     "normal-mapped normal)")
+      ->check(CLI::IsMember({"none", "sh-l1", "sh-l2", "dominant"}))
+      ->capture_default_str();
 
   CLI::App* animate = line->animateCommand =
       app.add_subcommand("animate", "Render a scene's animation frame by frame (images or a video), following its moves");

@@ -14,6 +14,7 @@
 #include "luxel/error.h"
 #include "luxel/image.h"
 #include "luxel/import.h"
+#include "luxel/directional_lightmap.h"
 #include "luxel/lightmap.h"
 #include "luxel/render.h"
 #include "luxel/session.h"
@@ -103,6 +104,8 @@ void checkViewArgs(const ViewArgs& a) {
 
 void checkRenderArgs(const RenderArgs& a) {
   checkViewArgs(a);
+  if (parseDirectionalMode(a.directional) != DirectionalMode::None && a.mode != "lightmap")
+    throw Error("--directional shows directional lightmaps: it needs --mode lightmap");
   checkSolveArgs(a.solve);
 }
 
@@ -148,6 +151,7 @@ int runRender(const RenderArgs& a) {
     recipe.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize : 0.0f;
     recipe.texelBudget = size_t(a.solve.elements);
     recipe.solve = so;
+    recipe.directional = parseDirectionalMode(a.directional);
     const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
     solution = baked.bake.solution;
     nowDoing(renderingWhat(a, sceneName), "use a smaller image (--size)");

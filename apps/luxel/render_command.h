@@ -36,6 +36,9 @@ struct RenderArgs : ViewArgs {
   bool quiet = false;
   std::string statsPath;
   std::string tracePath;
+  // --directional MODE (with --mode lightmap): bake directional lightmaps and shade them at the
+  // normal-mapped normal (luxel/directional_lightmap.h); "none" by default.
+  std::string directional = "none";
 };
 
 // Adds --camera, --eye, --target, --up and --fov.

@@ -39,6 +39,9 @@ struct GlbImage {
   // > 0: a lightmap page in RGBM (value = rgb * alpha * rgbmRange, linear), sampled with
   // clamp-to-edge and no mipmaps.
   float rgbmRange = 0.0f;
+  // Data sampled like a lightmap page (clamp-to-edge, no mipmaps), not a colour: the direction
+  // textures of a directional bake.
+  bool clamped = false;
 };
 
 struct GlbOptions {
@@ -68,6 +71,14 @@ struct GlbOptions {
   // {"lightMap": TEXTURE, "lightMapTexCoord": 1, "lightMapEncoding": "RGBM", "rgbmRange": R,
   // "lightMapQuantity": "irradiance"}} (docs/baking.md). Needs the mesh's secondUvs.
   std::vector<std::vector<int32_t>> faceLightmap;
+  // Directional lightmaps (luxel/directional_lightmap.h): the mode's name ("" for none) and, per
+  // image of `images` that is a lightmap page, the indices into `images` of its direction
+  // textures in the order of the mode's encoding (empty for images that are not pages). Each
+  // lightmapped material copy then carries them in the LUXEL_lightmap_directional extension
+  // (docs/baking.md, docs/schema/LUXEL_lightmap_directional.schema.json), listed in extensionsUsed
+  // and not required: an engine that ignores it still has the plain lightmap.
+  std::string directionalMode;
+  std::vector<std::vector<int32_t>> directionalImages;
   // Faces that discretisation turned round (SurfaceFace::flipped) are written turned round too,
   // so that viewers culling back faces show the side the solver lit: one flag per mesh face,
   // [mesh][face], empty for none. bakeGlbOptions fills it.
@@ -90,7 +101,8 @@ FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtla
 // lightmapped faces use as RGBM PNG images (appended to o.images, named lightmapN after the page)
 // and the faces' images (o.faceLightmap). Meshes flagged in `vertexColorMeshes` ([mesh], 1 =
 // flagged; empty for none) get no TEXCOORD_1 and no lightmap but COLOR_0 =
-// lightmapCornerIrradiance, with vertexColorQuantity "irradiance" (docs/baking.md).
+// lightmapCornerIrradiance, with vertexColorQuantity "irradiance" (docs/baking.md). A directional
+// bake adds each page's direction textures (8-bit PNG, directional_lightmap.h's encoding).
 void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
                   const std::vector<uint8_t>& vertexColorMeshes = {});
 

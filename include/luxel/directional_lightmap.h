@@ -36,4 +36,21 @@ int directionalCoefficients(DirectionalMode mode);
 // direction only says how it changes as the normal turns). h at any n when the reading at n0 is 0.
 Rgb directionalIrradiance(DirectionalMode mode, const Rgb* c, Rgb h, Vec3 n0, Vec3 n);
 
+// ---- The 8-bit encoding of the glb's LUXEL_lightmap_directional extension (docs/baking.md) ----
+// Every texel's coefficients relative to its band 0, per channel, so that the plain lightmap keeps
+// the scale and the direction textures only the shape: q_i = c_i / c_0, i >= 1, each stored as
+// 0.5 + 0.5 q_i / bound_i, where bound_i is the largest |Y_i / Y_0| (sqrt 3 for band 1, sqrt 5 for
+// band 2), which no light >= 0 exceeds.
+//  - ShL1: 3 RGB textures, the x, y and z of the band-1 vector m1 / m0 (q_3, q_1, q_2 / sqrt 3).
+//  - Dominant: 1 RGB texture, x, y, z of the luminance's m1 / m0.
+//  - ShL2: 8 RGB textures, q_1 ... q_8.
+// The reading divides the irradiance back out: directionalIrradiance with c_0 = 1 gives the same.
+int directionalTextureCount(DirectionalMode mode);
+// Texture k of one texel's coefficients c, as values in [0, 1] per channel (to be quantised to 8
+// bits). Channels whose band 0 is <= 0 encode as 0.5 (no direction).
+Rgb encodeDirectionalTexel(DirectionalMode mode, const Rgb* c, int k);
+// The coefficients (c_0 = 1 per channel) the textures' values give back: the inverse of
+// encodeDirectionalTexel; `values` holds directionalTextureCount(mode) colours.
+void decodeDirectionalTexel(DirectionalMode mode, const Rgb* values, Rgb* c);
+
 }  // namespace luxel

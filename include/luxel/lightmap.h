@@ -176,6 +176,9 @@ Image lightmapPageImage(const LightmapBake& bake, int page);
 // range the smallest power of two at or above the page's largest component (at least 1).
 float rgbmRange(const Image& image);
 std::vector<uint8_t> encodeRgbmPng(const Image& image, float range);
+// Direction texture `texture` of a directional bake's page as an 8-bit RGB PNG, row 0 at the top
+// (the encoding of luxel/directional_lightmap.h).
+std::vector<uint8_t> encodeDirectionalPng(const LightmapBake& bake, int page, int texture);
 
 // The density that gives about `texels` texels over the scene's faces (0 for an empty scene).
 float texelsPerMetreForBudget(const Scene& scene, size_t texels);

@@ -141,6 +141,13 @@ void checkOptions(const Scene& scene, const GlbOptions& o) {
   check(o.secondUvs.size(), [&](size_t m) { return o.secondUvs[m].size(); }, "second uvs", 4, true);
   check(o.flippedFaces.size(), [&](size_t m) { return o.flippedFaces[m].size(); }, "flipped-face flags", 1, false);
   check(o.faceLightmap.size(), [&](size_t m) { return o.faceLightmap[m].size(); }, "face lightmaps", 1, true);
+  if (!o.directionalMode.empty()) {
+    if (o.directionalImages.size() != o.images.size())
+      throw Error(fmt::format("glb: {} direction-texture lists for {} images", o.directionalImages.size(), o.images.size()));
+    for (const auto& list : o.directionalImages)
+      for (int32_t i : list)
+        if (i < 0 || i >= int32_t(o.images.size())) throw Error(fmt::format("glb: direction image {} does not exist", i));
+  }
   if (!o.faceLightmap.empty()) {
     for (size_t m = 0; m < scene.meshes.size(); ++m)
       if (!o.faceLightmap[m].empty() && (o.secondUvs.empty() || o.secondUvs[m].empty()))
@@ -280,9 +287,13 @@ void addFaces(const Mesh& mesh, size_t mi, const GlbOptions& o, float colorScale
 tinygltf::Primitive makePrimitive(tinygltf::Model& model, MeshBuilder& b, int material);
 
 // Lightmap pages: image index -> texture index and RGBM range; (material, page) -> material copy.
+constexpr const char* kDirectionalExtension = "LUXEL_lightmap_directional";
+
 struct LightmapTextures {
   std::vector<int> texture;
   std::vector<float> range;
+  std::string directionalMode;
+  std::vector<std::vector<int32_t>> directional;  // per image: its direction textures' images
   std::map<std::pair<uint32_t, int32_t>, int> copies;
 };
 
@@ -300,6 +311,20 @@ int lightmapMaterial(tinygltf::Model& model, LightmapTextures& lightmaps, uint32
     tinygltf::Value::Object extras;
     extras["luxel"] = tinygltf::Value(info);
     g.extras = tinygltf::Value(extras);
+    if (!lightmaps.directionalMode.empty() && size_t(page) < lightmaps.directional.size() &&
+        !lightmaps.directional[size_t(page)].empty()) {
+      tinygltf::Value::Array textures;
+      for (int32_t image : lightmaps.directional[size_t(page)]) {
+        tinygltf::Value::Object t;
+        t["index"] = tinygltf::Value(lightmaps.texture[size_t(image)]);
+        t["texCoord"] = tinygltf::Value(1);
+        textures.push_back(tinygltf::Value(t));
+      }
+      tinygltf::Value::Object ext;
+      ext["mode"] = tinygltf::Value(lightmaps.directionalMode);
+      ext["textures"] = tinygltf::Value(textures);
+      g.extensions[kDirectionalExtension] = tinygltf::Value(ext);
+    }
     model.materials.push_back(g);
   }
   return it->second;
@@ -444,7 +469,7 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
   LightmapTextures lightmaps;
   for (const GlbImage& image : options.images) {
     int sampler = 0;
-    if (image.rgbmRange > 0.0f) {  // lightmaps: no mipmaps (they would blend charts), clamped
+    if (image.rgbmRange > 0.0f || image.clamped) {  // lightmaps: no mipmaps (they would blend charts), clamped
       if (model.samplers.size() < 2) {
         tinygltf::Sampler s;
         s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
@@ -457,6 +482,9 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
     lightmaps.texture.push_back(addImage(model, image.name, image.png, sampler));
     lightmaps.range.push_back(image.rgbmRange);
   }
+  lightmaps.directionalMode = options.directionalMode;
+  lightmaps.directional = options.directionalImages;
+  if (!options.directionalMode.empty()) model.extensionsUsed.push_back(kDirectionalExtension);
   const float colorScale = vertexColorScale(options);
   const ElementIndex index = options.elements ? indexElements(scene, *options.elements) : ElementIndex{};
   for (size_t m = 0; m < scene.meshes.size(); ++m) addMesh(scene, m, options, colorScale, index, lightmaps, model);

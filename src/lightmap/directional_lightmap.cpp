@@ -76,4 +76,69 @@ Rgb directionalIrradiance(DirectionalMode mode, const Rgb* c, Rgb h, Vec3 n0, Ve
   return out;
 }
 
+namespace {
+
+constexpr float kBand1Bound = 1.7320508f;  // max |Y1m / Y00| = sqrt 3
+constexpr float kBand2Bound = 2.2360680f;  // max |Y2m / Y00| = sqrt 5 (Y20 at the pole)
+float bound(int i) { return shBand(i) == 1 ? kBand1Bound : kBand2Bound; }
+
+float ratio(float ci, float c0) { return c0 > 0.0f ? ci / c0 : 0.0f; }
+float pack(float q, float b) { return std::clamp(0.5f + 0.5f * q / b, 0.0f, 1.0f); }
+float unpack(float v, float b) { return (2.0f * v - 1.0f) * b; }
+
+// The SH index of band-1 texture axis a (x, y, z) in the (y, z, x) order of the coefficients.
+constexpr int kAxisCoefficient[3] = {3, 1, 2};
+
+}  // namespace
+
+int directionalTextureCount(DirectionalMode mode) {
+  switch (mode) {
+    case DirectionalMode::None: return 0;
+    case DirectionalMode::ShL1: return 3;
+    case DirectionalMode::ShL2: return 8;
+    case DirectionalMode::Dominant: return 1;
+  }
+  return 0;
+}
+
+Rgb encodeDirectionalTexel(DirectionalMode mode, const Rgb* c, int k) {
+  Rgb out(0.5f);
+  switch (mode) {
+    case DirectionalMode::None:
+      break;
+    case DirectionalMode::ShL1:
+      for (int ch = 0; ch < 3; ++ch) out[ch] = pack(ratio(c[kAxisCoefficient[k]][ch], c[0][ch]), kBand1Bound);
+      break;
+    case DirectionalMode::ShL2:
+      for (int ch = 0; ch < 3; ++ch) out[ch] = pack(ratio(c[k + 1][ch], c[0][ch]), bound(k + 1));
+      break;
+    case DirectionalMode::Dominant: {
+      const float c0 = glm::dot(kLuminance, c[0]);
+      for (int axis = 0; axis < 3; ++axis) out[axis] = pack(ratio(glm::dot(kLuminance, c[kAxisCoefficient[axis]]), c0), kBand1Bound);
+      break;
+    }
+  }
+  return out;
+}
+
+void decodeDirectionalTexel(DirectionalMode mode, const Rgb* values, Rgb* c) {
+  const int count = directionalCoefficients(mode);
+  for (int i = 0; i < count; ++i) c[i] = Rgb(i == 0 ? 1.0f : 0.0f);
+  switch (mode) {
+    case DirectionalMode::None:
+      break;
+    case DirectionalMode::ShL1:
+      for (int axis = 0; axis < 3; ++axis)
+        for (int ch = 0; ch < 3; ++ch) c[kAxisCoefficient[axis]][ch] = unpack(values[axis][ch], kBand1Bound);
+      break;
+    case DirectionalMode::ShL2:
+      for (int i = 1; i < kShCoefficients; ++i)
+        for (int ch = 0; ch < 3; ++ch) c[i][ch] = unpack(values[i - 1][ch], bound(i));
+      break;
+    case DirectionalMode::Dominant:
+      for (int axis = 0; axis < 3; ++axis) c[kAxisCoefficient[axis]] = Rgb(unpack(values[0][axis], kBand1Bound));
+      break;
+  }
+}
+
 }  // namespace luxel

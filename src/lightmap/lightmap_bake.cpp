@@ -358,6 +358,28 @@ void appendBytes(void* context, void* data, int size) {
 }
 }  // namespace
 
+std::vector<uint8_t> encodeDirectionalPng(const LightmapBake& bake, int page, int texture) {
+  if (bake.directional == DirectionalMode::None || page < 0 || size_t(page) >= bake.pages.size() || texture < 0 ||
+      texture >= directionalTextureCount(bake.directional))
+    throw Error(fmt::format("lightmap page {} has no direction texture {}", page, texture));
+  const int s = bake.pageSize;
+  const int count = directionalCoefficients(bake.directional);
+  std::vector<uint8_t> rgb(size_t(s) * size_t(s) * 3);
+  for (int y = 0; y < s; ++y)
+    for (int x = 0; x < s; ++x) {
+      const size_t i = size_t(y) * size_t(s) + size_t(x);
+      Rgb c[kShCoefficients];
+      for (int k = 0; k < count; ++k) c[k] = bake.sh[size_t(k)][size_t(page)][i];
+      const Rgb v = encodeDirectionalTexel(bake.directional, c, texture);
+      const size_t row = size_t(s - 1 - y);  // row 0 at the top, as lightmapPageImage
+      for (int ch = 0; ch < 3; ++ch) rgb[(row * size_t(s) + size_t(x)) * 3 + size_t(ch)] = uint8_t(std::lround(v[ch] * 255.0f));
+    }
+  std::vector<uint8_t> png;
+  if (!stbi_write_png_to_func(appendBytes, &png, s, s, 3, rgb.data(), s * 3))
+    throw Error("cannot encode a direction texture as PNG");
+  return png;
+}
+
 std::vector<uint8_t> encodeRgbmPng(const Image& image, float range) {
   if (!(range > 0.0f)) throw Error("RGBM range must be positive");
   std::vector<uint8_t> rgba(image.pixels.size() * 4);
@@ -497,6 +519,22 @@ void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas,
     g.rgbmRange = rgbmRange(image);
     g.png = encodeRgbmPng(image, g.rgbmRange);
     o.images.push_back(std::move(g));
+  }
+  if (bake.directional != DirectionalMode::None) {
+    o.directionalMode = directionalModeName(bake.directional);
+    o.directionalImages.assign(o.images.size(), {});
+    for (int p = 0; p < int(bake.pages.size()); ++p) {
+      if (imageOf[size_t(p)] < 0) continue;
+      for (int k = 0; k < directionalTextureCount(bake.directional); ++k) {
+        o.directionalImages[size_t(imageOf[size_t(p)])].push_back(int32_t(o.images.size()));
+        GlbImage g;
+        g.name = fmt::format("lightmap{}_direction{}", p, k);
+        g.clamped = true;
+        g.png = encodeDirectionalPng(bake, p, k);
+        o.images.push_back(std::move(g));
+      }
+    }
+    o.directionalImages.resize(o.images.size());
   }
   o.secondUvs.assign(scene.meshes.size(), {});
   o.faceLightmap.assign(scene.meshes.size(), {});
