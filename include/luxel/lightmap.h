@@ -100,7 +100,8 @@ struct LightmapBakeOptions {
   // Dilation passes into the empty texels round every chart (the atlas gutter).
   int dilation = 2;
   // Also keep where each texel's light comes from (luxel/directional_lightmap.h): needs a solver
-  // that records directions (CPU progressive or gather).
+  // that records directions, CPU progressive or gather ("auto" method and backend pick progressive
+  // on the CPU; others are an Error naming the solver).
   DirectionalMode directional = DirectionalMode::None;
 };
 

@@ -363,7 +363,7 @@ std::vector<Rgb> SolverHost::incidentSh(int count) {
   std::vector<Rgb> sh(ne * size_t(count)), lights(ne * size_t(count));
   if (!solver_->incidentSh(count, sh))
     throw Error(fmt::format("the {} solver ({}) keeps no record of where light comes from: directional bakes need "
-                            "--method progressive or gather on the CPU",
+                            "--solver progressive or gather on the CPU backend",
                             entry_->description.name, backend()));
   std::vector<uint32_t> all(scene_.lights.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;

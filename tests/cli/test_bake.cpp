@@ -12,6 +12,7 @@
 
 #include "cli/cli_runner.h"
 #include "luxel/bake.h"
+#include "luxel/directional_lightmap.h"
 #include "luxel/error.h"
 #include "luxel/image.h"
 #include "luxel/import.h"
@@ -465,6 +466,108 @@ TEST(BakeCli, RealFilesValidateBothWays) {
       EXPECT_EQ(report["issues"]["numErrors"], 0) << file << " " << mode << report["issues"].dump(2);
       EXPECT_EQ(report["issues"]["numWarnings"], 0) << file << " " << mode << report["issues"].dump(2);
     }
+}
+
+// Directional bakes (luxel/directional_lightmap.h): every lightmapped material carries the
+// LUXEL_lightmap_directional extension (used, not required) with the mode's textures, whose 8-bit
+// values give back each texel's coefficients relative to band 0 to within half a step of 8 bits.
+TEST(Bake, DirectionalGlbCarriesTheDirectionsOfEveryTexel) {
+  luxel::Scene scene = luxel::loadScene("cornell");
+  for (auto mode : {luxel::DirectionalMode::ShL1, luxel::DirectionalMode::ShL2, luxel::DirectionalMode::Dominant}) {
+    luxel::LightmapRecipe recipe;
+    recipe.texelsPerMetre = 16.0f / 0.55f;
+    recipe.directional = mode;
+    const luxel::BakedLightmaps baked = luxel::bakeLightmaps(scene, recipe);
+    luxel::GlbOptions o;
+    luxel::addLightmaps(o, scene, baked.atlas, baked.bake);
+    fs::create_directories(fs::path(LUXEL_TEST_TMP));
+    const fs::path path = fs::path(LUXEL_TEST_TMP) / "bake-directional.glb";
+    luxel::writeGlb(scene, path, o);
+    const tinygltf::Model m = loadGlb(path);
+    EXPECT_NE(std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), "LUXEL_lightmap_directional"),
+              m.extensionsUsed.end());
+    EXPECT_TRUE(m.extensionsRequired.empty());
+    const auto& floor = primitiveOf(m, "floor");
+    const auto& material = m.materials.at(size_t(floor.material));
+    ASSERT_TRUE(material.extensions.count("LUXEL_lightmap_directional")) << luxel::directionalModeName(mode);
+    const auto& ext = material.extensions.at("LUXEL_lightmap_directional");
+    EXPECT_EQ(ext.Get("mode").Get<std::string>(), luxel::directionalModeName(mode));
+    const auto& textures = ext.Get("textures");
+    ASSERT_EQ(textures.ArrayLen(), size_t(luxel::directionalTextureCount(mode)));
+    const int count = luxel::directionalCoefficients(mode);
+    const auto& bake = baked.bake;
+    const int size = bake.pageSize;
+    std::vector<const tinygltf::Image*> images;
+    for (size_t k = 0; k < textures.ArrayLen(); ++k) {
+      EXPECT_EQ(textures.Get(int(k)).Get("texCoord").GetNumberAsInt(), 1);
+      const int t = textures.Get(int(k)).Get("index").GetNumberAsInt();
+      images.push_back(&m.images.at(size_t(m.textures.at(size_t(t)).source)));
+      ASSERT_EQ(images.back()->width, size);
+    }
+    double worst = 0.0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const size_t i = size_t(y) * size_t(size) + size_t(x);
+        if (bake.state[0][i] == luxel::LightmapBake::Empty) continue;
+        luxel::Rgb c[9], values[8], decoded[9];
+        for (int k = 0; k < count; ++k) c[k] = bake.sh[size_t(k)][0][i];
+        for (size_t k = 0; k < images.size(); ++k) {
+          const auto& img = *images[k];
+          const size_t at = (size_t(size - 1 - y) * size_t(size) + size_t(x)) * size_t(img.component);
+          values[k] = luxel::Rgb(img.image[at], img.image[at + 1], img.image[at + 2]) / 255.0f;
+        }
+        luxel::decodeDirectionalTexel(mode, values, decoded);
+        // Against a fresh encoding of the float coefficients, decoded the same way.
+        for (size_t k = 0; k < images.size(); ++k) values[k] = luxel::encodeDirectionalTexel(mode, c, int(k));
+        luxel::Rgb exact[9];
+        luxel::decodeDirectionalTexel(mode, values, exact);
+        for (int k = 1; k < count; ++k)
+          worst = std::max(worst, double(glm::length(decoded[k] - exact[k])) / std::sqrt(3.0));
+      }
+    // Half an 8-bit step of the widest bound (sqrt 5 over 0.5 per unit): 2.24 / 255.
+    EXPECT_LT(worst, 2.2361 / 255.0 + 1e-4) << luxel::directionalModeName(mode);
+  }
+}
+
+// Every directional glb validates: the McGuire variants (no uvs of their own) and the built-in box.
+TEST(BakeCli, DirectionalGlbsValidate) {
+  if (std::system("node --version >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "node is not installed (scripts/install-deps.sh installs it)";
+  if (!fs::exists(fs::path(LUXEL_GLTF_VALIDATOR) / "node_modules" / "gltf-validator"))
+    GTEST_SKIP() << "the npm package gltf-validator is not installed (scripts/install-deps.sh installs it)";
+  const fs::path scenes(LUXEL_TEST_SCENES);
+  std::vector<std::string> files = {"cornell"};
+  if (fs::is_directory(scenes / "mcguire-cornell-box"))
+    for (const auto& e : fs::directory_iterator(scenes / "mcguire-cornell-box"))
+      if (e.path().extension() == ".obj") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  const fs::path dir = scratchDir();
+  for (const std::string& file : files)
+    for (const char* mode : {"sh-l1", "sh-l2", "dominant"}) {
+      if (file != "cornell" && std::string(mode) != "sh-l1") continue;  // the encoding is the box's business
+      CliRun r = luxel(dir, {"bake", file, "-o", "d.glb", "--lightmaps", "--directional", mode, "--elements", "400",
+                             "--solver", "progressive", "-q"});
+      ASSERT_EQ(r.code, 0) << file << " " << mode << ": " << r.err;
+      const nlohmann::json report = validate(dir / "d.glb");
+      ASSERT_TRUE(report.is_object()) << file << ": the validator printed no JSON";
+      EXPECT_EQ(report["issues"]["numErrors"], 0) << file << " " << mode << report["issues"].dump(2);
+      EXPECT_EQ(report["issues"]["numWarnings"], 0) << file << " " << mode << report["issues"].dump(2);
+    }
+}
+
+TEST(BakeCli, DirectionalNeedsLightmapsAndASolverThatKeepsDirections) {
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, {"bake", "cornell", "-o", "d.glb", "--directional", "sh-l1", "-q"});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--lightmaps"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "d.glb"));
+  r = luxel(dir, {"bake", "cornell", "-o", "d.glb", "--lightmaps", "--directional", "sh-l1", "--solver", "hierarchical", "-q"});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("hierarchical"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "d.glb"));
+  r = luxel(dir, {"render", "cornell", "-o", "d.png", "--directional", "sh-l1", "-q"});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--mode lightmap"), std::string::npos) << r.err;
 }
 
 }  // namespace
