@@ -33,10 +33,11 @@ const Band2Frame& band2Frame() {
   return frame;
 }
 
-// Unit directions spread evenly over the sphere (a Fibonacci lattice), for the deringing search.
+// Unit directions spread evenly over the sphere (a Fibonacci lattice): starting points for the
+// deringing search.
 const std::vector<Vec3>& sphereDirections() {
   static const std::vector<Vec3> dirs = [] {
-    constexpr int n = 2562;
+    constexpr int n = 162;
     std::vector<Vec3> d(n);
     const float golden = kPi * (3.0f - std::sqrt(5.0f));
     for (int i = 0; i < n; ++i) {
@@ -49,12 +50,58 @@ const std::vector<Vec3>& sphereDirections() {
   return dirs;
 }
 
-// The smallest irradiance over the lattice of one channel, band l scaled by s^l.
+// The linear irradiance of one channel of L2 on the unit sphere as a polynomial,
+// E(n) = a + b . n + n^T Q n (band 2 is a quadratic form there: 3z^2 - 1 = 2z^2 - x^2 - y^2).
+struct Quadratic {
+  float a;
+  Vec3 b;
+  glm::mat3 q;
+  float at(Vec3 n) const { return a + glm::dot(b, n) + glm::dot(n, q * n); }
+};
+
+Quadratic irradiancePolynomial(const float* c, int count, float s) {
+  Quadratic p;
+  p.a = kShCosine[0] * kShY0 * c[0];
+  p.b = (kShCosine[1] * kShY1 * s) * Vec3(c[3], c[1], c[2]);
+  p.q = glm::mat3(0.0f);
+  if (count >= kShCoefficients) {
+    const float w = kShCosine[4] * s * s;
+    glm::mat3& m = p.q;
+    auto sym = [&](int i, int j, float v) { m[i][j] += v, m[j][i] += v; };
+    sym(0, 1, 0.5f * 1.092548f * c[4] * w);  // xy
+    sym(1, 2, 0.5f * 1.092548f * c[5] * w);  // yz
+    const float k20 = 0.315392f * c[6] * w;  // 2z^2 - x^2 - y^2
+    m[2][2] += 2.0f * k20, m[0][0] -= k20, m[1][1] -= k20;
+    sym(0, 2, 0.5f * 1.092548f * c[7] * w);  // xz
+    const float k22 = 0.546274f * c[8] * w;  // x^2 - y^2
+    m[0][0] += k22, m[1][1] -= k22;
+  }
+  return p;
+}
+
+// The smallest irradiance of one channel, band l scaled by s^l: the best of a lattice, then
+// projected gradient descent on the sphere from it (a quadratic on the sphere has few, wide
+// basins: the lattice's spacing of 0.28 rad starts in the deepest).
 float minimumIrradiance(const float* c, int count, float s) {
-  float scaled[kShCoefficients];
-  for (int i = 0; i < count; ++i) scaled[i] = c[i] * std::pow(s, float(shBand(i)));
+  const Quadratic p = irradiancePolynomial(c, count, s);
+  Vec3 best(0.0f, 0.0f, 1.0f);
   float lowest = INFINITY;
-  for (const Vec3& d : sphereDirections()) lowest = std::min(lowest, shIrradiance(scaled, count, d));
+  for (const Vec3& d : sphereDirections()) {
+    const float e = p.at(d);
+    if (e < lowest) lowest = e, best = d;
+  }
+  // Step below the inverse of the gradient's Lipschitz bound.
+  float qNorm = 0.0f;
+  for (int i = 0; i < 3; ++i) qNorm += glm::length(p.q[i]);
+  const float step = 0.5f / (glm::length(p.b) + 2.0f * qNorm + 1e-30f);
+  for (int it = 0; it < 40; ++it) {
+    const Vec3 g = p.b + 2.0f * (p.q * best);
+    const Vec3 tangent = g - glm::dot(g, best) * best;
+    const Vec3 next = glm::normalize(best - step * tangent);
+    const float e = p.at(next);
+    if (!(e < lowest)) break;
+    lowest = e, best = next;
+  }
   return lowest;
 }
 
