@@ -13,9 +13,11 @@ namespace luxel {
 struct RenderOptions {
   enum class Mode {
     // The seeds' display: all light, direct included, interpolated from the element solution.
+    // Normal maps are ignored.
     Radiosity,
     // Direct light evaluated per pixel with shadow rays (exact shadows); only the indirect part
-    // comes from the element solution.
+    // comes from the element solution. The direct light's receiver cosine uses the material's
+    // normal map (Material::normalTexture) where there is one; the indirect part does not.
     HighQuality,
   };
   Mode mode = Mode::HighQuality;

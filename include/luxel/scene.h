@@ -41,6 +41,13 @@ struct Material {
   int reflectanceTexture = -1;  // index into Scene::textures, -1 for none
   Rgb emission{0.0f};          // emitted radiance; multiplies the emission texture
   int emissionTexture = -1;
+  // A tangent-space normal map (glTF 2.0 normalTexture): index into Scene::textures, -1 for none.
+  // Its texels are data, stored undecoded in [0,1] (no sRGB curve): the normal is 2 * texel - 1,
+  // x along +u, y along +v (green up, OpenGL's convention), z out of the surface. normalScale
+  // multiplies x and y (glTF's normalTexture.scale; 0 leaves the surface flat). Only shading
+  // reads it (render/normal_map.h, docs/scene-format.md "Normal maps"); the solve does not.
+  int normalTexture = -1;
+  float normalScale = 1.0f;
   // A Blinn-Phong highlight, for display only: the viewer draws it for the lights it shades per
   // pixel (point, spot and directional; seed 004 section 3.1). The radiosity solve, `luxel render`
   // and the bakes are purely diffuse and never read these two fields.

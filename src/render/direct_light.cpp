@@ -37,37 +37,46 @@ DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
   for (float& c : cdf_) c /= total > 0.0f ? total : 1.0f;
 }
 
-void DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Sides sides, Rng& rng,
-                                float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
+void DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides,
+                                Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
+                                std::vector<Rgb>& values) const {
   Vec3 pn = em.polygon.normal();
-  float f = pointToPolygonFormFactor(x, n, em.polygon, pn, sides, em.sides);
+  float f = pointToPolygonFormFactor(x, shading, em.polygon, pn, sides, em.sides);
   if (f <= 0.0f) return;
-  // f already counts only the part of the emitter above x's plane; visibility is sampled there.
+  // f already counts only the part of the emitter above the shading plane; visibility is sampled
+  // there. A point of it below the geometric plane is hidden by the surface itself: like any other
+  // occluder, that is what the visibility sample estimates.
   Vec3 y;
-  if (!pointInFront(em.polygon, x, n, [&] { return rng.next(); }, y)) return;
+  if (!pointInFront(em.polygon, x, shading, [&] { return rng.next(); }, y)) return;
   Vec3 d = y - x;
+  if (sides == Sides::Front && glm::dot(n, d) < 0.0f) return;
   Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
   Vec3 yo = y + pn * (glm::dot(pn, d) <= 0.0f ? rayOffset : -rayOffset);
   rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
   values.push_back(em.exitance * (f * weight));
 }
 
-void DirectLight::sample(Vec3 x, Vec3 n, Sides sides, Rng& rng, float rayOffset,
+void DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Rng& rng, float rayOffset,
                          std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
   if (emitters_.size() <= kMaxExplicitEmitters) {
-    for (const Emitter& em : emitters_) sampleEmitter(em, 1.0f, x, n, sides, rng, rayOffset, rays, values);
+    for (const Emitter& em : emitters_)
+      sampleEmitter(em, 1.0f, x, n, shading, sides, rng, rayOffset, rays, values);
   } else {
     for (int i = 0; i < kSampledEmitters; ++i) {
       size_t k = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.next()) - cdf_.begin());
       k = std::min(k, emitters_.size() - 1);
       float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
       if (p <= 0.0f) continue;
-      sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, sides, rng, rayOffset, rays, values);
+      sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, rng, rayOffset, rays,
+                    values);
     }
   }
   for (const Light& light : scene_.lights) {
-    LightSample ls = sampleLight(light, x, n, sides, up_, rng.next(), rng.next());
+    // The cosine at the shading normal; a direction behind the geometric plane is blocked by the
+    // surface (never the case when shading == n: sampleLight gives those no light).
+    LightSample ls = sampleLight(light, x, shading, sides, up_, rng.next(), rng.next());
     if (!ls.valid()) continue;
+    if (sides == Sides::Front && glm::dot(n, ls.direction) < 0.0f) continue;
     Vec3 xo = x + n * (glm::dot(n, ls.direction) >= 0.0f ? rayOffset : -rayOffset);
     rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
     values.push_back(ls.irradiance);

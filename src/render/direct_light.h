@@ -20,6 +20,15 @@ class DirectLight {
 
   // Appends one sample's shadow rays and the irradiance each brings if unoccluded.
   void sample(Vec3 x, Vec3 n, Sides sides, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
+              std::vector<Rgb>& values) const {
+    sample(x, n, n, sides, rng, rayOffset, rays, values);
+  }
+  // The same with a shading normal (a normal map's, render/normal_map.h) for the receiver's cosine,
+  // max(0, shading . l): the irradiance a surface of that orientation would get. Shadow rays leave
+  // from the geometric surface (offset along n), and with Sides::Front light from behind its
+  // geometric plane counts as occluded, since the surface itself is in the way. With shading == n
+  // this is the call above, sample for sample.
+  void sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
               std::vector<Rgb>& values) const;
 
  private:
@@ -28,7 +37,7 @@ class DirectLight {
     Rgb exitance;
     Sides sides;
   };
-  void sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Sides sides, Rng& rng,
+  void sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides, Rng& rng,
                      float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values) const;
 
   const Scene& scene_;

@@ -2,6 +2,9 @@
 // L = Le + rho(x) / pi * H(x) with H interpolated smoothly from element corners (nodal averaging),
 // and, in high-quality mode, the direct part of H evaluated per pixel with shadow rays (the
 // "final gather of direct light" of two-pass methods, e.g. Chen et al., SIGGRAPH 1991).
+// Normal maps (render/normal_map.h) reach only that per-pixel direct light: its receiver cosine
+// is taken at the perturbed normal. The indirect part stays the element irradiance, which carries
+// no direction to tilt, and radiosity mode ignores normal maps altogether.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -17,6 +20,7 @@
 #include "luxel/render.h"
 #include "render/camera_frame.h"
 #include "render/direct_light.h"
+#include "render/normal_map.h"
 #include "trace/ray_tracer.h"
 #include "transport/light_sampling.h"
 
@@ -171,8 +175,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
             Vec3 p = cam.eye + dir * rh.ray.tfar;
             Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, uint32_t(y * options.width + x)), uint32_t(s)));
             const size_t before = shadowRays.size();
-            direct.sample(p, el.normal, Sides::Front, rng, rayOffset,
-                          shadowRays, shadowValues);
+            const Vec3 shading = m.normalTexture >= 0 ? shadingNormal(scene, face.mesh, face.meshFace, uv, el.normal)
+                                                      : el.normal;
+            direct.sample(p, el.normal, shading, Sides::Front, rng, rayOffset, shadowRays, shadowValues);
             for (size_t k = before; k < shadowRays.size(); ++k) {
               shadowValues[k] *= rho * kInvPi;
               shadowTargets.push_back(&sum);

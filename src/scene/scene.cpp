@@ -126,7 +126,10 @@ void Scene::validateMaterials() const {
     if (!std::isfinite(m.shininess) || m.shininess < 0.0f || m.shininess > kMaxShininess)
       throw Error(fmt::format("scene '{}': material '{}': shininess {} is outside [0, {:g}]", name,
                               m.name, m.shininess, kMaxShininess));
-    for (int t : {m.reflectanceTexture, m.emissionTexture})
+    if (!std::isfinite(m.normalScale))
+      throw Error(fmt::format("scene '{}': material '{}': normal scale {} is not finite", name, m.name,
+                              m.normalScale));
+    for (int t : {m.reflectanceTexture, m.emissionTexture, m.normalTexture})
       if (t >= int(textures.size()))
         throw Error(fmt::format("scene '{}': material '{}': texture index {} out of range", name,
                                 m.name, t));

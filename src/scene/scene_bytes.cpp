@@ -10,7 +10,7 @@ namespace {
 // Every field of every struct below is written. A field added to one of them must be added here
 // too: these sizes (x86-64, libstdc++) make the build say so.
 static_assert(sizeof(Texture) == 64, "Texture changed: update scene_bytes.cpp");
-static_assert(sizeof(Material) == 88, "Material changed: update scene_bytes.cpp");
+static_assert(sizeof(Material) == 96, "Material changed: update scene_bytes.cpp");
 static_assert(sizeof(Object) == 168, "Object changed: update scene_bytes.cpp");
 static_assert(sizeof(Mesh) == 192, "Mesh changed: update scene_bytes.cpp");
 static_assert(sizeof(Light) == 96, "Light changed: update scene_bytes.cpp");
@@ -48,6 +48,7 @@ std::vector<std::byte> sceneBytes(const Scene& scene) {
   for (const Material& m : scene.materials) {
     put(out, m.name);
     out.value(m.reflectance), out.value(m.reflectanceTexture), out.value(m.emission), out.value(m.emissionTexture);
+    out.value(m.normalTexture), out.value(m.normalScale);
     out.value(m.specular), out.value(m.shininess), out.value(m.twoSided);
   }
   out.value(uint64_t(scene.textures.size()));
@@ -93,6 +94,7 @@ Scene sceneFromBytes(std::span<const std::byte> bytes) {
   for (Material& m : scene.materials) {
     get(in, m.name);
     in.value(m.reflectance), in.value(m.reflectanceTexture), in.value(m.emission), in.value(m.emissionTexture);
+    in.value(m.normalTexture), in.value(m.normalScale);
     in.value(m.specular), in.value(m.shininess), in.value(m.twoSided);
   }
   scene.textures.resize(count());

@@ -6,6 +6,7 @@
 // We walk the node graph ourselves instead of using aiProcess_PreTransformVertices: that step
 // double-translates glTF cameras in Assimp 5.2 (their importer copies the node translation into
 // aiCamera::mPosition as well) and does not fix the winding of mirrored instances.
+#include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/ObjMaterial.h>
 #include <assimp/postprocess.h>
@@ -16,9 +17,11 @@
 #include <cctype>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <optional>
 #include <regex>
+#include <set>
 #include <span>
 #include <system_error>
 #include <utility>
@@ -30,6 +33,7 @@
 #include "luxel/resources.h"
 #include "core/large_stack.h"
 #include "io/input_file.h"
+#include "scene/bump_map.h"
 #include "scene/coincident_faces.h"
 #include "scene/stray_geometry.h"
 #include "scene/import/assimp_io.h"
@@ -247,7 +251,45 @@ class AssimpImport {
     // decode unless the material emits.
     if (mat.isEmissive())
       mat.emissionTexture = materialTexture(am, mat.name, {aiTextureType_EMISSIVE});
+    importNormalMap(am, mat);
     return mat;
+  }
+
+  // A normal map (glTF normalTexture, OBJ norm, FBX NormalMap: Assimp's NORMALS), else a bump map
+  // (OBJ bump and map_Bump, Assimp's HEIGHT) made into one (scene/bump_map.h). Texels are data:
+  // read without the sRGB curve. The scale is glTF's normalTexture.scale or OBJ's -bm, which
+  // Blender writes as its normal maps' strength.
+  void importNormalMap(const aiMaterial& am, Material& mat) {
+    if (std::optional<std::string> ref = textureReference(am, {aiTextureType_NORMALS})) {
+      mat.normalTexture = readTexture(*ref, mat.name, false, "normal");
+      mat.normalScale = multiplier(am, aiTextureType_NORMALS, mat, 1.0f);
+      return;
+    }
+    std::optional<std::string> ref = textureReference(am, {aiTextureType_HEIGHT});
+    if (!ref) return;
+    const float bm = multiplier(am, aiTextureType_HEIGHT, mat, kDefaultBumpMultiplier);
+    mat.normalTexture = readTexture(*ref, mat.name, false, fmt::format("bump {:a}", bm), [&](Texture t) {
+      if (!looksLikeNormalMap(t)) return normalMapFromHeight(t, bm);
+      scene_.warnings.push_back(fmt::format(
+          "{}: material '{}': bump map '{}' is coloured and bluish, a normal map: read as one", file_, mat.name, t.path));
+      bumpNormalMaps_.insert(t.path);
+      return t;
+    });
+    // A normal map in the bump slot keeps -bm as its scale; a height map has it built in.
+    if (bumpNormalMaps_.count(scene_.textures[size_t(mat.normalTexture)].path)) mat.normalScale = bm;
+  }
+
+  // glTF's $tex.scale or OBJ's $tex.bumpmult for the first texture of `type`; `otherwise` when the
+  // file gives neither, or gives something not finite (with a warning).
+  float multiplier(const aiMaterial& am, aiTextureType type, const Material& mat, float otherwise) {
+    float v = otherwise;
+    if (am.Get(AI_MATKEY_GLTF_TEXTURE_SCALE(type, 0), v) != AI_SUCCESS &&
+        am.Get(AI_MATKEY_OBJ_BUMPMULT(type, 0), v) != AI_SUCCESS)
+      return otherwise;
+    if (std::isfinite(v)) return v;
+    scene_.warnings.push_back(fmt::format("{}: material '{}': normal or bump map scale {} is not finite; using {:g}",
+                                          file_, mat.name, v, otherwise));
+    return otherwise;
   }
 
   // The display-only Blinn-Phong highlight (Material::specular and shininess): the specular colour
@@ -312,33 +354,41 @@ class AssimpImport {
     return am.Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0;
   }
 
+  // The reference of the first texture of the first type present, if any.
+  static std::optional<std::string> textureReference(const aiMaterial& am,
+                                                     std::initializer_list<aiTextureType> types) {
+    aiString ref;
+    for (aiTextureType t : types)
+      if (am.GetTextureCount(t) > 0 && am.GetTexture(t, 0, &ref) == AI_SUCCESS && ref.length > 0)
+        return std::string(ref.C_Str());
+    return std::nullopt;
+  }
+
   // The first texture of the first type present, decoded from sRGB (base colour and emissive
   // textures are sRGB-encoded in glTF, and in practice in every other format).
   int materialTexture(const aiMaterial& am, const std::string& matName,
                       std::initializer_list<aiTextureType> types) {
-    aiString ref;
-    bool found = false;
-    for (aiTextureType t : types) {
-      if (am.GetTextureCount(t) > 0 && am.GetTexture(t, 0, &ref) == AI_SUCCESS && ref.length > 0) {
-        found = true;
-        break;
-      }
-    }
-    if (!found) return -1;
-    const std::string refStr = ref.C_Str();
-    constexpr bool kSrgb = true;
+    std::optional<std::string> ref = textureReference(am, types);
+    return ref ? readTexture(*ref, matName, true, "colour") : -1;
+  }
 
+  // The texture `refStr` refers to (embedded, or a file the ResourceReader finds), decoded from
+  // sRGB when `srgb`, else read as stored (data: normal and bump maps). Each file is decoded once
+  // per `use`: a file read both ways is two textures.
+  // `finish` turns the decoded image into the texture kept (the identity but for bump maps).
+  int readTexture(const std::string& refStr, const std::string& matName, bool srgb, const std::string& use,
+                  const std::function<Texture(Texture)>& finish = {}) {
     if (const aiTexture* embedded = ai_.GetEmbeddedTexture(refStr.c_str())) {
-      std::string key = "embedded:" + refStr;
+      std::string key = use + " embedded:" + refStr;
       if (auto it = textureIndex_.find(key); it != textureIndex_.end()) return it->second;
       std::string name = fmt::format("{}#{}", file_, refStr);
       Texture tex;
       try {
-        tex = decodeEmbedded(*embedded, name, kSrgb);
+        tex = decodeEmbedded(*embedded, name, srgb);
       } catch (const Error& e) {
         throw Error(fmt::format("{}: material '{}': {}", file_, matName, e.what()));
       }
-      return addTexture(key, std::move(tex));
+      return addTexture(key, finish ? finish(std::move(tex)) : std::move(tex));
     }
 
     std::string lookedFor;
@@ -348,7 +398,7 @@ class AssimpImport {
                                matName, refStr, resources_.describe(path)));
     };
     if (!resource) throw notFound(lookedFor);
-    std::string key = "file:" + *resource;
+    std::string key = use + " file:" + *resource;
     if (auto it = textureIndex_.find(key); it != textureIndex_.end()) return it->second;
     std::optional<std::vector<std::byte>> bytes;
     try {
@@ -358,11 +408,13 @@ class AssimpImport {
       throw Error(fmt::format("{}: material '{}': texture {}", file_, matName, e.what()));
     }
     if (!bytes) throw notFound(*resource);  // gone between exists() and read()
+    Texture tex;
     try {
-      return addTexture(key, decodeTextureBytes(*bytes, kSrgb, resources_.describe(*resource)));
+      tex = decodeTextureBytes(*bytes, srgb, resources_.describe(*resource));
     } catch (const Error& e) {
       throw Error(fmt::format("{}: material '{}': {}", file_, matName, e.what()));
     }
+    return addTexture(key, finish ? finish(std::move(tex)) : std::move(tex));
   }
 
   int addTexture(const std::string& key, Texture tex) {
@@ -616,7 +668,8 @@ class AssimpImport {
   std::optional<GltfExtras> gltf_;
   Scene scene_;
   std::vector<int> materialMap_;             // Assimp material index -> scene material, -1 unused
-  std::map<std::string, int> textureIndex_;  // each image decoded once
+  std::map<std::string, int> textureIndex_;  // each image decoded once per use
+  std::set<std::string> bumpNormalMaps_;     // images in a bump slot read as normal maps
 };
 
 bool hasPolygons(const aiScene& ai) {

@@ -535,6 +535,7 @@ class SceneFileLoader {
     for (Material& m : part.materials) {
       if (m.reflectanceTexture >= 0) m.reflectanceTexture += textureBase;
       if (m.emissionTexture >= 0) m.emissionTexture += textureBase;
+      if (m.normalTexture >= 0) m.normalTexture += textureBase;
       scene_.materials.push_back(std::move(m));
     }
     for (Texture& t : part.textures) scene_.textures.push_back(std::move(t));
@@ -555,7 +556,7 @@ class SceneFileLoader {
     in_.keys(
         spec, ptr,
         {"reflectance", "emission", "emissionStrength", "twoSided", "texture", "emissionTexture", "specular",
-         "shininess"});
+         "shininess", "normalTexture", "normalScale"});
     std::vector<size_t> targets;
     for (size_t i = 0; i < scene_.materials.size(); ++i)
       if (scene_.materials[i].name == name) targets.push_back(i);
@@ -567,9 +568,9 @@ class SceneFileLoader {
     }
 
     std::optional<Rgb> reflectance, emission, specular;
-    std::optional<float> strength, shininess;
+    std::optional<float> strength, shininess, normalScale;
     std::optional<bool> twoSided;
-    std::optional<int> texture, emissionTexture;  // -1 removes
+    std::optional<int> texture, emissionTexture, normalTexture;  // -1 removes
     if (auto it = spec.find("reflectance"); it != spec.end()) {
       std::string p = Reader::child(ptr, "reflectance");
       Rgb r = in_.color(*it, p);
@@ -606,6 +607,11 @@ class SceneFileLoader {
       texture = readTexture(*it, Reader::child(ptr, "texture"));
     if (auto it = spec.find("emissionTexture"); it != spec.end())
       emissionTexture = readTexture(*it, Reader::child(ptr, "emissionTexture"));
+    // A tangent-space normal map: data, read without the sRGB curve (render/normal_map.h).
+    if (auto it = spec.find("normalTexture"); it != spec.end())
+      normalTexture = readTexture(*it, Reader::child(ptr, "normalTexture"), false);
+    if (auto it = spec.find("normalScale"); it != spec.end())
+      normalScale = in_.number(*it, Reader::child(ptr, "normalScale"));
 
     for (size_t i : targets) {
       Material& m = scene_.materials[i];
@@ -617,18 +623,21 @@ class SceneFileLoader {
       if (shininess) m.shininess = *shininess;
       if (texture) m.reflectanceTexture = *texture;
       if (emissionTexture) m.emissionTexture = *emissionTexture;
+      if (normalTexture) m.normalTexture = *normalTexture;
+      if (normalScale) m.normalScale = *normalScale;
     }
   }
 
-  // A path relative to the scene file, decoded from sRGB; null removes the texture.
-  int readTexture(const Json& j, const std::string& ptr) {
+  // A path relative to the scene file, decoded from sRGB (colour) or read as stored (data, when
+  // not `srgb`); null removes the texture.
+  int readTexture(const Json& j, const std::string& ptr, bool srgb = true) {
     if (j.is_null()) return -1;
     fs::path file = resolve(in_.string(j, ptr));
-    std::string key = file.string();
+    std::string key = (srgb ? "colour " : "data ") + file.string();
     if (auto it = textures_.find(key); it != textures_.end()) return it->second;
     Texture tex;
     try {
-      tex = loadTexture(file, true);
+      tex = loadTexture(file, srgb);
     } catch (const Error& e) {
       in_.fail(ptr, e.what());
     }
@@ -751,7 +760,7 @@ class SceneFileLoader {
   fs::path folder_;
   Reader in_;
   Scene scene_;
-  std::map<std::string, int> textures_;  // textures this file loaded, by path
+  std::map<std::string, int> textures_;  // textures this file loaded, by decoding and path
 };
 
 }  // namespace
