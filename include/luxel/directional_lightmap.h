@@ -24,6 +24,8 @@ enum class DirectionalMode {
   Dominant,
 };
 
+inline constexpr int kMaxDirectionalCoefficients = 9;
+
 // "none", "sh-l1", "sh-l2", "dominant"; throws Error listing them for anything else.
 DirectionalMode parseDirectionalMode(const std::string& name);
 const char* directionalModeName(DirectionalMode mode);

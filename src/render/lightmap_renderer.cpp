@@ -1,7 +1,9 @@
 // Rendering from baked lightmaps, as a real-time engine shows them: ray-cast primary visibility
 // against the scene's own faces, radiance L = Le + rho(x) / pi * H(x) with the irradiance H
 // sampled bilinearly from the lightmap page at the hit's lightmap coordinate (three.js's
-// lightMap convention). It shows the bake itself, texel grid, dilation and seams included.
+// lightMap convention). It shows the bake itself, texel grid, dilation and seams included. A
+// directional bake on a normal-mapped material reads H at the normal map's normal
+// (luxel/directional_lightmap.h), as an engine's shader would.
 #include <atomic>
 #include <chrono>
 #include <numbers>
@@ -11,9 +13,11 @@
 
 #include "core/random.h"
 #include "luxel/bake.h"
+#include "luxel/directional_lightmap.h"
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
 #include "render/camera_frame.h"
+#include "render/normal_map.h"
 #include "trace/ray_tracer.h"
 #include "transport/light_sampling.h"
 
@@ -65,6 +69,8 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
   for (const Light& l : scene.lights)
     if (l.type == Light::Type::Sky || l.type == Light::Type::CieOvercastSky) skies.push_back(&l);
 
+  const int shCount = directionalCoefficients(bake.directional);
+  const bool directional = shCount > 0 && bake.sh.size() == size_t(shCount);
   Image image(options.width, options.height);
   image.coverage.assign(image.pixels.size(), 0.0f);
   const CameraFrame cam(options.camera, options.width, options.height);
@@ -103,10 +109,21 @@ Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const Li
         const auto [i1, i2, w] = hitTriangle(poly.count, rh.hit.u, rh.hit.v);
         const LightmapAtlas::FaceUv& fuv = atlas.faces[ref.mesh][ref.face];
         const Vec2 texel = w.x * fuv.texel[0] + w.y * fuv.texel[size_t(i1)] + w.z * fuv.texel[size_t(i2)];
-        const Rgb irradiance = samplePage(bake.pages[fuv.page], bake.pageSize, texel);
+        Rgb irradiance = samplePage(bake.pages[fuv.page], bake.pageSize, texel);
         Rgb rho = mat.reflectance, le = mat.emission;
+        const Vec2 uv = mesh.uvs.empty() ? Vec2(0.0f)
+                                         : w.x * mesh.uvs[face.v[0]] + w.y * mesh.uvs[face.v[size_t(i1)]] +
+                                               w.z * mesh.uvs[face.v[size_t(i2)]];
+        if (directional && mat.normalTexture >= 0 && !mesh.uvs.empty()) {
+          // The baked side's normal, and the normal map's normal on it: the direction of the light
+          // says how the irradiance changes between them.
+          const Vec3 n0 = turned[ref.mesh][ref.face] ? -poly.normal() : poly.normal();
+          const Vec3 n = shadingNormal(scene, ref.mesh, ref.face, uv, n0);
+          Rgb c[kMaxDirectionalCoefficients];
+          for (int k = 0; k < shCount; ++k) c[k] = samplePage(bake.sh[size_t(k)][fuv.page], bake.pageSize, texel);
+          irradiance = directionalIrradiance(bake.directional, c, irradiance, n0, n);
+        }
         if (!mesh.uvs.empty() && (mat.reflectanceTexture >= 0 || mat.emissionTexture >= 0)) {
-          const Vec2 uv = w.x * mesh.uvs[face.v[0]] + w.y * mesh.uvs[face.v[size_t(i1)]] + w.z * mesh.uvs[face.v[size_t(i2)]];
           if (mat.reflectanceTexture >= 0) rho *= scene.textures[size_t(mat.reflectanceTexture)].sample(uv);
           if (mat.emissionTexture >= 0 && mat.isEmissive()) le *= scene.textures[size_t(mat.emissionTexture)].sample(uv);
         }
