@@ -187,7 +187,9 @@ float texelsPerMetreForBudget(const Scene& scene, size_t texels);
 double sceneFaceArea(const Scene& scene);
 
 // Renders the scene as a real-time engine shows the bake: primary rays against the scene's faces,
-// L = Le + rho / pi * H with H sampled bilinearly from the lightmap pages (src/render/lightmap_renderer.cpp).
+// L = Le + rho / pi * H with H sampled bilinearly from the lightmap pages (src/render/lightmap_renderer.cpp);
+// a directional bake on a normal-mapped material reads H at the normal map's normal
+// (directionalIrradiance, luxel/directional_lightmap.h).
 Image renderLightmapped(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
                         const RenderOptions& options, const ProgressCallback& progress = {},
                         RenderStats* stats = nullptr);
