@@ -62,7 +62,9 @@ class ProgressiveSolver : public Solver {
   SolveStats stats() const override;
 
   // From the cached columns and what each patch has shot in all (a shot's light arrives along the
-  // same factor whenever it is shot, so the sum over shots is one pass, after the solve).
+  // same factor whenever it is shot, so the sum over shots is one pass, after the solve). Exact
+  // for a solve without moves: after a dynamic solver's move, shots made along the old factors are
+  // counted along the new ones (bakes never move anything).
   bool incidentSh(int count, std::span<Rgb> out) override;
 
  protected:
