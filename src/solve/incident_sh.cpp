@@ -58,9 +58,8 @@ void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb
   // Band 2: the polygon cut into k x k pieces, each one direction (its irradiance vector's) with
   // its solid angle; k grows as the patch comes closer, where one direction would misplace the
   // light of a neighbouring wall.
-  const float radius = std::sqrt(patch.area);
-  const float distance = std::max(glm::length(patch.centroid - el.centroid), 1e-6f * radius);
-  const int k = std::clamp(int(std::ceil(4.0f * radius / distance)), 1, 8);
+  const float across = std::sqrt(patch.area) / std::max(std::sqrt(r2), 1e-30f);
+  const int k = across < 2.0f ? std::max(1, int(std::ceil(4.0f * across))) : 8;  // NaN: 8
   if (k == 1) {
     const auto y = shBasis(v / length);
     for (int i = 4; i < kShCoefficients; ++i) c[i] += y[size_t(i)] * m0;
