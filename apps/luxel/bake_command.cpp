@@ -138,6 +138,9 @@ int runBake(const BakeArgs& a) {
                                bake.pages.size(), atlas.pageSize, atlas.texelsPerMetre, bake.texels,
                                bake.surfaces.surfaces.patches.size(), bake.invalidTexels, bake.dilatedTexels,
                                bake.seamMaxBefore, bake.seamMaxAfter, bake.seamEdges, bake.secondsSeams, total);
+      if (bake.directional != DirectionalMode::None)
+        std::cout << fmt::format("luxel: directions ({}) — {:.3f} s after a solve of {:.3f} s\n",
+                                 directionalModeName(bake.directional), bake.secondsDirectional, bake.secondsSolve);
       if (!a.vertexColorsFor.empty()) {  // the names once each, with how many meshes carry them
         std::vector<std::pair<std::string, size_t>> names;
         size_t count = 0;

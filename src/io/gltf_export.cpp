@@ -84,15 +84,16 @@ void appendBytes(void* context, void* data, int size) {
   out->insert(out->end(), p, p + size);
 }
 
-// A linear texture as an 8-bit sRGB PNG, top row first (glTF's v = 0 is the image's top).
-std::vector<uint8_t> encodeTexture(const Texture& tex) {
+// A linear texture as an 8-bit sRGB PNG, top row first (glTF's v = 0 is the image's top); `data`
+// (a normal map): the values as they are, no transfer curve.
+std::vector<uint8_t> encodeTexture(const Texture& tex, bool data = false) {
   std::vector<uint8_t> rgb(size_t(tex.width) * size_t(tex.height) * 3);
   for (int y = 0; y < tex.height; ++y)
     for (int x = 0; x < tex.width; ++x) {
       const Rgb& c = tex.texels[size_t(tex.height - 1 - y) * size_t(tex.width) + size_t(x)];
       for (int k = 0; k < 3; ++k)
         rgb[(size_t(y) * size_t(tex.width) + size_t(x)) * 3 + size_t(k)] =
-            uint8_t(std::lround(255.0f * linearToSrgb(c[k])));
+            uint8_t(std::lround(255.0f * std::clamp(data ? c[k] : linearToSrgb(c[k]), 0.0f, 1.0f)));
     }
   std::vector<uint8_t> png;
   if (!stbi_write_png_to_func(appendBytes, &png, tex.width, tex.height, 3, rgb.data(), tex.width * 3))
@@ -168,14 +169,12 @@ void checkOptions(const Scene& scene, const GlbOptions& o) {
 }
 
 void addMaterials(const Scene& scene, tinygltf::Model& model) {
-  std::vector<int> textureOf(scene.textures.size(), -1);
-  auto textureFor = [&](int t) {
+  std::vector<int> textureOf(scene.textures.size(), -1), dataTextureOf(scene.textures.size(), -1);
+  auto textureFor = [&](int t, bool data = false) {
     if (t < 0 || size_t(t) >= scene.textures.size()) return -1;
-    if (textureOf[size_t(t)] < 0) {
-      const Texture& tex = scene.textures[size_t(t)];
-      textureOf[size_t(t)] = addImage(model, fmt::format("texture{}", t), encodeTexture(tex));
-    }
-    return textureOf[size_t(t)];
+    int& slot = (data ? dataTextureOf : textureOf)[size_t(t)];
+    if (slot < 0) slot = addImage(model, fmt::format("texture{}", t), encodeTexture(scene.textures[size_t(t)], data));
+    return slot;
   };
   for (const Material& m : scene.materials) {
     tinygltf::Material g;
@@ -194,6 +193,10 @@ void addMaterials(const Scene& scene, tinygltf::Model& model) {
         g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(strength);
       }
       g.emissiveTexture.index = textureFor(m.emissionTexture);
+    }
+    if (m.normalTexture >= 0) {
+      g.normalTexture.index = textureFor(m.normalTexture, /*data=*/true);
+      g.normalTexture.scale = m.normalScale;
     }
     g.doubleSided = m.twoSided;
     model.materials.push_back(g);

@@ -22,13 +22,12 @@
 //
 // Exit status: 0 pass, 1 fail, 77 skipped (Chromium or node_modules missing; the reason is printed).
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
-import http from 'node:http';
-import os from 'node:os';
+import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import zlib from 'node:zlib';
 
+import { renderInChromium } from './browser.mjs';
 import { writeDebugPng } from './debug_png.mjs';
 
 const SKIP = 77;
@@ -62,7 +61,6 @@ if (!existsSync(opts.chromium))
 for (const pkg of ['three', 'playwright-core'])
   if (!existsSync(path.join(here, 'node_modules', pkg, 'package.json')))
     skip(`${path.join(here, 'node_modules', pkg)} missing: run npm ci in tools/three-check (scripts/install-deps.sh does)`);
-const { chromium } = await import('playwright-core');
 const { EXRLoader } = await import('three/addons/loaders/EXRLoader.js');
 const { EXRExporter, ZIP_COMPRESSION } = await import('three/addons/exporters/EXRExporter.js');
 const THREE = await import('three');
@@ -94,60 +92,18 @@ const ref = new EXRLoader().setDataType(THREE.FloatType).parse(exrBytes.buffer.s
 if (ref.width !== size || ref.height !== size) fail(`${exr}: ${ref.width}x${ref.height}, expected ${size}x${size}`);
 
 // ---- 2. three.js in headless Chromium -------------------------------------------------------------
-const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.glb': 'model/gltf-binary', '.json': 'application/json' };
-const roots = [['/out/', path.resolve(opts.out)], ['/', here]];
-const server = http.createServer((req, res) => {
-  const url = decodeURIComponent(new URL(req.url, 'http://localhost').pathname);
-  if (url === '/favicon.ico') {
-    res.writeHead(204).end();
-    return;
-  }
-  const [prefix, root] = roots.find(([p]) => url.startsWith(p));
-  const file = path.resolve(root, '.' + url.slice(prefix.length - 1).replace(/\/$/, '/index.html'));
-  if (!file.startsWith(root + path.sep) || !existsSync(file) || !statSync(file).isFile()) {
-    res.writeHead(404).end();
-    return;
-  }
-  res.writeHead(200, { 'Content-Type': types[path.extname(file)] ?? 'application/octet-stream', 'Cache-Control': 'no-store' });
-  res.end(readFileSync(file));
-});
-await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-const origin = `http://127.0.0.1:${server.address().port}`;
-
-const flags = [
-  '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-  '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-];
-const profile = mkdtempSync(path.join(os.tmpdir(), 'luxel-three-check-'));
-let context, failure = null;
+const variants = ['recipe', 'no-lightmap', 'uv0', 'flip-v', 'standard'];
 const renders = {};
 try {
-  // launchPersistentContext: the fresh profile folder is Chromium's --user-data-dir.
-  context = await chromium.launchPersistentContext(profile, { executablePath: opts.chromium, headless: true, args: flags, timeout: 60000 });
-  const page = context.pages()[0] ?? await context.newPage();
-  const messages = [];
-  page.on('console', (m) => messages.push(`console.${m.type()}: ${m.text()}`));
-  page.on('pageerror', (e) => messages.push(`page error: ${e.message}`));
-  await page.goto(`${origin}/index.html`);
-  try {
-    await page.waitForFunction(() => window.luxelThreeReady === true, null, { timeout: 20000 });
-    for (const variant of ['recipe', 'no-lightmap', 'uv0', 'flip-v', 'standard']) {
-      const r = await page.evaluate((a) => window.luxelThree(a), { glb: '/out/cornell.glb', recipe, variant, size });
-      const b = Buffer.from(r.pixels, 'base64');
-      renders[variant] = { ...r, pixels: new Float32Array(b.buffer, b.byteOffset, b.length / 4) };
-    }
-  } catch (e) {
-    failure = `${e.message.split('\n')[0]}\n${messages.join('\n')}`;
-  }
-  const warnings = messages.filter((m) => !/GPU stall due to ReadPixels|Automatic fallback to software WebGL/.test(m));
-  if (warnings.length) log(`browser messages:\n  ${warnings.join('\n  ')}`);
-} finally {
-  await context?.close();
-  server.close();
-  rmSync(profile, { recursive: true, force: true });
+  const r = await renderInChromium({
+    chromium: opts.chromium, roots: [['/out/', path.resolve(opts.out)], ['/', here]],
+    jobs: variants.map((variant) => ({ glb: '/out/cornell.glb', recipe, variant, size })),
+  });
+  variants.forEach((v, i) => { renders[v] = r.renders[i]; });
+  if (r.messages.length) log(`browser messages:\n  ${r.messages.join('\n  ')}`);
+} catch (e) {
+  fail(e.message);
 }
-if (failure) fail(failure);
 const info = renders.recipe;
 log(`three.js r${info.three}, ${info.material}, WebGL renderer: ${info.glRenderer}`);
 log(`lightMap as the recipe set it: ${JSON.stringify(info.lightMap)}`);

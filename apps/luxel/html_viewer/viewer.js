@@ -87,6 +87,112 @@ gltf.scene.traverse((o) => {
 });
 }
 
+// "Directional lightmaps": the same, with the normal map kept and the LUXEL_lightmap_directional
+// textures read at the normal map's normal. It finishes in promise callbacks too.
+function showDirectionalLightmaps(gltf, renderer) {
+// Directional lightmaps: material.userData.gltfExtensions.LUXEL_lightmap_directional (docs/baking.md).
+const LUXEL_DIRECTIONAL_GLSL = `
+float luxelL1(vec3 q, vec3 n) {  // one light along q plus a constant (Sloan 2008), in units of m0
+  float len = length(q), r = min(len, 1.0);
+  return 0.25 * (1.0 - r) + max(dot(n, q), 0.0) * (len > 0.0 ? r / len : 0.0);
+}
+vec3 luxelDirectional(vec3 n, vec3 n0) {
+  vec3 f, f0;
+#if LUXEL_MODE == 1  // sh-l1: the x, y, z of m1 / m0 per channel
+  vec3 qx = 2.0 * texture2D(luxelDir0, vLightMapUv).rgb - 1.0;
+  vec3 qy = 2.0 * texture2D(luxelDir1, vLightMapUv).rgb - 1.0;
+  vec3 qz = 2.0 * texture2D(luxelDir2, vLightMapUv).rgb - 1.0;
+  for (int c = 0; c < 3; ++c) {
+    vec3 q = vec3(qx[c], qy[c], qz[c]);
+    f[c] = luxelL1(q, n);
+    f0[c] = luxelL1(q, n0);
+  }
+#elif LUXEL_MODE == 2  // dominant: the luminance's m1 / m0
+  vec3 q = 2.0 * texture2D(luxelDir0, vLightMapUv).rgb - 1.0;
+  f = vec3(luxelL1(q, n));
+  f0 = vec3(luxelL1(q, n0));
+#else  // sh-l2: c_i / c_0 = (2v - 1) * bound, read linearly (Ramamoorthi and Hanrahan 2001)
+  vec3 q[9];
+  q[0] = vec3(1.0);
+  q[1] = (2.0 * texture2D(luxelDir0, vLightMapUv).rgb - 1.0) * 1.7320508;
+  q[2] = (2.0 * texture2D(luxelDir1, vLightMapUv).rgb - 1.0) * 1.7320508;
+  q[3] = (2.0 * texture2D(luxelDir2, vLightMapUv).rgb - 1.0) * 1.7320508;
+  q[4] = (2.0 * texture2D(luxelDir3, vLightMapUv).rgb - 1.0) * 2.2360680;
+  q[5] = (2.0 * texture2D(luxelDir4, vLightMapUv).rgb - 1.0) * 2.2360680;
+  q[6] = (2.0 * texture2D(luxelDir5, vLightMapUv).rgb - 1.0) * 2.2360680;
+  q[7] = (2.0 * texture2D(luxelDir6, vLightMapUv).rgb - 1.0) * 2.2360680;
+  q[8] = (2.0 * texture2D(luxelDir7, vLightMapUv).rgb - 1.0) * 2.2360680;
+  for (int k = 0; k < 2; ++k) {
+    vec3 d = k == 0 ? n : n0;
+    vec3 e = 3.1415927 * 0.282095 * q[0]
+           + 2.0943951 * 0.488603 * (q[1] * d.y + q[2] * d.z + q[3] * d.x)
+           + 0.7853982 * (1.092548 * (q[4] * d.x * d.y + q[5] * d.y * d.z + q[7] * d.x * d.z)
+                          + 0.315392 * q[6] * (3.0 * d.z * d.z - 1.0) + 0.546274 * q[8] * (d.x * d.x - d.y * d.y));
+    if (k == 0) f = e; else f0 = e;
+  }
+#endif
+  // The lightmap is the irradiance at the geometric normal: scale it by how f changes from there.
+  return vec3(f0.r > 0.0 ? max(f.r, 0.0) / f0.r : 1.0, f0.g > 0.0 ? max(f.g, 0.0) / f0.g : 1.0,
+              f0.b > 0.0 ? max(f.b, 0.0) / f0.b : 1.0);
+}`;
+function decodeRGBM(tex, range) {  // as in the plain recipe
+  const target = new THREE.WebGLRenderTarget(tex.image.width, tex.image.height,
+                                             { type: THREE.HalfFloatType, depthBuffer: false });
+  const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.ShaderMaterial({
+    uniforms: { rgbm: { value: tex }, range: { value: range } },
+    vertexShader: 'varying vec2 vUv; void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }',
+    fragmentShader: 'uniform sampler2D rgbm; uniform float range; varying vec2 vUv;\n' +
+      'void main() { vec4 c = texture2D(rgbm, vUv); gl_FragColor = vec4(c.rgb * c.a * range, 1.0); }',
+  }));
+  quad.frustumCulled = false;
+  const previous = renderer.getRenderTarget();
+  renderer.setRenderTarget(target);
+  renderer.render(quad, new THREE.Camera());
+  renderer.setRenderTarget(previous);
+  quad.geometry.dispose();
+  quad.material.dispose();
+  target.texture.channel = 1;  // TEXCOORD_1
+  return target.texture;
+}
+const modes = { 'sh-l1': 1, 'dominant': 2, 'sh-l2': 3 };
+const pages = new Map(), lambert = new Map();
+gltf.scene.traverse((o) => {
+  const lm = o.isMesh && o.material.userData.luxel;
+  if (!lm) return;
+  const dir = o.material.userData.gltfExtensions?.LUXEL_lightmap_directional;
+  if (!pages.has(lm.lightMap))
+    pages.set(lm.lightMap, gltf.parser.getDependency('texture', lm.lightMap).then((t) => decodeRGBM(t, lm.rgbmRange)));
+  const textures = (dir?.textures ?? []).map((t) => gltf.parser.getDependency('texture', t.index));
+  Promise.all([pages.get(lm.lightMap), ...textures]).then(([lightMap, ...directions]) => {
+    const m = o.material;
+    if (!lambert.has(m)) {
+      const l = new THREE.MeshLambertMaterial({
+        name: m.name, color: m.color, map: m.map, side: m.side,
+        emissive: m.emissive, emissiveMap: m.emissiveMap, emissiveIntensity: m.emissiveIntensity,
+        normalMap: m.normalMap, normalScale: m.normalScale,  // GLTFLoader's, y already as three.js wants it
+        lightMap, lightMapIntensity: 1,
+      });
+      if (dir) {
+        l.onBeforeCompile = (shader) => {
+          directions.forEach((t, i) => { shader.uniforms[`luxelDir${i}`] = { value: t }; });
+          shader.fragmentShader = shader.fragmentShader
+            .replace('#include <common>', `#include <common>\n#define LUXEL_MODE ${modes[dir.mode]}\n` +
+              directions.map((t, i) => `uniform sampler2D luxelDir${i};`).join('\n'))
+            .replace('#include <lights_fragment_maps>', 'vec3 luxelN = normalize(inverseTransformDirection(normal, viewMatrix));\n' +
+              'vec3 luxelN0 = normalize(inverseTransformDirection(nonPerturbedNormal, viewMatrix));\n' +
+              THREE.ShaderChunk.lights_fragment_maps.replace('irradiance += lightMapIrradiance;',
+                'irradiance += lightMapIrradiance * luxelDirectional(luxelN, luxelN0);'))
+            .replace('void main() {', LUXEL_DIRECTIONAL_GLSL + '\nvoid main() {');
+        };
+        l.customProgramCacheKey = () => `luxel-directional-${dir.mode}`;
+      }
+      lambert.set(m, l);
+    }
+    o.material = lambert.get(m);
+  });
+});
+}
+
 // ---- the viewer ----------------------------------------------------------------------------------
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 const status = $('luxel-status');
@@ -184,7 +290,8 @@ async function main() {
   const lightmapped = [];
   scene.traverse((o) => o.isMesh && o.material.userData.luxel && lightmapped.push(o));
   if (lightmapped.length) {
-    showLightmaps(gltf, renderer);
+    const directional = lightmapped.some((o) => o.material.userData.gltfExtensions?.LUXEL_lightmap_directional);
+    (directional ? showDirectionalLightmaps : showLightmaps)(gltf, renderer);
     await waitForLightmaps(lightmapped);
   }
   viewer.shows = [lightmapped.length && 'lightmaps', baked.vertexColors && `vertex colours (${baked.vertexColors})`]

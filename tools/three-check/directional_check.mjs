@@ -1,0 +1,145 @@
+// Checks that three.js shows directional lightmaps (`luxel bake --lightmaps --directional MODE`, the
+// LUXEL_lightmap_directional extension) as luxel shows them itself (`luxel render --mode lightmap
+// --directional MODE`), with the directional recipe of docs/baking.md run as written.
+//
+//   node directional_check.mjs --luxel PATH/TO/luxel --out DIR [--mode sh-l1|sh-l2|dominant]
+//                              [--elements N] [--size N] [--tolerance F] [--chromium PATH] [--docs FILE]
+//
+// 1. writes a scene into DIR: a 4 x 4 m floor (OBJ, uvs along x and z) whose normal map (MTL `norm`,
+//    a 16 x 1 PNG) has stripes 1 m wide tilted 12 degrees towards +x and -x in turn, a lamp 4 m off
+//    along +x and 2 m up (light at 63 to 76 degrees from the floor's normal), and a camera looking
+//    straight down (scene JSON);
+// 2. bakes it (the glb) and renders it with luxel's lightmap mode (DIR/luxel.exr), the same texel
+//    budget for both, hence the same atlas and the same solve;
+// 3. renders the glb in three.js in headless Chromium with the directional recipe, and with the
+//    plain recipe (no directions) for contrast;
+// 4. compares the mean radiance of each stripe's inner half: the directional recipe must agree
+//    with luxel within --tolerance (2%, relative, per channel), and the plain recipe must miss a
+//    stripe by more than that (the stripes differ by a factor of 2 to 4: no direction, no stripes).
+//
+// Exit status: 0 pass, 1 fail, 77 skipped (Chromium or node_modules missing; the reason is printed).
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+import { renderInChromium } from './browser.mjs';
+import { writePng } from './debug_png.mjs';
+
+const SKIP = 77;
+const here = path.dirname(fileURLToPath(import.meta.url));
+const started = Date.now();
+const log = (s) => console.log(`directional-check: ${s}`);
+const fail = (s) => { console.error(`directional-check: FAIL: ${s}`); process.exit(1); };
+const skip = (s) => { console.log(`directional-check: SKIP: ${s}`); process.exit(SKIP); };
+
+const opts = {
+  luxel: '', out: '', mode: 'sh-l1', elements: 1600, size: 256, tolerance: 0.02,
+  chromium: process.env.LUXEL_CHROMIUM || '/usr/bin/chromium',
+  docs: path.resolve(here, '../../docs/baking.md'),
+};
+for (let i = 2; i < process.argv.length; i += 2) {
+  const key = process.argv[i].replace(/^--/, ''), value = process.argv[i + 1];
+  if (!(key in opts) || value === undefined) {
+    console.error('usage: node directional_check.mjs --luxel PATH --out DIR [--mode M] [--elements N] [--size N] [--tolerance F] [--chromium PATH] [--docs FILE]');
+    process.exit(2);
+  }
+  opts[key] = typeof opts[key] === 'number' ? Number(value) : value;
+}
+if (!opts.luxel || !opts.out) fail('--luxel and --out are required');
+if (!existsSync(opts.luxel)) fail(`${opts.luxel}: no luxel executable (build the luxel-cli target)`);
+if (!existsSync(opts.chromium))
+  skip(`${opts.chromium} not found: install Debian's chromium (scripts/install-deps.sh) or set LUXEL_CHROMIUM`);
+for (const pkg of ['three', 'playwright-core'])
+  if (!existsSync(path.join(here, 'node_modules', pkg, 'package.json')))
+    skip(`${path.join(here, 'node_modules', pkg)} missing: run npm ci in tools/three-check (scripts/install-deps.sh does)`);
+const { EXRLoader } = await import('three/addons/loaders/EXRLoader.js');
+const THREE = await import('three');
+
+// The recipes: docs/baking.md's ```js blocks, the directional one and the plain one.
+const blocks = [...readFileSync(opts.docs, 'utf8').matchAll(/```js\n([\s\S]*?)```/g)].map((m) => m[1]);
+const directional = blocks.find((b) => b.includes('LUXEL_lightmap_directional'));
+const plain = blocks.find((b) => b.includes('material.userData.luxel') && !b.includes('LUXEL_lightmap_directional'));
+if (!directional || !plain) fail(`${opts.docs}: no directional or no plain lightmap recipe (\`\`\`js blocks)`);
+
+// ---- 1. the scene ---------------------------------------------------------------------------------
+mkdirSync(opts.out, { recursive: true });
+const tilt = 12 * Math.PI / 180;
+const stripes = Buffer.alloc(16 * 3);
+for (let x = 0; x < 16; ++x) {
+  const n = [x < 8 ? Math.sin(tilt) : -Math.sin(tilt), 0, Math.cos(tilt)];  // tangent space: +x is +u
+  n.forEach((v, c) => { stripes[x * 3 + c] = Math.round(255 * (0.5 + 0.5 * v)); });
+}
+writePng(path.join(opts.out, 'stripes.png'), 16, 1, stripes);
+writeFileSync(path.join(opts.out, 'floor.mtl'), 'newmtl floor\nKd 0.5 0.5 0.5\nnorm stripes.png\n');
+writeFileSync(path.join(opts.out, 'floor.obj'),
+  'mtllib floor.mtl\no floor\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nv -2 0 -2\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\nusemtl floor\nf 1/1 2/2 3/3 4/4\n');
+writeFileSync(path.join(opts.out, 'floor.json'), JSON.stringify({
+  name: 'striped floor',
+  meshes: [{ file: 'floor.obj' }],
+  lights: [{ type: 'point', name: 'lamp', position: [6, 2, 0], intensity: 20 }],
+  cameras: [{ name: 'top', eye: [0, 5, 0], target: [0, 0, 0], up: [0, 0, -1], fov: 50 }],
+}, null, 2));
+
+// ---- 2. luxel -------------------------------------------------------------------------------------
+const scene = path.join(opts.out, 'floor.json'), glb = path.join(opts.out, 'floor.glb'), exr = path.join(opts.out, 'luxel.exr');
+rmSync(glb, { force: true });
+rmSync(exr, { force: true });
+function luxel(args) {
+  const t = Date.now();
+  const r = spawnSync(opts.luxel, [...args, '-q'], { encoding: 'utf8' });
+  if (r.status !== 0) fail(`luxel ${args.join(' ')}: exit ${r.status}\n${r.stderr}${r.error ?? ''}`);
+  log(`luxel ${args.join(' ')} (${((Date.now() - t) / 1000).toFixed(2)} s)`);
+}
+const elements = String(opts.elements), size = opts.size;
+luxel(['bake', scene, '-o', glb, '--lightmaps', '--directional', opts.mode, '--elements', elements]);
+luxel(['render', scene, '--mode', 'lightmap', '--directional', opts.mode, '--elements', elements,
+       '--size', `${size}x${size}`, '--spp', '16', '-o', exr]);
+const exrBytes = readFileSync(exr);
+const ref = new EXRLoader().setDataType(THREE.FloatType).parse(exrBytes.buffer.slice(exrBytes.byteOffset, exrBytes.byteOffset + exrBytes.length));
+if (ref.width !== size || ref.height !== size) fail(`${exr}: ${ref.width}x${ref.height}, expected ${size}x${size}`);
+
+// ---- 3. three.js ----------------------------------------------------------------------------------
+let renders;
+try {
+  const r = await renderInChromium({
+    chromium: opts.chromium, roots: [['/out/', path.resolve(opts.out)], ['/', here]],
+    jobs: [directional, plain].map((recipe) => ({ glb: '/out/floor.glb', recipe, variant: 'recipe', size })),
+  });
+  renders = r.renders;
+  if (r.messages.length) log(`browser messages:\n  ${r.messages.join('\n  ')}`);
+} catch (e) {
+  fail(e.message);
+}
+log(`three.js r${renders[0].three}, ${renders[0].material}, WebGL renderer: ${renders[0].glRenderer}`);
+
+// ---- 4. comparison --------------------------------------------------------------------------------
+// The camera sees x in [-h, h] across the image (h = 5 tan 25 degrees), +x to the right; stripe s
+// covers x in [s, s + 1] for s = -2 .. 1; its inner half, away from the normal map's blend at the
+// stripes' edges, and rows well inside the floor.
+const h = 5 * Math.tan(25 * Math.PI / 180);
+const column = (x) => Math.round((0.5 + x / (2 * h)) * size);
+const regions = [-2, -1, 0, 1].map((s) => [column(s + 0.25), Math.round(0.38 * size), column(s + 0.75), Math.round(0.62 * size)]);
+function mean(pixels, [x0, y0, x1, y1]) {
+  const s = [0, 0, 0];
+  for (let y = y0; y < y1; ++y)
+    for (let x = x0; x < x1; ++x)
+      for (let c = 0; c < 3; ++c) s[c] += pixels[((size - 1 - y) * size + x) * 4 + c];  // rows are bottom-up
+  return s.map((v) => v / ((x1 - x0) * (y1 - y0)));
+}
+const relative = (a, b) => Math.max(...a.map((v, c) => Math.abs(v - b[c]) / Math.max(Math.abs(b[c]), 1e-6)));
+const pct = (v) => `${(v * 100).toFixed(2)}%`;
+let ok = true;
+const worst = (pixels) => Math.max(...regions.map((r) => relative(mean(pixels, r), mean(ref.data, r))));
+log(`stripe means (green channel, W m^-2 sr^-1), mode ${opts.mode}; tolerance ${pct(opts.tolerance)} per channel:`);
+regions.forEach((r, i) => {
+  const l = mean(ref.data, r), t = mean(renders[0].pixels, r), p = mean(renders[1].pixels, r), d = relative(t, l);
+  ok &&= d <= opts.tolerance;
+  console.log(`  stripe ${i}  luxel ${l[1].toFixed(5)}  three.js ${t[1].toFixed(5)}  ${pct(d)}${d <= opts.tolerance ? '' : '  <- over tolerance'}` +
+              `   (plain recipe ${p[1].toFixed(5)})`);
+});
+const plainWorst = worst(renders[1].pixels), rejected = plainWorst > opts.tolerance;
+ok &&= rejected;
+log(`the plain recipe (no directions): worst stripe ${pct(plainWorst)} off${rejected ? ', rejected' : ' - NOT rejected: the comparison cannot tell'}`);
+log(`${ok ? 'PASS' : 'FAIL'} in ${((Date.now() - started) / 1000).toFixed(1)} s (files in ${opts.out})`);
+process.exit(ok ? 0 : 1);
