@@ -18,6 +18,7 @@
 #include "io/atomic_file.h"
 #include "luxel/bake.h"
 #include "luxel/error.h"
+#include "render/normal_map.h"
 #include "scene/texture_decode.h"
 
 namespace luxel {
@@ -115,8 +116,11 @@ int addImage(tinygltf::Model& model, const std::string& name, const std::vector<
   return int(model.textures.size()) - 1;
 }
 
+// A vertex's position, normal, uvs, colour and tangent: vertices equal in all of them are shared.
+constexpr size_t kVertexKey = 17;
+
 struct VertexKeyHash {
-  size_t operator()(const std::array<float, 13>& k) const {
+  size_t operator()(const std::array<float, kVertexKey>& k) const {
     size_t h = 1469598103934665603ull;
     for (float f : k) {
       uint32_t bits;
@@ -234,17 +238,28 @@ float vertexColorScale(const GlbOptions& o) {
 }
 
 // Collects a mesh's vertices, merging exact duplicates, and its triangles.
+// glTF's TANGENT of a face side with unit normal `normal`: the normal map's frame as luxel shades
+// with it (render/normal_map.h). glTF's bitangent is cross(normal, tangent) * w, and both point
+// along the image's up (luxel's +v). Degenerate uvs: any unit tangent (the map means nothing there).
+glm::vec4 gltfTangent(const Mesh& mesh, uint32_t face, Vec3 normal) {
+  const TangentFrame frame = faceTangentFrame(mesh, face, normal);
+  if (frame.valid) return glm::vec4(frame.t, glm::dot(glm::cross(normal, frame.t), frame.b) >= 0.0f ? 1.0f : -1.0f);
+  const Vec3 a = std::abs(normal.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+  return glm::vec4(glm::normalize(glm::cross(a, normal)), 1.0f);
+}
+
 struct MeshBuilder {
-  bool hasUv = false, hasUv1 = false, hasColor = false;
+  bool hasUv = false, hasUv1 = false, hasColor = false, hasTangent = false;
   std::vector<std::array<float, 3>> positions, normals, colors;
   std::vector<std::array<float, 2>> uv0, uv1;
+  std::vector<std::array<float, 4>> tangents;
   std::vector<uint32_t> indices;
-  std::unordered_map<std::array<float, 13>, uint32_t, VertexKeyHash> seen;
+  std::unordered_map<std::array<float, kVertexKey>, uint32_t, VertexKeyHash> seen;
 
-  uint32_t vertex(Vec3 p, Vec3 n, Vec2 t0, Vec2 t1, Rgb c) {
+  uint32_t vertex(Vec3 p, Vec3 n, Vec2 t0, Vec2 t1, Rgb c, glm::vec4 tangent = glm::vec4(0.0f)) {
     // glTF's v runs down the image; luxel's (like OpenGL's) runs up.
-    const std::array<float, 13> key{p.x, p.y, p.z, n.x, n.y, n.z, t0.x, 1.0f - t0.y, t1.x, 1.0f - t1.y,
-                                    c.r, c.g, c.b};
+    const std::array<float, kVertexKey> key{p.x, p.y, p.z, n.x, n.y, n.z, t0.x, 1.0f - t0.y, t1.x, 1.0f - t1.y,
+                                            c.r, c.g, c.b, tangent.x, tangent.y, tangent.z, tangent.w};
     auto [it, added] = seen.try_emplace(key, uint32_t(positions.size()));
     if (added) {
       positions.push_back({p.x, p.y, p.z});
@@ -252,6 +267,7 @@ struct MeshBuilder {
       if (hasUv) uv0.push_back({key[6], key[7]});
       if (hasUv1) uv1.push_back({key[8], key[9]});
       if (hasColor) colors.push_back({c.r, c.g, c.b});
+      if (hasTangent) tangents.push_back({tangent.x, tangent.y, tangent.z, tangent.w});
     }
     return it->second;
   }
@@ -339,6 +355,8 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
   MeshBuilder b;
   b.hasUv = !mesh.uvs.empty();
   b.hasUv1 = !o.secondUvs.empty() && !o.secondUvs[mi].empty();
+  // Normal-mapped meshes carry their tangent frames (glTF would otherwise leave them to the viewer).
+  b.hasTangent = b.hasUv && scene.materials[mesh.material].normalTexture >= 0;
   b.hasColor = (!o.vertexColors.empty() && !o.vertexColors[mi].empty()) || o.elements;
   tinygltf::Mesh gm;
   gm.name = mesh.name;
@@ -347,12 +365,13 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
     const SurfaceSet& set = *o.elements;
     for (uint32_t fi : index.facesOfMesh[mi]) {
       const SurfaceFace& f = set.faces[fi];
+      const glm::vec4 tangent = b.hasTangent ? gltfTangent(mesh, f.meshFace, f.normal) : glm::vec4(0.0f);
       for (uint32_t e : index.elementsOfFace[fi]) {
         const Element& el = set.elements[e];
         uint32_t corner[4];
         for (int c = 0; c < el.polygon.count; ++c)
           corner[c] = b.vertex(el.polygon.v[size_t(c)], f.normal, b.hasUv ? f.uv(el.param[size_t(c)]) : Vec2(0.0f),
-                               Vec2(0.0f), o.elementColors[size_t(e) * 4 + size_t(c)] / colorScale);
+                               Vec2(0.0f), o.elementColors[size_t(e) * 4 + size_t(c)] / colorScale, tangent);
         b.polygon(corner, el.polygon.count, false);
       }
     }
@@ -363,7 +382,7 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
     pages.erase(std::unique(pages.begin(), pages.end()), pages.end());
     for (int32_t page : pages) {
       MeshBuilder pb;
-      pb.hasUv = b.hasUv, pb.hasUv1 = b.hasUv1, pb.hasColor = b.hasColor;
+      pb.hasUv = b.hasUv, pb.hasUv1 = b.hasUv1, pb.hasColor = b.hasColor, pb.hasTangent = b.hasTangent;
       addFaces(mesh, mi, o, colorScale, pb, [&](size_t fi) { return o.faceLightmap[mi][fi] == page; });
       if (pb.indices.empty()) continue;
       gm.primitives.push_back(
@@ -396,12 +415,13 @@ void addFaces(const Mesh& mesh, size_t mi, const GlbOptions& o, float colorScale
       Vec3 normal = poly.normal();
       if (normal == Vec3(0.0f)) normal = Vec3(0.0f, 0.0f, 1.0f);  // degenerate: any unit vector
       if (flipped) normal = -normal;
+      const glm::vec4 tangent = b.hasTangent ? gltfTangent(mesh, uint32_t(fi), normal) : glm::vec4(0.0f);
       uint32_t corner[4];
       for (int k = 0; k < n; ++k) {
         const size_t fc = fi * 4 + size_t(k);
         corner[k] = b.vertex(poly.v[size_t(k)], normal, b.hasUv ? mesh.uvs[face.v[size_t(k)]] : Vec2(0.0f),
                              b.hasUv1 ? o.secondUvs[mi][fc] : Vec2(0.0f),
-                             b.hasColor ? o.vertexColors[mi][fc] / colorScale : Rgb(0.0f));
+                             b.hasColor ? o.vertexColors[mi][fc] / colorScale : Rgb(0.0f), tangent);
       }
       b.polygon(corner, n, flipped);
     }
@@ -424,6 +444,7 @@ tinygltf::Primitive makePrimitive(tinygltf::Model& model, MeshBuilder& b, int ma
     prim.attributes["TEXCOORD_0"] = addFloatAccessor<2>(model, b.uv0, TINYGLTF_TYPE_VEC2, false);
   }
   if (b.hasColor) prim.attributes["COLOR_0"] = addFloatAccessor<3>(model, b.colors, TINYGLTF_TYPE_VEC3, false);
+  if (b.hasTangent) prim.attributes["TANGENT"] = addFloatAccessor<4>(model, b.tangents, TINYGLTF_TYPE_VEC4, false);
   prim.indices = addIndexAccessor(model, b.indices, b.positions.size());
   return prim;
 }

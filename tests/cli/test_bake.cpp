@@ -570,4 +570,44 @@ TEST(BakeCli, DirectionalNeedsLightmapsAndASolverThatKeepsDirections) {
   EXPECT_NE(r.err.find("--mode lightmap"), std::string::npos) << r.err;
 }
 
+// Normal maps go into the glb as glTF normalTextures with their scale, as data (no sRGB curve:
+// the texel (0.5, 0.75, 1) comes back as 128, 191, 255), and the file validates.
+TEST(Bake, NormalMapsAreExportedAsData) {
+  luxel::Scene scene;
+  scene.name = "normal-mapped quad";
+  luxel::Mesh m;
+  m.name = "quad";
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}};
+  m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.faces = {luxel::Face{{0, 1, 2, 3}}};
+  scene.meshes = {m};
+  luxel::Material mat;
+  mat.name = "bumpy";
+  mat.normalTexture = 0;
+  mat.normalScale = 0.5f;
+  scene.materials = {mat};
+  scene.textures = {luxel::Texture{.path = "n.png", .width = 1, .height = 1, .texels = {luxel::Rgb(0.5f, 0.75f, 1.0f)}}};
+  scene.validate();
+  fs::create_directories(fs::path(LUXEL_TEST_TMP));
+  const fs::path path = fs::path(LUXEL_TEST_TMP) / "bake-normal-map.glb";
+  luxel::writeGlb(scene, path);
+  const tinygltf::Model model = loadGlb(path);
+  ASSERT_EQ(model.materials.size(), 1u);
+  const auto& nt = model.materials[0].normalTexture;
+  ASSERT_GE(nt.index, 0);
+  EXPECT_DOUBLE_EQ(nt.scale, 0.5);
+  const auto& image = model.images.at(size_t(model.textures.at(size_t(nt.index)).source));
+  ASSERT_GE(image.image.size(), 3u);
+  EXPECT_EQ(image.image[0], 128);
+  EXPECT_EQ(image.image[1], 191);
+  EXPECT_EQ(image.image[2], 255);
+  if (std::system("node --version >/dev/null 2>&1") != 0 ||
+      !fs::exists(fs::path(LUXEL_GLTF_VALIDATOR) / "node_modules" / "gltf-validator"))
+    GTEST_SKIP() << "the glTF validator is not installed";
+  const nlohmann::json report = validate(path);
+  ASSERT_TRUE(report.is_object());
+  EXPECT_EQ(report["issues"]["numErrors"], 0) << report["issues"].dump(2);
+  EXPECT_EQ(report["issues"]["numWarnings"], 0) << report["issues"].dump(2);
+}
+
 }  // namespace
