@@ -108,11 +108,19 @@ class GatherSolver final : public Solver {
     const size_t np = sys_.patchCount();
     const std::vector<Rgb> patchRadiosity = sys_.patchMeans(radiosity_);
     std::fill(out.begin(), out.end(), Rgb(0.0f));
+    const auto& elements = sys_.surfaces.elements;
+    const auto& patches = sys_.surfaces.patches;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rowsDone_, 16), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t e = r.begin(); e < r.end(); ++e)
-        for (uint32_t p = 0; p < np; ++p)
-          addPatchSh(sys_.surfaces, uint32_t(e), p, matrix_[e * np + p], patchRadiosity[p], count,
-                     out.data() + e * size_t(count));
+      for (size_t e = r.begin(); e < r.end(); ++e) {
+        Rgb sum[kShCoefficients] = {};
+        for (uint32_t p = 0; p < np; ++p) {
+          const float f = matrix_[e * np + p];
+          if (f == 0.0f) continue;
+          if (!addFarPatchSh(elements[e], patches[p], f, patchRadiosity[p], count, sum))
+            addPatchSh(sys_.surfaces, uint32_t(e), p, f, patchRadiosity[p], count, sum);
+        }
+        std::copy(sum, sum + count, out.begin() + long(e) * count);
+      }
     });
     return true;
   }

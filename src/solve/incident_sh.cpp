@@ -10,24 +10,12 @@
 #include "transport/transport.h"
 
 namespace luxel {
-namespace {
-constexpr float kFarField = 0.2f;  // patch size / distance below which a patch is one direction
-}  // namespace
 
 void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb b, int count, Rgb* c) {
   if (f == 0.0f) return;
   const Element& el = surfaces.elements[e];
   const Patch& patch = surfaces.patches[p];
-  // A patch small for its distance (under a fifth of it across) is one direction: its solid angle
-  // is A cos / r^2 to within a few parts in a thousand, so f b / cos(theta) is the integral of L,
-  // and the closed forms below (a dozen arc tangents) would buy nothing.
-  const Vec3 toPatch = patch.centroid - el.centroid;
-  const float r2 = glm::dot(toPatch, toPatch);
-  if (patch.area < kFarField * kFarField * r2 && count <= kShL1Coefficients) {
-    const Vec3 w = toPatch / std::sqrt(r2);
-    shAddDirection(c, count, w, (f / std::max(glm::dot(el.normal, w), kShMinimumCosine)) * b);
-    return;
-  }
+  if (addFarPatchSh(el, patch, f, b, count, c)) return;
   // v: the irradiance vector per unit exitance, the integral of w / pi over the visible polygon;
   // v . n is the unoccluded factor.
   const Vec3 v = polygonIrradianceVector(el.centroid, el.normal, patch.polygon, patch.normal);
@@ -58,7 +46,7 @@ void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb
   // Band 2: the polygon cut into k x k pieces, each one direction (its irradiance vector's) with
   // its solid angle; k grows as the patch comes closer, where one direction would misplace the
   // light of a neighbouring wall.
-  const float across = std::sqrt(patch.area) / std::max(std::sqrt(r2), 1e-30f);
+  const float across = std::sqrt(patch.area) / std::max(glm::length(patch.centroid - el.centroid), 1e-30f);
   const int k = across < 2.0f ? std::max(1, int(std::ceil(4.0f * across))) : 8;  // NaN: 8
   if (k == 1) {
     const auto y = shBasis(v / length);

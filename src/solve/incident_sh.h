@@ -3,7 +3,12 @@
 // element, from the form factor a solver already has.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
+#include "core/spherical_harmonics.h"
 #include "luxel/surface.h"
+#include "transport/transport.h"
 
 namespace luxel {
 
@@ -16,5 +21,23 @@ namespace luxel {
 // The solid angle is of the whole polygon where the element's plane cuts it: a small excess in
 // band 0, which the renormalisation to the texel's irradiance at display absorbs.
 void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb b, int count, Rgb* c);
+
+// A patch under a fifth of its distance across, for L1 (count 4): one direction, its solid angle
+// A cos / r^2 to a few parts in a thousand, so f b / cos(theta) is the integral of L. Returns false
+// (and adds nothing) for a nearer patch or for L2, which addPatchSh then takes. Inline: a pass over
+// every element and shooter calls it tens of millions of times.
+inline bool addFarPatchSh(const Element& el, const Patch& patch, float f, Rgb b, int count, Rgb* c) {
+  constexpr float kFarField = 0.2f;
+  const Vec3 toPatch = patch.centroid - el.centroid;
+  const float r2 = glm::dot(toPatch, toPatch);
+  if (count > kShL1Coefficients || !(patch.area < kFarField * kFarField * r2)) return false;
+  const Vec3 w = toPatch / std::sqrt(r2);
+  const Rgb weight = (f / std::max(glm::dot(el.normal, w), kShMinimumCosine)) * b;
+  c[0] += kShY0 * weight;
+  c[1] += (kShY1 * w.y) * weight;
+  c[2] += (kShY1 * w.z) * weight;
+  c[3] += (kShY1 * w.x) * weight;
+  return true;
+}
 
 }  // namespace luxel

@@ -74,11 +74,20 @@ bool ProgressiveSolver::incidentSh(int count, std::span<Rgb> out) {
         cols[k] = cache_[p].data();
       }
     }
+    const auto& elements = sys_.surfaces.elements;
+    const auto& patches = sys_.surfaces.patches;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 64), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t e = r.begin(); e < r.end(); ++e)
-        for (size_t k = 0; k < n; ++k)
-          addPatchSh(sys_.surfaces, uint32_t(e), shooters[first + k], cols[k][e], shot[shooters[first + k]], count,
-                     out.data() + e * size_t(count));
+      for (size_t e = r.begin(); e < r.end(); ++e) {
+        Rgb sum[kShCoefficients] = {};  // kept in registers over the block's shooters
+        for (size_t k = 0; k < n; ++k) {
+          const float f = cols[k][e];
+          if (f == 0.0f) continue;
+          const uint32_t p = shooters[first + k];
+          if (!addFarPatchSh(elements[e], patches[p], f, shot[p], count, sum))
+            addPatchSh(sys_.surfaces, uint32_t(e), p, f, shot[p], count, sum);
+        }
+        for (int i = 0; i < count; ++i) out[e * size_t(count) + size_t(i)] += sum[i];
+      }
     });
   }
   // The ambient term, where it is on, arrives evenly over the hemisphere.
