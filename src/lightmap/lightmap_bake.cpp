@@ -3,6 +3,7 @@
 // the RGBM encoding.
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -12,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/spherical_harmonics.h"
+#include "lightmap/bake_steps.h"
 #include "lightmap/seam_edges.h"
 #include "lightmap/texel_geometry.h"
 #include "luxel/directional_lightmap.h"
@@ -78,16 +80,13 @@ std::vector<uint8_t> validity(const Scene& scene, const SurfaceSet& set, int ray
 
 }  // namespace
 
-LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options,
-                           const ProgressCallback& progress) {
+namespace lightmap {
+
+LightmapBake prepareTexels(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options) {
   if (options.validityRays < 0 || options.dilation < 0 || !(options.maxBackfaceShare >= 0.0f))
     throw Error("lightmap bake: validity rays, dilation and backface share must be >= 0");
-  if (options.solve.refine.budget > 0)
-    throw Error("lightmap bake: texels are not refined (--refine needs elements, not lightmaps)");
-  validateSolveOptions(options.solve);  // before the atlas's texels and validity rays
   LightmapBake bake;
   bake.pageSize = atlas.pageSize;
-  const int size = atlas.pageSize;
   auto t0 = Clock::now();
   bake.surfaces = texelSurfaces(scene, atlas, options.texelsPerPatchSide);
   SurfaceSet& set = bake.surfaces.surfaces;
@@ -102,45 +101,26 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
     if (!bake.valid[e]) set.elements[e].area *= 1e-6f, ++bake.invalidTexels;
   bake.secondsValidity = since(t0);
 
-  t0 = Clock::now();
-  const int shCount = directionalCoefficients(options.directional);
-  std::vector<Rgb> incident;  // per element, shCount coefficients
-  {
-    // Only the CPU's progressive and gather solvers record directions: "auto" picks among those.
-    SolveOptions solveOptions = options.solve;
-    if (shCount > 0 && solveOptions.method == "auto") solveOptions.method = "progressive";
-    if (shCount > 0 && solveOptions.backend == "auto") solveOptions.backend = "cpu";
-    SolverHost host(scene, set, solveOptions);
-    while (host.step({}, progress)) {
-    }
-    bake.solution = host.solution();
-    bake.secondsSolve = since(t0);
-    if (shCount > 0) {
-      const auto shStart = Clock::now();
-      incident = host.incidentSh(shCount);
-      bake.secondsDirectional = since(shStart);
-    }
-  }
+  return bake;
+}
 
-  t0 = Clock::now();
-  const auto pages = size_t(atlas.pageCount);
+void finishPlanes(const LightmapBakeOptions& options, LightmapBake& bake, int pageCount,
+                  const std::vector<std::vector<std::vector<Rgb>>*>& planes,
+                  const std::function<Rgb(size_t plane, size_t element)>& value) {
+  const auto t0 = Clock::now();
+  const auto pages = size_t(pageCount);
+  const int size = bake.pageSize;
+  const SurfaceSet& set = bake.surfaces.surfaces;
   const size_t n = size_t(size) * size_t(size);
-  bake.pages.assign(pages, std::vector<Rgb>(n, Rgb(0.0f)));
   bake.state.assign(pages, std::vector<uint8_t>(n, LightmapBake::Empty));
   std::vector<std::vector<int32_t>> chartOf(pages, std::vector<int32_t>(n, -1));
   std::vector<std::vector<int32_t>> elementOf(pages, std::vector<int32_t>(n, -1));
   const auto& texels = bake.surfaces.texels;
-  bake.directional = options.directional;
-  bake.sh.assign(size_t(shCount), std::vector<std::vector<Rgb>>(pages, std::vector<Rgb>(n, Rgb(0.0f))));
-  // Every texel value is a plane: the irradiance first, then each SH coefficient. Filling,
-  // stitching and dilation treat them alike, so a texel's coefficients stay those of its value.
-  std::vector<std::vector<std::vector<Rgb>>*> planes{&bake.pages};
-  for (auto& plane : bake.sh) planes.push_back(&plane);
+  for (auto* plane : planes) plane->assign(pages, std::vector<Rgb>(n, Rgb(0.0f)));
   for (size_t e = 0; e < set.elements.size(); ++e) {
     const auto& t = texels[e];
     const size_t i = size_t(t.y) * size_t(size) + t.x;
-    for (int k = 0; k < shCount; ++k) bake.sh[size_t(k)][t.page][i] = incident[e * size_t(shCount) + size_t(k)];
-    bake.pages[t.page][i] = bake.solution.irradiance[e];
+    for (size_t k = 0; k < planes.size(); ++k) (*planes[k])[t.page][i] = value(k, e);
     bake.state[t.page][i] = bake.valid[e] ? LightmapBake::Solved : LightmapBake::Filled;
     chartOf[t.page][i] = int32_t(bake.surfaces.faceChart[set.elements[e].face]);
     elementOf[t.page][i] = int32_t(e);
@@ -323,6 +303,49 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
       bake.dilatedTexels += fill.size();
     }
   }
+  bake.secondsPost += since(t0);
+}
+
+}  // namespace lightmap
+
+LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const LightmapBakeOptions& options,
+                           const ProgressCallback& progress) {
+  if (options.solve.refine.budget > 0)
+    throw Error("lightmap bake: texels are not refined (--refine needs elements, not lightmaps)");
+  validateSolveOptions(options.solve);  // before the atlas's texels and validity rays
+  LightmapBake bake = lightmap::prepareTexels(scene, atlas, options);
+  SurfaceSet& set = bake.surfaces.surfaces;
+  auto t0 = Clock::now();
+  const int shCount = directionalCoefficients(options.directional);
+  std::vector<Rgb> incident;  // per element, shCount coefficients
+  {
+    // Only the CPU's progressive and gather solvers record directions: "auto" picks among those.
+    SolveOptions solveOptions = options.solve;
+    if (shCount > 0 && solveOptions.method == "auto") solveOptions.method = "progressive";
+    if (shCount > 0 && solveOptions.backend == "auto") solveOptions.backend = "cpu";
+    SolverHost host(scene, set, solveOptions);
+    while (host.step({}, progress)) {
+    }
+    bake.solution = host.solution();
+    bake.secondsSolve = since(t0);
+    if (shCount > 0) {
+      const auto shStart = Clock::now();
+      incident = host.incidentSh(shCount);
+      bake.secondsDirectional = since(shStart);
+    }
+  }
+
+  bake.directional = options.directional;
+  bake.sh.resize(size_t(shCount));
+  // Every texel value is a plane: the irradiance first, then each SH coefficient. Filling,
+  // stitching and dilation treat them alike, so a texel's coefficients stay those of its value.
+  std::vector<std::vector<std::vector<Rgb>>*> planes{&bake.pages};
+  for (auto& plane : bake.sh) planes.push_back(&plane);
+  lightmap::finishPlanes(options, bake, atlas.pageCount, planes, [&](size_t k, size_t e) {
+    return k == 0 ? bake.solution.irradiance[e] : incident[e * size_t(shCount) + (k - 1)];
+  });
+  t0 = Clock::now();
+  const size_t pages = bake.pages.size(), n = size_t(bake.pageSize) * size_t(bake.pageSize);
   // L2 is read linearly: window each texel's coefficients until no normal gets negative light.
   if (options.directional == DirectionalMode::ShL2)
     for (size_t p = 0; p < pages; ++p)
@@ -335,7 +358,7 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
         shApplyWindow(c, kShCoefficients, s);
         for (int k = 0; k < kShCoefficients; ++k) bake.sh[size_t(k)][p][i] = c[k];
       });
-  bake.secondsPost = since(t0);
+  bake.secondsPost += since(t0);
   return bake;
 }
 
