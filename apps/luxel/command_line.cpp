@@ -35,6 +35,12 @@ std::unique_ptr<CommandLine> makeCommandLine() {
                      "normal-mapped normal)")
       ->check(CLI::IsMember({"none", "sh-l1", "sh-l2", "dominant"}))
       ->capture_default_str();
+  render->add_option("--transfer", ra.transferBands,
+                     "With --mode lightmap: bake SH transfer lightmaps of this many bands (2, 3 or 4) and relight "
+                     "them with the scene's suns and skies (seed 004's CaSHL)")
+      ->check(CLI::Range(2, 4));
+  render->add_option("--sun-direction", ra.sunDirection,
+                     "With --transfer: relight with every sun travelling along X,Y,Z (the bake does not change)");
 
   CLI::App* animate = line->animateCommand =
       app.add_subcommand("animate", "Render a scene's animation frame by frame (images or a video), following its moves");

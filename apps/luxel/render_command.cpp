@@ -16,6 +16,7 @@
 #include "luxel/import.h"
 #include "luxel/directional_lightmap.h"
 #include "luxel/lightmap.h"
+#include "luxel/transfer_lightmap.h"
 #include "luxel/render.h"
 #include "luxel/session.h"
 #include "luxel/solve.h"
@@ -106,6 +107,12 @@ void checkRenderArgs(const RenderArgs& a) {
   checkViewArgs(a);
   if (parseDirectionalMode(a.directional) != DirectionalMode::None && a.mode != "lightmap")
     throw Error("--directional shows directional lightmaps: it needs --mode lightmap");
+  if (a.transferBands > 0 && a.mode != "lightmap") throw Error("--transfer bakes transfer lightmaps: it needs --mode lightmap");
+  if (a.transferBands > 0 && parseDirectionalMode(a.directional) != DirectionalMode::None)
+    throw Error("--transfer and --directional exclude each other (a transfer bake is relit, not read by direction)");
+  if (a.sunDirection && a.transferBands == 0) throw Error("--sun-direction relights a transfer bake: it needs --transfer");
+  if (a.sunDirection && !(glm::length(parseVec3(*a.sunDirection, "sun-direction")) > 0.0f))
+    throw Error("--sun-direction must not be zero");
   checkSolveArgs(a.solve);
 }
 
@@ -146,7 +153,43 @@ int runRender(const RenderArgs& a) {
   Image image;
   RenderStats rs;
   nowDoing(fmt::format("solving scene '{}' ({})", sceneName, solveSize(a.solve)), solveSizeHint(a.solve, lightmapped));
-  if (lightmapped) {
+  if (lightmapped && a.transferBands > 0) {
+    LightmapRecipe recipe;
+    recipe.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize : 0.0f;
+    recipe.texelBudget = size_t(a.solve.elements);
+    const AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
+    const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
+    TransferBakeOptions to;
+    to.bands = a.transferBands;
+    to.texels.dilation = ao.gutter;  // as the lightmap recipe: the gutter filled
+    const TransferBake transfer = bakeTransfer(scene, atlas, to, bar.callback());
+    if (a.sunDirection) {
+      const Vec3 d = glm::normalize(parseVec3(*a.sunDirection, "sun-direction"));
+      bool anySun = false;
+      for (Light& l : scene.lights)
+        if (l.type == Light::Type::Directional) l.direction = d, anySun = true;
+      if (!anySun) throw Error(fmt::format("scene '{}' has no sun for --sun-direction to turn (add one with --sun)", sceneName));
+    }
+    const auto relightStart = std::chrono::steady_clock::now();
+    const DistantLightSh light = distantLightSh(scene, a.transferBands);
+    const LightmapBake relit = relitLightmaps(transfer, light);
+    const double relightSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - relightStart).count();
+    solution.stats.warnings = light.warnings;
+    solution.stats.method = "transfer";
+    solution.stats.backend = "cpu";
+    solution.stats.elements = transfer.texels.texels;
+    solution.stats.patches = transfer.texels.surfaces.surfaces.patches.size();
+    solution.stats.shots = transfer.shots;
+    solution.stats.unshotFraction = transfer.unshotFraction;
+    solution.stats.secondsTotal = transfer.secondsDirect + transfer.secondsShoot;
+    if (!a.quiet)
+      std::cout << fmt::format("luxel: transfer — {} bands, {} texels, direct {:.3f} s, shooting {:.3f} s ({} shots); "
+                               "relit in {:.2f} ms\n",
+                               a.transferBands, transfer.texels.texels, transfer.secondsDirect, transfer.secondsShoot,
+                               transfer.shots, 1000.0 * relightSeconds);
+    nowDoing(renderingWhat(a, sceneName), "use a smaller image (--size)");
+    image = renderLightmapped(scene, atlas, relit, ro, bar.callback(), &rs);
+  } else if (lightmapped) {
     LightmapRecipe recipe;
     recipe.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize : 0.0f;
     recipe.texelBudget = size_t(a.solve.elements);

@@ -39,6 +39,11 @@ struct RenderArgs : ViewArgs {
   // --directional MODE (with --mode lightmap): bake directional lightmaps and shade them at the
   // normal-mapped normal (luxel/directional_lightmap.h); "none" by default.
   std::string directional = "none";
+  // --transfer BANDS (with --mode lightmap): bake SH transfer lightmaps (luxel/transfer_lightmap.h)
+  // and relight them with the scene's suns and skies; 0: off. --sun-direction X,Y,Z turns every sun
+  // to travel along it for the relighting (the bake does not depend on it).
+  int transferBands = 0;
+  std::optional<std::string> sunDirection;
 };
 
 // Adds --camera, --eye, --target, --up and --fov.

@@ -37,6 +37,22 @@ inline std::array<float, kShCoefficients> shBasis(Vec3 d) {
           0.546274f * (d.x * d.x - d.y * d.y)};
 }
 
+// Band 3 as well (sixteen functions, seed 004's default of four bands): the nine of shBasis, then
+// (3,-3) ... (3,3), in the same convention (no Condon-Shortley sign, as band 1's y, z, x).
+inline constexpr int kShBand3Coefficients = 16;
+inline std::array<float, kShBand3Coefficients> shBasis16(Vec3 d) {
+  const auto low = shBasis(d);
+  const float x = d.x, y = d.y, z = d.z;
+  return {low[0], low[1], low[2], low[3], low[4], low[5], low[6], low[7], low[8],
+          0.590044f * y * (3.0f * x * x - y * y),
+          2.890611f * x * y * z,
+          0.457046f * y * (5.0f * z * z - 1.0f),
+          0.373176f * z * (5.0f * z * z - 3.0f),
+          0.457046f * x * (5.0f * z * z - 1.0f),
+          1.445306f * z * (x * x - y * y),
+          0.590044f * x * (x * x - 3.0f * y * y)};
+}
+
 // The clamped cosine's band weights (pi, 2 pi / 3, pi / 4) per coefficient: irradiance for normal
 // n is sum_i kShCosine[i] * radiance[i] * shBasis(n)[i].
 inline constexpr std::array<float, kShCoefficients> kShCosine = {

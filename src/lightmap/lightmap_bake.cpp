@@ -226,7 +226,7 @@ void finishPlanes(const LightmapBakeOptions& options, LightmapBake& bake, int pa
       }
     }
     bake.seamSamples = pairs.size();
-    std::vector<std::vector<Rgb>>* plane = &bake.pages;
+    std::vector<std::vector<Rgb>>* plane = planes.front();
     auto value = [&](size_t k) -> Rgb& { return (*plane)[k / n][k % n]; };
     auto worst = [&] {
       float w = 0.0f;
@@ -266,7 +266,7 @@ void finishPlanes(const LightmapBakeOptions& options, LightmapBake& bake, int pa
         for (size_t k = 0; k < seamTexels.size(); ++k) value(seamTexels[k]) = sum[k] / pairCount[k];
         if (worst() < 1e-5f) break;
       }
-      if (current == &bake.pages) bake.seamMaxAfter = worst();
+      if (current == planes.front()) bake.seamMaxAfter = worst();
     }
     bake.secondsSeams = since(seamStart);
   }

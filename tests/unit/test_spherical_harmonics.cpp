@@ -155,3 +155,22 @@ TEST(SphericalHarmonics, WindowRemovesNegativeIrradianceAndKeepsSetsThatDoNotRin
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SphericalHarmonics, SixteenFunctionsAreOrthonormalAndExtendTheNine) {
+  const auto dirs = lattice(20000);
+  const double w = 4.0 * std::numbers::pi / double(dirs.size());
+  double gram[16][16] = {};
+  for (const Vec3& d : dirs) {
+    const auto y = luxel::shBasis16(d);
+    const auto y9 = luxel::shBasis(d);
+    for (int i = 0; i < 9; ++i) ASSERT_EQ(y[size_t(i)], y9[size_t(i)]);
+    for (int i = 0; i < 16; ++i)
+      for (int j = 0; j < 16; ++j) gram[i][j] += w * double(y[size_t(i)]) * double(y[size_t(j)]);
+  }
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) EXPECT_NEAR(gram[i][j], i == j ? 1.0 : 0.0, 2e-4) << i << " " << j;
+}
+
+}  // namespace
