@@ -170,10 +170,15 @@ int runRender(const RenderArgs& a) {
         if (l.type == Light::Type::Directional) l.direction = d, anySun = true;
       if (!anySun) throw Error(fmt::format("scene '{}' has no sun for --sun-direction to turn (add one with --sun)", sceneName));
     }
-    const auto relightStart = std::chrono::steady_clock::now();
+    const auto projectStart = std::chrono::steady_clock::now();
     const DistantLightSh light = distantLightSh(scene, a.transferBands);
-    const LightmapBake relit = relitLightmaps(transfer, light);
-    const double relightSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - relightStart).count();
+    const auto relightStart = std::chrono::steady_clock::now();
+    std::vector<std::vector<Rgb>> pages = relightTransfer(transfer, light);
+    const auto relightEnd = std::chrono::steady_clock::now();
+    LightmapBake relit = transfer.texels;  // the texel layout, for the renderer (not part of relighting)
+    relit.pages = std::move(pages);
+    const double projectSeconds = std::chrono::duration<double>(relightStart - projectStart).count();
+    const double relightSeconds = std::chrono::duration<double>(relightEnd - relightStart).count();
     solution.stats.warnings = light.warnings;
     solution.stats.method = "transfer";
     solution.stats.backend = "cpu";
@@ -184,9 +189,9 @@ int runRender(const RenderArgs& a) {
     solution.stats.secondsTotal = transfer.secondsDirect + transfer.secondsShoot;
     if (!a.quiet)
       std::cout << fmt::format("luxel: transfer — {} bands, {} texels, direct {:.3f} s, shooting {:.3f} s ({} shots); "
-                               "relit in {:.2f} ms\n",
+                               "light projected in {:.2f} ms, texels relit in {:.2f} ms\n",
                                a.transferBands, transfer.texels.texels, transfer.secondsDirect, transfer.secondsShoot,
-                               transfer.shots, 1000.0 * relightSeconds);
+                               transfer.shots, 1000.0 * projectSeconds, 1000.0 * relightSeconds);
     nowDoing(renderingWhat(a, sceneName), "use a smaller image (--size)");
     image = renderLightmapped(scene, atlas, relit, ro, bar.callback(), &rs);
   } else if (lightmapped) {

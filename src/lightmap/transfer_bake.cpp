@@ -256,6 +256,13 @@ TransferBake bakeTransfer(const Scene& scene, const LightmapAtlas& atlas, const 
   for (auto& p : out.planes) planes.push_back(&p);
   lightmap::finishPlanes(options.texels, out.texels, atlas.pageCount, planes,
                          [&](size_t k, size_t e) { return shooter.transfer[e * size_t(count) + k]; });
+  const size_t n = size_t(out.texels.pageSize) * size_t(out.texels.pageSize);
+  for (size_t p = 0; p < out.texels.state.size(); ++p)
+    for (size_t i = 0; i < n; ++i) {
+      if (out.texels.state[p][i] == LightmapBake::Empty) continue;
+      out.packedTexels.push_back(p * n + i);
+      for (int k = 0; k < count; ++k) out.packed.push_back(out.planes[size_t(k)][p][i]);
+    }
   return out;
 }
 
@@ -263,21 +270,19 @@ std::vector<std::vector<Rgb>> relightTransfer(const TransferBake& transfer, cons
   if (light.bands != transfer.bands)
     throw Error(fmt::format("relighting a {}-band transfer with {}-band light", transfer.bands, light.bands));
   const size_t count = transfer.planes.size();
-  const size_t pages = count ? transfer.planes[0].size() : 0;
-  std::vector<std::vector<Rgb>> out(pages);
-  for (size_t p = 0; p < pages; ++p) {
-    const size_t n = transfer.planes[0][p].size();
-    out[p].assign(n, Rgb(0.0f));
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-      const auto& state = transfer.texels.state[p];
-      for (size_t i = r.begin(); i < r.end(); ++i) {
-        if (state[i] == LightmapBake::Empty) continue;  // outside every chart and gutter
-        Rgb h(0.0f);
-        for (size_t k = 0; k < count; ++k) h += transfer.planes[k][p][i] * light.coefficients[k];
-        out[p][i] = glm::max(h, Rgb(0.0f));  // band-limited light rings below zero in deep shadow
-      }
-    });
-  }
+  const size_t n = size_t(transfer.texels.pageSize) * size_t(transfer.texels.pageSize);
+  std::vector<std::vector<Rgb>> out(transfer.texels.state.size(), std::vector<Rgb>(n, Rgb(0.0f)));
+  Rgb l[kShBand3Coefficients];
+  std::copy(light.coefficients.begin(), light.coefficients.end(), l);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, transfer.packedTexels.size(), 2048), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t < r.end(); ++t) {
+      const Rgb* c = transfer.packed.data() + t * count;
+      Rgb h(0.0f);
+      for (size_t k = 0; k < count; ++k) h += c[k] * l[k];
+      const uint64_t at = transfer.packedTexels[t];
+      out[at / n][at % n] = glm::max(h, Rgb(0.0f));  // band-limited light rings below zero in deep shadow
+    }
+  });
   return out;
 }
 
