@@ -139,8 +139,10 @@ int runBake(const BakeArgs& a) {
                                bake.surfaces.surfaces.patches.size(), bake.invalidTexels, bake.dilatedTexels,
                                bake.seamMaxBefore, bake.seamMaxAfter, bake.seamEdges, bake.secondsSeams, total);
       if (bake.directional != DirectionalMode::None)
-        std::cout << fmt::format("luxel: directions ({}) — {:.3f} s after a solve of {:.3f} s\n",
-                                 directionalModeName(bake.directional), bake.secondsDirectional, bake.secondsSolve);
+        std::cout << fmt::format("luxel: directions ({}) — {:.3f} s after a solve of {:.3f} s; filling, stitching "
+                                 "and dilating every plane {:.3f} s\n",
+                                 directionalModeName(bake.directional), bake.secondsDirectional, bake.secondsSolve,
+                                 bake.secondsPost);
       if (!a.vertexColorsFor.empty()) {  // the names once each, with how many meshes carry them
         std::vector<std::pair<std::string, size_t>> names;
         size_t count = 0;

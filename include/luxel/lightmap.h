@@ -99,9 +99,9 @@ struct LightmapBakeOptions {
   float seamAngle = 45.0f;
   // Dilation passes into the empty texels round every chart (the atlas gutter).
   int dilation = 2;
-  // Also keep where each texel's light comes from (luxel/directional_lightmap.h): needs a solver
-  // that records directions, CPU progressive or gather ("auto" method and backend pick progressive
-  // on the CPU; others are an Error naming the solver).
+  // Also keep where each texel's light comes from (luxel/directional_lightmap.h): exactly from
+  // each patch's share with CPU progressive and gather, by a final gather of rays with the other
+  // solvers (the hierarchy, GL).
   DirectionalMode directional = DirectionalMode::None;
 };
 

@@ -319,11 +319,7 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
   const int shCount = directionalCoefficients(options.directional);
   std::vector<Rgb> incident;  // per element, shCount coefficients
   {
-    // Only the CPU's progressive and gather solvers record directions: "auto" picks among those.
-    SolveOptions solveOptions = options.solve;
-    if (shCount > 0 && solveOptions.method == "auto") solveOptions.method = "progressive";
-    if (shCount > 0 && solveOptions.backend == "auto") solveOptions.backend = "cpu";
-    SolverHost host(scene, set, solveOptions);
+    SolverHost host(scene, set, options.solve);
     while (host.step({}, progress)) {
     }
     bake.solution = host.solution();

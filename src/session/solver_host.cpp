@@ -9,6 +9,7 @@
 #include "luxel/error.h"
 #include "mesh/surface_hash.h"
 #include "session/checkpoint_file.h"
+#include "solve/gathered_sh.h"
 #include "solve/method_choice.h"
 #include "solve/refinement.h"
 #include "transport/cpu_transport.h"
@@ -361,10 +362,8 @@ std::vector<Rgb> SolverHost::incidentSh(int count) {
   useContext();
   const size_t ne = surfaces_.elements.size();
   std::vector<Rgb> sh(ne * size_t(count)), lights(ne * size_t(count));
-  if (!solver_->incidentSh(count, sh))
-    throw Error(fmt::format("the {} solver ({}) keeps no record of where light comes from: directional bakes need "
-                            "--solver progressive or gather on the CPU backend",
-                            entry_->description.name, backend()));
+  // Progressive and gather know each patch's share exactly; others are gathered by rays.
+  if (!solver_->incidentSh(count, sh)) sh = gatherIncidentSh(surfaces_, solver_->solution().radiosity, count, kGatherShRays);
   std::vector<uint32_t> all(scene_.lights.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   transport_->lightSh(all, count, lights);

@@ -58,9 +58,10 @@ class SolverHost {
   std::vector<Rgb> lightIrradiance(std::span<const uint32_t> lights);
   // Where the light of solution().irradiance comes from, for directional bakes: the incident
   // radiance at each element in spherical harmonics, `count` (4 or 9) per element (Solver::
-  // incidentSh for the interreflected light, Transport::lightSh for the analytic lights). Throws
-  // Error naming the solver when it keeps no record of directions.
+  // incidentSh for the interreflected light, or a final gather of kGatherShRays rays an element
+  // where the solver keeps no record of directions; Transport::lightSh for the analytic lights).
   std::vector<Rgb> incidentSh(int count);
+  static constexpr int kGatherShRays = 256;
   // The solution so far, with every statistic filled in (energy balance included).
   Solution solution();
   SolveStats stats() const;

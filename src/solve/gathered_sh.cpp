@@ -1,0 +1,69 @@
+// A final gather of incident radiance in SH: see solve/gathered_sh.h.
+#include "solve/gathered_sh.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/spherical_harmonics.h"
+#include "trace/ray_tracer.h"
+
+namespace luxel {
+
+std::vector<Rgb> gatherIncidentSh(const SurfaceSet& surfaces, const std::vector<Rgb>& radiosity, int count, int rays) {
+  const size_t ne = surfaces.elements.size();
+  std::vector<Rgb> out(ne * size_t(count), Rgb(0.0f));
+  const float offset = rayOffsetFor(surfaces.sceneExtent);
+  // Coplanar twins (two-sided faces) would be hit at random: each is nudged along its own normal,
+  // so that a ray from either side meets the side that faces it first.
+  std::vector<Polygon> polygons(ne);
+  for (size_t e = 0; e < ne; ++e) {
+    const Element& el = surfaces.elements[e];
+    polygons[e] = el.polygon;
+    if (surfaces.faces[el.face].twin >= 0)
+      for (int k = 0; k < polygons[e].count; ++k) polygons[e].v[size_t(k)] += 0.5f * offset * el.normal;
+  }
+  RayTracer tracer(polygons);
+  const int side = std::max(1, int(std::sqrt(double(std::max(rays, 1)))));
+  const float perRay = 2.0f * std::numbers::pi_v<float> / float(side * side);  // uniform: 2 pi / N
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 16), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<RTCRayHit> hits(size_t(side * side));
+    for (size_t ei = r.begin(); ei < r.end(); ++ei) {
+      const Element& e = surfaces.elements[ei];
+      const Vec3 n = e.normal;
+      const Vec3 a = std::abs(n.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+      const Vec3 tu = glm::normalize(glm::cross(a, n)), tv = glm::cross(n, tu);
+      uint32_t h = uint32_t(ei) * 2654435761u + 4099u;
+      auto rnd = [&] {
+        h ^= h << 13, h ^= h >> 17, h ^= h << 5;
+        return float(h & 0xFFFFFF) / float(0x1000000);
+      };
+      for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+          // Uniform over the hemisphere: cos theta uniform in [0, 1].
+          const float z = (float(i) + rnd()) / float(side), phi = 2.0f * std::numbers::pi_v<float> * (float(j) + rnd()) / float(side);
+          const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+          const Vec3 d = s * std::cos(phi) * tu + s * std::sin(phi) * tv + z * n;
+          RTCRayHit& rh = hits[size_t(j * side + i)];
+          rh.ray = makeRay(e.centroid + offset * n, d, 0.0f, std::numeric_limits<float>::infinity());
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        }
+      tracer.intersect(hits, false);
+      Rgb* c = out.data() + ei * size_t(count);
+      for (const RTCRayHit& rh : hits) {
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+        const uint32_t hit = rh.hit.primID;
+        const Vec3 d(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+        if (glm::dot(surfaces.elements[hit].normal, d) >= 0.0f) continue;  // its back: black
+        shAddDirection(c, count, glm::normalize(d), (perRay / std::numbers::pi_v<float>) * radiosity[hit]);
+      }
+    }
+  });
+  return out;
+}
+
+}  // namespace luxel
