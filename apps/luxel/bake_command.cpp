@@ -7,6 +7,7 @@
 #include <fnmatch.h>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -19,6 +20,7 @@
 #include "luxel/lightmap.h"
 #include "luxel/session.h"
 #include "luxel/solve.h"
+#include "luxel/transfer_lightmap.h"
 #include "html_page.h"
 #include "out_of_memory.h"
 #include "output_paths.h"
@@ -63,6 +65,9 @@ void checkBakeArgs(const BakeArgs& a) {
                 "colours every mesh");
   if (parseDirectionalMode(a.directional) != DirectionalMode::None && !a.lightmaps)
     throw Error("--directional bakes directional lightmaps: it needs --lightmaps");
+  if (a.transferBands > 0 && !a.lightmaps) throw Error("--transfer bakes transfer lightmaps: it needs --lightmaps");
+  if (a.transferBands > 0 && (parseDirectionalMode(a.directional) != DirectionalMode::None || !a.vertexColorsFor.empty()))
+    throw Error("--transfer excludes --directional and --vertex-colors-for");
   if (a.html) {
     if (lowerExtension(fs::path(a.output)) != ".glb")
       throw Error(fmt::format("--html writes a page beside the glb and embeds it: -o must name a .glb file (not '{}')",
@@ -110,14 +115,30 @@ int runBake(const BakeArgs& a) {
     recipe.pageSize = a.lightmapSize;
     recipe.solve = so;
     recipe.directional = parseDirectionalMode(a.directional);
-    const BakedLightmaps baked = bakeLightmaps(scene, recipe, bar.callback());
+    // A transfer bake (--transfer): the transfer, and its lightmaps relit by the scene's distant lights.
+    std::optional<TransferBake> transfer;
+    BakedLightmaps baked;
+    if (a.transferBands > 0) {
+      const AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
+      baked.atlas = buildLightmapAtlas(scene, ao);
+      TransferBakeOptions to;
+      to.bands = a.transferBands;
+      to.texels.dilation = ao.gutter;
+      transfer = bakeTransfer(scene, baked.atlas, to, bar.callback());
+      const DistantLightSh light = distantLightSh(scene, a.transferBands);
+      baked.bake = relitLightmaps(*transfer, light);
+      baked.bake.solution.stats.warnings = light.warnings;
+    } else {
+      baked = bakeLightmaps(scene, recipe, bar.callback());
+    }
     const LightmapAtlas& atlas = baked.atlas;
     const LightmapBake& bake = baked.bake;
     if (!a.quiet)
       for (const std::string& w : bake.solution.stats.warnings) std::cerr << "luxel: warning: " << w << "\n";
     GlbOptions go;
     go.flippedFaces = flippedFaceFlags(scene, bake.surfaces.surfaces);
-    addLightmaps(go, scene, atlas, bake, vertexColored);
+    if (transfer) addTransferLightmaps(go, scene, atlas, *transfer, bake);
+    else addLightmaps(go, scene, atlas, bake, vertexColored);
     writeGlb(scene, out, go);
     for (int p = 0; p < int(bake.pages.size()); ++p) {
       fs::path exr = out;
@@ -215,6 +236,10 @@ void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
                   "each texel's light comes from, for normal maps (the LUXEL_lightmap_directional extension)")
       ->check(CLI::IsMember({"none", "sh-l1", "sh-l2", "dominant"}))
       ->capture_default_str();
+  bake.add_option("--transfer", a.transferBands,
+                  "With --lightmaps: SH transfer lightmaps of this many bands (2, 3 or 4), relit by the scene's suns "
+                  "and skies for the plain lightmap, and carried whole in the LUXEL_lightmap_transfer extension")
+      ->check(CLI::Range(2, 4));
   bake.add_option("--vertex-colors-for", a.vertexColorsFor,
                   "With --lightmaps: meshes whose names match these globs (comma-separated) get vertex colours "
                   "(COLOR_0, irradiance) instead of a lightmap")

@@ -25,6 +25,8 @@ struct BakeArgs {
   // --directional MODE (with --lightmaps): also where each texel's light comes from, as the
   // LUXEL_lightmap_directional extension (luxel/directional_lightmap.h, docs/baking.md).
   std::string directional = "none";
+  // --transfer BANDS (with --lightmaps): SH transfer lightmaps (luxel/transfer_lightmap.h); 0: off.
+  int transferBands = 0;
   // --vertex-colors-for PATTERN[,PATTERN...] (with --lightmaps): meshes whose names match a glob
   // get COLOR_0 (irradiance from their texels) instead of a lightmap. Each must match a mesh.
   std::vector<std::string> vertexColorsFor;

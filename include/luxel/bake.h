@@ -79,6 +79,19 @@ struct GlbOptions {
   // and not required: an engine that ignores it still has the plain lightmap.
   std::string directionalMode;
   std::vector<std::vector<int32_t>> directionalImages;
+  // SH transfer lightmaps (luxel/transfer_lightmap.h), as the LUXEL_lightmap_transfer extension on
+  // each lightmapped material copy (docs/baking.md, "Transfer lightmaps in the glb"): bands 0 for
+  // none; per image of `images` that is a lightmap page, the indices into `images` of its band-0
+  // page (RGBM) and then its ratio textures (empty for other images); and the distant light the
+  // fallback lightmap was relit with, sky and suns apart so that a viewer can turn the suns.
+  int transferBands = 0;
+  std::vector<std::vector<int32_t>> transferImages;
+  std::vector<Rgb> transferSky;  // transferBands^2 coefficients
+  struct Sun {
+    Vec3 direction{0.0f};  // the way its light travels
+    Rgb irradiance{0.0f};
+  };
+  std::vector<Sun> transferSuns;
   // Faces that discretisation turned round (SurfaceFace::flipped) are written turned round too,
   // so that viewers culling back faces show the side the solver lit: one flag per mesh face,
   // [mesh][face], empty for none. bakeGlbOptions fills it.

@@ -153,6 +153,15 @@ void checkOptions(const Scene& scene, const GlbOptions& o) {
       for (int32_t i : list)
         if (i < 0 || i >= int32_t(o.images.size())) throw Error(fmt::format("glb: direction image {} does not exist", i));
   }
+  if (o.transferBands > 0) {
+    if (o.transferBands < 2 || o.transferBands > 4 || o.transferImages.size() != o.images.size() ||
+        o.transferSky.size() != size_t(o.transferBands * o.transferBands))
+      throw Error(fmt::format("glb: a {}-band transfer with {} image lists for {} images and {} sky coefficients",
+                              o.transferBands, o.transferImages.size(), o.images.size(), o.transferSky.size()));
+    for (const auto& list : o.transferImages)
+      for (int32_t i : list)
+        if (i < 0 || i >= int32_t(o.images.size())) throw Error(fmt::format("glb: transfer image {} does not exist", i));
+  }
   if (!o.faceLightmap.empty()) {
     for (size_t m = 0; m < scene.meshes.size(); ++m)
       if (!o.faceLightmap[m].empty() && (o.secondUvs.empty() || o.secondUvs[m].empty()))
@@ -307,12 +316,14 @@ tinygltf::Primitive makePrimitive(tinygltf::Model& model, MeshBuilder& b, int ma
 
 // Lightmap pages: image index -> texture index and RGBM range; (material, page) -> material copy.
 constexpr const char* kDirectionalExtension = "LUXEL_lightmap_directional";
+constexpr const char* kTransferExtension = "LUXEL_lightmap_transfer";
 
 struct LightmapTextures {
   std::vector<int> texture;
   std::vector<float> range;
   std::string directionalMode;
   std::vector<std::vector<int32_t>> directional;  // per image: its direction textures' images
+  const GlbOptions* options = nullptr;            // the transfer's images and light
   std::map<std::pair<uint32_t, int32_t>, int> copies;
 };
 
@@ -343,6 +354,38 @@ int lightmapMaterial(tinygltf::Model& model, LightmapTextures& lightmaps, uint32
       ext["mode"] = tinygltf::Value(lightmaps.directionalMode);
       ext["textures"] = tinygltf::Value(textures);
       g.extensions[kDirectionalExtension] = tinygltf::Value(ext);
+    }
+    const GlbOptions* o = lightmaps.options;
+    if (o && o->transferBands > 0 && size_t(page) < o->transferImages.size() && !o->transferImages[size_t(page)].empty()) {
+      const auto& images = o->transferImages[size_t(page)];
+      auto textureInfo = [&](int32_t image) {
+        tinygltf::Value::Object t;
+        t["index"] = tinygltf::Value(lightmaps.texture[size_t(image)]);
+        t["texCoord"] = tinygltf::Value(1);
+        return t;
+      };
+      auto rgb = [](Rgb c) {
+        return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(c.r)), tinygltf::Value(double(c.g)),
+                                                      tinygltf::Value(double(c.b))});
+      };
+      tinygltf::Value::Object band0 = textureInfo(images[0]);
+      band0["rgbmRange"] = tinygltf::Value(double(lightmaps.range[size_t(images[0])]));
+      tinygltf::Value::Array ratios, sky, suns;
+      for (size_t k = 1; k < images.size(); ++k) ratios.push_back(tinygltf::Value(textureInfo(images[k])));
+      for (const Rgb& c : o->transferSky) sky.push_back(rgb(c));
+      for (const GlbOptions::Sun& sun : o->transferSuns) {
+        tinygltf::Value::Object v;
+        v["direction"] = rgb(sun.direction);
+        v["irradiance"] = rgb(sun.irradiance);
+        suns.push_back(tinygltf::Value(v));
+      }
+      tinygltf::Value::Object ext;
+      ext["bands"] = tinygltf::Value(o->transferBands);
+      ext["band0"] = tinygltf::Value(band0);
+      ext["ratios"] = tinygltf::Value(ratios);
+      ext["sky"] = tinygltf::Value(sky);
+      ext["suns"] = tinygltf::Value(suns);
+      g.extensions[kTransferExtension] = tinygltf::Value(ext);
     }
     model.materials.push_back(g);
   }
@@ -506,6 +549,8 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
     lightmaps.texture.push_back(addImage(model, image.name, image.png, sampler));
     lightmaps.range.push_back(image.rgbmRange);
   }
+  lightmaps.options = &options;
+  if (options.transferBands > 0) model.extensionsUsed.push_back(kTransferExtension);
   lightmaps.directionalMode = options.directionalMode;
   lightmaps.directional = options.directionalImages;
   if (!options.directionalMode.empty()) model.extensionsUsed.push_back(kDirectionalExtension);
