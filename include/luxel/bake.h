@@ -86,6 +86,9 @@ struct GlbOptions {
   // fallback lightmap was relit with, sky and suns apart so that a viewer can turn the suns.
   int transferBands = 0;
   std::vector<std::vector<int32_t>> transferImages;
+  // Per image as transferImages: the scale of each coefficient i >= 1's ratio on that page (the
+  // largest |T_i / T_0| there), so that 8 bits cover what the page holds.
+  std::vector<std::vector<float>> transferRatioScales;
   std::vector<Rgb> transferSky;  // transferBands^2 coefficients
   struct Sun {
     Vec3 direction{0.0f};  // the way its light travels

@@ -66,8 +66,8 @@ LightmapBake relitLightmaps(const TransferBake& transfer, const DistantLightSh& 
 // The glb of a transfer bake (docs/baking.md, "Transfer lightmaps in the glb"): the lightmaps of
 // `relit` (addLightmaps: the fallback for engines that ignore the extension), and per page the
 // transfer's band 0 as an RGBM page and its other coefficients relative to band 0, per channel,
-// q = T_i / T_0 stored as 0.5 + 0.5 q / sqrt(2l + 1) (no light >= 0 makes |q| larger), four
-// numbers a texel in RGBA PNGs, coefficient 1 channel r first; with the scene's sky (SH) and suns.
+// q = T_i / T_0 stored as 0.5 + 0.5 q / s_i with s_i the largest |q_i| on the page, four numbers a
+// texel in RGBA PNGs, coefficient 1 channel r first; with the scene's sky (SH) and suns.
 void addTransferLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const TransferBake& transfer,
                           const LightmapBake& relit);
 

@@ -155,6 +155,7 @@ void checkOptions(const Scene& scene, const GlbOptions& o) {
   }
   if (o.transferBands > 0) {
     if (o.transferBands < 2 || o.transferBands > 4 || o.transferImages.size() != o.images.size() ||
+        o.transferRatioScales.size() != o.images.size() ||
         o.transferSky.size() != size_t(o.transferBands * o.transferBands))
       throw Error(fmt::format("glb: a {}-band transfer with {} image lists for {} images and {} sky coefficients",
                               o.transferBands, o.transferImages.size(), o.images.size(), o.transferSky.size()));
@@ -383,6 +384,9 @@ int lightmapMaterial(tinygltf::Model& model, LightmapTextures& lightmaps, uint32
       ext["bands"] = tinygltf::Value(o->transferBands);
       ext["band0"] = tinygltf::Value(band0);
       ext["ratios"] = tinygltf::Value(ratios);
+      tinygltf::Value::Array scales;
+      for (float v : o->transferRatioScales[size_t(page)]) scales.push_back(tinygltf::Value(double(v)));
+      ext["ratioScale"] = tinygltf::Value(scales);
       ext["sky"] = tinygltf::Value(sky);
       ext["suns"] = tinygltf::Value(suns);
       g.extensions[kTransferExtension] = tinygltf::Value(ext);

@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 #include <stb_image_write.h>
 
-#include "core/spherical_harmonics.h"
 #include "luxel/error.h"
 #include "luxel/transfer_lightmap.h"
 
@@ -18,9 +17,27 @@ void appendBytes(void* context, void* data, int size) {
   out->insert(out->end(), p, p + size);
 }
 
+float ratio(const TransferBake& t, size_t page, size_t i, int coefficient, int channel) {
+  const float t0 = t.planes[0][page][i][channel];
+  return t0 > 0.0f ? t.planes[size_t(coefficient)][page][i][channel] / t0 : 0.0f;
+}
+
+// Per coefficient i >= 1: the largest |T_i / T_0| on the page (1e-6 at least), its 8 bits' range.
+std::vector<float> ratioScales(const TransferBake& t, size_t page) {
+  const int count = int(t.planes.size());
+  std::vector<float> scale(size_t(count - 1), 1e-6f);
+  const auto& state = t.texels.state[page];
+  for (size_t i = 0; i < state.size(); ++i) {
+    if (state[i] == LightmapBake::Empty) continue;
+    for (int c = 1; c < count; ++c)
+      for (int ch = 0; ch < 3; ++ch) scale[size_t(c - 1)] = std::max(scale[size_t(c - 1)], std::abs(ratio(t, page, i, c, ch)));
+  }
+  return scale;
+}
+
 // Texture `k` of page `page`: numbers 4k .. 4k + 3 of the texel's ratios (coefficient 1 .. count-1,
-// channel fastest), row 0 at the top.
-std::vector<uint8_t> ratioPng(const TransferBake& t, size_t page, int k) {
+// channel fastest), each over its coefficient's scale, row 0 at the top.
+std::vector<uint8_t> ratioPng(const TransferBake& t, size_t page, int k, const std::vector<float>& scale) {
   const int s = t.texels.pageSize;
   const int count = int(t.planes.size());
   const int numbers = 3 * (count - 1);
@@ -29,14 +46,12 @@ std::vector<uint8_t> ratioPng(const TransferBake& t, size_t page, int k) {
     for (int x = 0; x < s; ++x) {
       const size_t i = size_t(y) * size_t(s) + size_t(x);
       const size_t row = size_t(s - 1 - y);
-      const Rgb t0 = t.planes[0][page][i];
       for (int slot = 0; slot < 4; ++slot) {
         const int v = 4 * k + slot;
         if (v >= numbers) break;
         const int coefficient = 1 + v / 3, channel = v % 3;
-        const float bound = std::sqrt(float(2 * shBand(coefficient) + 1));
-        const float q = t0[channel] > 0.0f ? t.planes[size_t(coefficient)][page][i][channel] / t0[channel] : 0.0f;
-        const float packed = std::clamp(0.5f + 0.5f * q / bound, 0.0f, 1.0f);
+        const float q = ratio(t, page, i, coefficient, channel);
+        const float packed = std::clamp(0.5f + 0.5f * q / scale[size_t(coefficient - 1)], 0.0f, 1.0f);
         rgba[(row * size_t(s) + size_t(x)) * 4 + size_t(slot)] = uint8_t(std::lround(packed * 255.0f));
       }
     }
@@ -56,6 +71,7 @@ void addTransferLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas
   const int ratioTextures = (3 * (count - 1) + 3) / 4;
   o.transferBands = transfer.bands;
   o.transferImages.assign(o.images.size(), {});
+  o.transferRatioScales.assign(o.images.size(), {});
   const size_t pages = transfer.planes.empty() ? 0 : transfer.planes[0].size();
   for (size_t img = first, end = o.images.size(); img < end; ++img) {
     // The pages addLightmaps wrote are named lightmapN after their page.
@@ -71,16 +87,19 @@ void addTransferLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas
     g0.png = encodeRgbmPng(band0, g0.rgbmRange);
     o.transferImages[img].push_back(int32_t(o.images.size()));
     o.images.push_back(std::move(g0));
+    const std::vector<float> scale = ratioScales(transfer, page);
+    o.transferRatioScales[img] = scale;
     for (int k = 0; k < ratioTextures; ++k) {
       GlbImage g;
       g.name = fmt::format("lightmap{}_transfer_ratio{}", page, k);
       g.clamped = true;
-      g.png = ratioPng(transfer, page, k);
+      g.png = ratioPng(transfer, page, k, scale);
       o.transferImages[img].push_back(int32_t(o.images.size()));
       o.images.push_back(std::move(g));
     }
   }
   o.transferImages.resize(o.images.size());
+  o.transferRatioScales.resize(o.images.size());
   if (!o.directionalMode.empty()) o.directionalImages.resize(o.images.size());
   // The light the fallback was relit with: skies as SH, suns as directions (a viewer turns them).
   Scene skies;

@@ -610,4 +610,41 @@ TEST(Bake, NormalMapsAreExportedAsData) {
   EXPECT_EQ(report["issues"]["numWarnings"], 0) << report["issues"].dump(2);
 }
 
+// Transfer bakes (luxel/transfer_lightmap.h): the glb carries LUXEL_lightmap_transfer (used, not
+// required) with its textures, scales, sky and suns, beside the relit lightmap, and validates.
+TEST(BakeCli, TransferGlbCarriesItsExtensionAndValidates) {
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, {"bake", "cornell", "-o", "t.glb", "--lightmaps", "--transfer", "4", "--sky", "1", "--sun",
+                         "0.3,-1,0.2", "--elements", "2000", "-q"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const tinygltf::Model m = loadGlb(dir / "t.glb");
+  EXPECT_NE(std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), "LUXEL_lightmap_transfer"), m.extensionsUsed.end());
+  EXPECT_TRUE(m.extensionsRequired.empty());
+  const auto& floor = primitiveOf(m, "floor");
+  const auto& material = m.materials.at(size_t(floor.material));
+  ASSERT_TRUE(material.extensions.count("LUXEL_lightmap_transfer"));
+  const auto& ext = material.extensions.at("LUXEL_lightmap_transfer");
+  EXPECT_EQ(ext.Get("bands").GetNumberAsInt(), 4);
+  EXPECT_EQ(ext.Get("ratios").ArrayLen(), 12u);      // 15 coefficients x 3 channels in fours
+  EXPECT_EQ(ext.Get("ratioScale").ArrayLen(), 15u);
+  EXPECT_EQ(ext.Get("sky").ArrayLen(), 16u);
+  ASSERT_EQ(ext.Get("suns").ArrayLen(), 1u);
+  EXPECT_GT(ext.Get("band0").Get("rgbmRange").GetNumberAsDouble(), 0.0);
+  for (size_t i = 0; i < 15; ++i) {
+    const double s = ext.Get("ratioScale").Get(int(i)).GetNumberAsDouble();
+    EXPECT_GT(s, 0.0);
+    EXPECT_LE(s, std::sqrt(2.0 * (i < 3 ? 1 : i < 8 ? 2 : 3) + 1.0) + 1e-3) << "coefficient " << i + 1;
+  }
+  r = luxel(dir, {"bake", "cornell", "-o", "u.glb", "--transfer", "4", "-q"});
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--lightmaps"), std::string::npos) << r.err;
+  if (std::system("node --version >/dev/null 2>&1") != 0 ||
+      !fs::exists(fs::path(LUXEL_GLTF_VALIDATOR) / "node_modules" / "gltf-validator"))
+    GTEST_SKIP() << "the glTF validator is not installed";
+  const nlohmann::json report = validate(dir / "t.glb");
+  ASSERT_TRUE(report.is_object());
+  EXPECT_EQ(report["issues"]["numErrors"], 0) << report["issues"].dump(2);
+  EXPECT_EQ(report["issues"]["numWarnings"], 0) << report["issues"].dump(2);
+}
+
 }  // namespace

@@ -23,7 +23,8 @@ window.addEventListener('error', (e) => { asyncError ??= e.error ?? e.message; }
 // lightmap read through TEXCOORD_0 instead of TEXCOORD_1), 'flip-v' (TEXCOORD_1's v flipped, as
 // with an image loaded flipped); or, for information, 'standard': the recipe's decoded lightmap on
 // the MeshStandardMaterial GLTFLoader made.
-window.luxelThree = async ({ glb, recipe, variant = 'recipe', size = 256 }) => {
+// suns: for a transfer bake, turn its suns before rendering (the recipe's gltf.userData.luxelRelight).
+window.luxelThree = async ({ glb, recipe, variant = 'recipe', size = 256, suns = null }) => {
   const renderer = new THREE.WebGLRenderer({ antialias: false });
   try {
     asyncError = null;
@@ -49,6 +50,10 @@ window.luxelThree = async ({ glb, recipe, variant = 'recipe', size = 256 }) => {
       await sleep(20);
     }
 
+    if (suns) {
+      if (!gltf.userData.luxelRelight) throw new Error('the recipe set no gltf.userData.luxelRelight to turn the suns with');
+      gltf.userData.luxelRelight(suns);
+    }
     if (variant === 'no-lightmap') {
       for (const o of lightmapped) { o.material.lightMap = null; o.material.needsUpdate = true; }
     } else if (variant === 'uv0') {

@@ -193,6 +193,83 @@ gltf.scene.traverse((o) => {
 });
 }
 
+// "Transfer lightmaps in the glb": the transfer relit in the shader from the sky's SH and the suns.
+function showTransferLightmaps(gltf, renderer) {
+// Transfer lightmaps: material.userData.gltfExtensions.LUXEL_lightmap_transfer (docs/baking.md).
+const shBasis = (x, y, z) => [0.282095, 0.488603 * y, 0.488603 * z, 0.488603 * x,
+  1.092548 * x * y, 1.092548 * y * z, 0.315392 * (3 * z * z - 1), 1.092548 * x * z, 0.546274 * (x * x - y * y),
+  0.590044 * y * (3 * x * x - y * y), 2.890611 * x * y * z, 0.457046 * y * (5 * z * z - 1),
+  0.373176 * z * (5 * z * z - 3), 0.457046 * x * (5 * z * z - 1), 1.445306 * z * (x * x - y * y),
+  0.590044 * x * (x * x - 3 * y * y)];
+// The light's SH: the sky's, plus each sun's irradiance along where it comes from.
+function transferLight(ext, suns) {
+  const light = ext.sky.map((c) => new THREE.Vector3(...c));
+  for (const sun of suns) {
+    const d = new THREE.Vector3(...sun.direction).normalize().negate(), y = shBasis(d.x, d.y, d.z);
+    light.forEach((l, i) => l.add(new THREE.Vector3(...sun.irradiance).multiplyScalar(y[i])));
+  }
+  return light;
+}
+function decodeRGBM(tex, range) {  // as in the plain recipe
+  const target = new THREE.WebGLRenderTarget(tex.image.width, tex.image.height,
+                                             { type: THREE.HalfFloatType, depthBuffer: false });
+  const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), new THREE.ShaderMaterial({
+    uniforms: { rgbm: { value: tex }, range: { value: range } },
+    vertexShader: 'varying vec2 vUv; void main() { vUv = uv; gl_Position = vec4(position.xy, 0.0, 1.0); }',
+    fragmentShader: 'uniform sampler2D rgbm; uniform float range; varying vec2 vUv;\n' +
+      'void main() { vec4 c = texture2D(rgbm, vUv); gl_FragColor = vec4(c.rgb * c.a * range, 1.0); }',
+  }));
+  quad.frustumCulled = false;
+  const previous = renderer.getRenderTarget();
+  renderer.setRenderTarget(target);
+  renderer.render(quad, new THREE.Camera());
+  renderer.setRenderTarget(previous);
+  quad.geometry.dispose();
+  quad.material.dispose();
+  target.texture.channel = 1;  // TEXCOORD_1
+  return target.texture;
+}
+const lights = [];  // every material's light uniform, for luxelRelight
+gltf.userData.luxelRelight = (suns) => lights.forEach(({ ext, uniform }) => { uniform.value = transferLight(ext, suns); });
+const lambert = new Map();
+gltf.scene.traverse((o) => {
+  const ext = o.isMesh && o.material.userData.gltfExtensions?.LUXEL_lightmap_transfer;
+  if (!ext) return;
+  const band0 = gltf.parser.getDependency('texture', ext.band0.index).then((t) => decodeRGBM(t, ext.band0.rgbmRange));
+  const ratios = ext.ratios.map((r) => gltf.parser.getDependency('texture', r.index));
+  Promise.all([band0, ...ratios]).then(([lightMap, ...ratio]) => {
+    const m = o.material;
+    if (!lambert.has(m)) {
+      const n = ext.bands * ext.bands, uniform = { value: transferLight(ext, ext.suns) };
+      lights.push({ ext, uniform });
+      const l = new THREE.MeshLambertMaterial({ name: m.name, color: m.color, map: m.map, side: m.side,
+        emissive: m.emissive, emissiveMap: m.emissiveMap, emissiveIntensity: m.emissiveIntensity,
+        lightMap, lightMapIntensity: 1 });
+      l.onBeforeCompile = (shader) => {
+        shader.uniforms.luxelLight = uniform;
+        shader.uniforms.luxelScale = { value: ext.ratioScale };
+        ratio.forEach((t, i) => { shader.uniforms[`luxelRatio${i}`] = { value: t }; });
+        const unpack = ratio.map((t, k) => `  { vec4 r = texture2D(luxelRatio${k}, vLightMapUv);` +
+          [0, 1, 2, 3].map((c) => (4 * k + c < 3 * (n - 1) ? ` q[${4 * k + c}] = r[${c}];` : '')).join('') + ' }').join('\n');
+        shader.fragmentShader = shader.fragmentShader
+          .replace('#include <common>', `#include <common>\nuniform vec3 luxelLight[${n}];\n` +
+            `uniform float luxelScale[${n - 1}];\n` +
+            ratio.map((t, i) => `uniform sampler2D luxelRatio${i};`).join('\n'))
+          .replace('void main() {', `vec3 luxelTransfer(vec3 t0) {\n  float q[${3 * (n - 1)}];\n${unpack}\n` +
+            `  vec3 sum = luxelLight[0];\n  for (int i = 1; i < ${n}; ++i) {\n` +
+            '    sum += (2.0 * vec3(q[3 * i - 3], q[3 * i - 2], q[3 * i - 1]) - 1.0) * luxelScale[i - 1] * luxelLight[i];\n' +
+            '  }\n  return max(t0 * sum, vec3(0.0));\n}\nvoid main() {')
+          .replace('#include <lights_fragment_maps>', THREE.ShaderChunk.lights_fragment_maps.replace(
+            'irradiance += lightMapIrradiance;', 'irradiance += luxelTransfer(lightMapIrradiance);'));
+      };
+      l.customProgramCacheKey = () => `luxel-transfer-${ext.bands}`;
+      lambert.set(m, l);
+    }
+    o.material = lambert.get(m);
+  });
+});
+}
+
 // ---- the viewer ----------------------------------------------------------------------------------
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 const status = $('luxel-status');
@@ -290,8 +367,10 @@ async function main() {
   const lightmapped = [];
   scene.traverse((o) => o.isMesh && o.material.userData.luxel && lightmapped.push(o));
   if (lightmapped.length) {
-    const directional = lightmapped.some((o) => o.material.userData.gltfExtensions?.LUXEL_lightmap_directional);
-    (directional ? showDirectionalLightmaps : showLightmaps)(gltf, renderer);
+    const has = (name) => lightmapped.some((o) => o.material.userData.gltfExtensions?.[name]);
+    if (has('LUXEL_lightmap_transfer')) showTransferLightmaps(gltf, renderer);
+    else if (has('LUXEL_lightmap_directional')) showDirectionalLightmaps(gltf, renderer);
+    else showLightmaps(gltf, renderer);
     await waitForLightmaps(lightmapped);
   }
   viewer.shows = [lightmapped.length && 'lightmaps', baked.vertexColors && `vertex colours (${baked.vertexColors})`]
