@@ -20,7 +20,7 @@ namespace luxel {
 struct DistantLightSh {
   int bands = 0;
   std::vector<Rgb> coefficients;
-  std::vector<std::string> warnings;  // lights that are not distant (point, spot) and were left out
+  std::vector<std::string> warnings;  // light that is not distant (point, spot, emitting surfaces), left out
 };
 // The scene's suns (each its irradiance along its direction: its disc is far smaller than what
 // four bands resolve) and skies (uniform and CIE overcast, projected by quadrature over 20,000

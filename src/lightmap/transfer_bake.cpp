@@ -114,7 +114,10 @@ struct TransferShooter {
     cache.assign(np, {});
     constexpr size_t kBatch = 8;
     double left = first;
-    while (left > threshold * first) {
+    // Every shot takes its patch's unshot transfer out and sends back at most rho < 1 of it, so the
+    // loop ends; the cap guards against rounding holding it just above the threshold.
+    const uint64_t maxShots = 200 * uint64_t(np) + 1000;
+    while (left > threshold * first && shots < maxShots) {
       std::vector<uint32_t> order(np);
       for (uint32_t p = 0; p < np; ++p) order[p] = p;
       const size_t batch = std::min(kBatch, np);
@@ -200,6 +203,12 @@ DistantLightSh distantLightSh(const Scene& scene, int bands) {
       out.warnings.push_back(fmt::format("light '{}' is not distant: a transfer bake relights suns and skies only", l.name));
     }
   }
+  for (const Mesh& mesh : scene.meshes)
+    if (!mesh.faces.empty() && scene.materials[mesh.material].isEmissive()) {
+      out.warnings.push_back(fmt::format("material '{}' emits: a transfer bake relights suns and skies only, not "
+                                         "emitting surfaces", scene.materials[mesh.material].name));
+      break;
+    }
   if (anySky) {
     // A Fibonacci lattice of 20,000 directions, each 4 pi / N of solid angle.
     constexpr int n = 20000;

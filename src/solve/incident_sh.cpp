@@ -73,7 +73,9 @@ void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb
                          4});
       } else if (i + j < k) {
         // Barycentric sub-triangles: (i, j) upright, and the inverted one beside it when it fits.
-        auto at = [&](int a, int b) { return poly.v[0] + (float(a) * step) * (poly.v[1] - poly.v[0]) + (float(b) * step) * (poly.v[2] - poly.v[0]); };
+        auto at = [&](int along1, int along2) {
+          return poly.v[0] + (float(along1) * step) * (poly.v[1] - poly.v[0]) + (float(along2) * step) * (poly.v[2] - poly.v[0]);
+        };
         addPiece(Polygon{{at(i, j), at(i + 1, j), at(i, j + 1), at(i, j + 1)}, 3});
         if (i + j + 1 < k) addPiece(Polygon{{at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), at(i, j + 1)}, 3});
       }
