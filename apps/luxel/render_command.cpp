@@ -1,5 +1,6 @@
 #include "render_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -157,18 +158,19 @@ int runRender(const RenderArgs& a) {
     LightmapRecipe recipe;
     recipe.texelsPerMetre = a.solve.elementSize > 0.0f ? 1.0f / a.solve.elementSize : 0.0f;
     recipe.texelBudget = size_t(a.solve.elements);
+    if (a.sunDirection && std::none_of(scene.lights.begin(), scene.lights.end(),
+                                       [](const Light& l) { return l.type == Light::Type::Directional; }))
+      throw Error(fmt::format("scene '{}' has no sun for --sun-direction to turn (add one with --sun)", sceneName));
     const AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
     const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
     TransferBakeOptions to;
     to.bands = a.transferBands;
     to.texels.dilation = ao.gutter;  // as the lightmap recipe: the gutter filled
     const TransferBake transfer = bakeTransfer(scene, atlas, to, bar.callback());
-    if (a.sunDirection) {
+    if (a.sunDirection) {  // turned after the bake: the transfer does not depend on the light
       const Vec3 d = glm::normalize(parseVec3(*a.sunDirection, "sun-direction"));
-      bool anySun = false;
       for (Light& l : scene.lights)
-        if (l.type == Light::Type::Directional) l.direction = d, anySun = true;
-      if (!anySun) throw Error(fmt::format("scene '{}' has no sun for --sun-direction to turn (add one with --sun)", sceneName));
+        if (l.type == Light::Type::Directional) l.direction = d;
     }
     const auto projectStart = std::chrono::steady_clock::now();
     const DistantLightSh light = distantLightSh(scene, a.transferBands);

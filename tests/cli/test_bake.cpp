@@ -647,4 +647,28 @@ TEST(BakeCli, TransferGlbCarriesItsExtensionAndValidates) {
   EXPECT_EQ(report["issues"]["numWarnings"], 0) << report["issues"].dump(2);
 }
 
+// `luxel render --mode lightmap --transfer N --sun-direction D` relights a transfer bake; what it
+// cannot do fails before any work, naming the option.
+TEST(RenderCli, TransferRelightsAndRefusesWhatItCannot) {
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, {"render", "cornell", "--mode", "lightmap", "--transfer", "2", "--sun", "0.3,-1,0.2",
+                         "--sun-direction", "-0.3,-1,0.2", "--elements", "1500", "--size", "32x32", "-o", "t.exr"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "t.exr"));
+  EXPECT_NE(r.out.find("relit in"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("emits"), std::string::npos) << "the box's lamp is not distant light: " << r.err;
+  const std::vector<std::pair<std::vector<std::string>, std::string>> refused = {
+      {{"render", "cornell", "--transfer", "2", "-o", "x.png", "-q"}, "--mode lightmap"},
+      {{"render", "cornell", "--mode", "lightmap", "--sun-direction", "0,-1,0", "-o", "x.png", "-q"}, "--transfer"},
+      {{"render", "cornell", "--mode", "lightmap", "--transfer", "2", "--sun-direction", "0,-1,0", "-o", "x.png", "-q"}, "no sun"},
+      {{"render", "cornell", "--mode", "lightmap", "--transfer", "2", "--directional", "sh-l1", "-o", "x.png", "-q"}, "exclude"},
+  };
+  for (const auto& [args, says] : refused) {
+    r = luxel(dir, args);
+    EXPECT_NE(r.code, 0) << args.back();
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+  }
+}
+
 }  // namespace
