@@ -20,6 +20,7 @@
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
 #include "session/solver_host.h"
+#include "trace/hemisphere_rays.h"
 #include "trace/ray_tracer.h"
 
 namespace luxel {
@@ -36,7 +37,7 @@ std::vector<uint8_t> validity(const Scene& scene, const SurfaceSet& set, int ray
   polys.reserve(set.faces.size());
   for (const SurfaceFace& f : set.faces) polys.push_back(Polygon{f.corners, f.triangle ? 3 : 4});
   RayTracer tracer(polys);
-  const int side = std::max(1, int(std::sqrt(double(std::max(rays, 1)))));
+  const int side = strataSide(rays);
   const float offset = rayOffsetFor(set.sceneExtent);
   std::vector<uint8_t> valid(set.elements.size(), 1);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, set.elements.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
@@ -45,18 +46,10 @@ std::vector<uint8_t> validity(const Scene& scene, const SurfaceSet& set, int ray
     for (size_t ei = r.begin(); ei < r.end(); ++ei) {
       const Element& e = set.elements[ei];
       const Vec3 n = e.normal;
-      const Vec3 a = std::abs(n.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
-      const Vec3 tu = glm::normalize(glm::cross(a, n)), tv = glm::cross(n, tu);
-      uint32_t h = uint32_t(ei) * 2654435761u + 12345u;
-      auto rnd = [&] {
-        h ^= h << 13, h ^= h >> 17, h ^= h << 5;
-        return float(h & 0xFFFFFF) / float(0x1000000);
-      };
+      HemisphereStrata strata(n, side, ei, 12345u);
       for (int j = 0; j < side; ++j)
         for (int i = 0; i < side; ++i) {
-          const float u1 = (float(i) + rnd()) / float(side), u2 = (float(j) + rnd()) / float(side);
-          const float rr = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
-          const Vec3 d = rr * std::cos(phi) * tu + rr * std::sin(phi) * tv + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
+          const Vec3 d = strata.cosine(i, j);
           const size_t k = size_t(j * side + i);
           dirs[k] = d;
           RTCRayHit& rh = hits[k];

@@ -17,6 +17,7 @@
 #include "core/spherical_harmonics.h"
 #include "lightmap/bake_steps.h"
 #include "luxel/error.h"
+#include "trace/hemisphere_rays.h"
 #include "trace/ray_tracer.h"
 #include "transport/cpu_transport.h"
 #include "transport/form_factor_options.h"
@@ -43,7 +44,7 @@ void directTransfer(const SurfaceSet& set, int rays, int count, std::vector<Rgb>
   polys.reserve(set.faces.size());
   for (const SurfaceFace& f : set.faces) polys.push_back(Polygon{f.corners, f.triangle ? 3 : 4});
   RayTracer tracer(polys);
-  const int side = std::max(1, int(std::sqrt(double(std::max(rays, 1)))));
+  const int side = strataSide(rays);
   const float offset = rayOffsetFor(set.sceneExtent);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, set.elements.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RTCRay> batch(size_t(side * side));
@@ -51,18 +52,10 @@ void directTransfer(const SurfaceSet& set, int rays, int count, std::vector<Rgb>
     for (size_t ei = r.begin(); ei < r.end(); ++ei) {
       const Element& e = set.elements[ei];
       const Vec3 n = e.normal;
-      const Vec3 a = std::abs(n.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
-      const Vec3 tu = glm::normalize(glm::cross(a, n)), tv = glm::cross(n, tu);
-      uint32_t h = uint32_t(ei) * 2654435761u + 977u;
-      auto rnd = [&] {
-        h ^= h << 13, h ^= h >> 17, h ^= h << 5;
-        return float(h & 0xFFFFFF) / float(0x1000000);
-      };
+      HemisphereStrata strata(n, side, ei, 977u);
       for (int j = 0; j < side; ++j)
         for (int i = 0; i < side; ++i) {
-          const float u1 = (float(i) + rnd()) / float(side), u2 = (float(j) + rnd()) / float(side);
-          const float rr = std::sqrt(u1), phi = 2.0f * kPi * u2;
-          const Vec3 d = rr * std::cos(phi) * tu + rr * std::sin(phi) * tv + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
+          const Vec3 d = strata.cosine(i, j);
           const size_t k = size_t(j * side + i);
           dirs[k] = d;
           batch[k] = makeRay(e.centroid + offset * n, d, 0.0f, std::numeric_limits<float>::infinity());

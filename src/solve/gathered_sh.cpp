@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/spherical_harmonics.h"
+#include "trace/hemisphere_rays.h"
 #include "trace/ray_tracer.h"
 
 namespace luxel {
@@ -27,26 +28,17 @@ std::vector<Rgb> gatherIncidentSh(const SurfaceSet& surfaces, const std::vector<
       for (int k = 0; k < polygons[e].count; ++k) polygons[e].v[size_t(k)] += 0.5f * offset * el.normal;
   }
   RayTracer tracer(polygons);
-  const int side = std::max(1, int(std::sqrt(double(std::max(rays, 1)))));
+  const int side = strataSide(rays);
   const float perRay = 2.0f * std::numbers::pi_v<float> / float(side * side);  // uniform: 2 pi / N
   tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RTCRayHit> hits(size_t(side * side));
     for (size_t ei = r.begin(); ei < r.end(); ++ei) {
       const Element& e = surfaces.elements[ei];
       const Vec3 n = e.normal;
-      const Vec3 a = std::abs(n.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
-      const Vec3 tu = glm::normalize(glm::cross(a, n)), tv = glm::cross(n, tu);
-      uint32_t h = uint32_t(ei) * 2654435761u + 4099u;
-      auto rnd = [&] {
-        h ^= h << 13, h ^= h >> 17, h ^= h << 5;
-        return float(h & 0xFFFFFF) / float(0x1000000);
-      };
+      HemisphereStrata strata(n, side, ei, 4099u);
       for (int j = 0; j < side; ++j)
         for (int i = 0; i < side; ++i) {
-          // Uniform over the hemisphere: cos theta uniform in [0, 1].
-          const float z = (float(i) + rnd()) / float(side), phi = 2.0f * std::numbers::pi_v<float> * (float(j) + rnd()) / float(side);
-          const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
-          const Vec3 d = s * std::cos(phi) * tu + s * std::sin(phi) * tv + z * n;
+          const Vec3 d = strata.uniform(i, j);
           RTCRayHit& rh = hits[size_t(j * side + i)];
           rh.ray = makeRay(e.centroid + offset * n, d, 0.0f, std::numeric_limits<float>::infinity());
           rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;

@@ -21,21 +21,19 @@
 //    MeshStandardMaterial.
 //
 // Exit status: 0 pass, 1 fail, 77 skipped (Chromium or node_modules missing; the reason is printed).
-import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import zlib from 'node:zlib';
 
 import { renderInChromium } from './browser.mjs';
+import { luxelRunner, parseArguments, reporter, requireBrowser } from './check_common.mjs';
 import { writeDebugPng } from './debug_png.mjs';
 
-const SKIP = 77;
 const here = path.dirname(fileURLToPath(import.meta.url));
 const started = Date.now();
-const log = (s) => console.log(`three-check: ${s}`);
-const fail = (s) => { console.error(`three-check: FAIL: ${s}`); process.exit(1); };
-const skip = (s) => { console.log(`three-check: SKIP: ${s}`); process.exit(SKIP); };
+const report = reporter('three-check');
+const { log, fail } = report;
 
 // ---- arguments ------------------------------------------------------------------------------------
 const opts = {
@@ -44,23 +42,8 @@ const opts = {
   docs: path.resolve(here, '../../docs/baking.md'),
   recipe: '',  // a .js file to run instead of the docs' recipe (to try a change before documenting it)
 };
-for (let i = 2; i < process.argv.length; i += 2) {
-  const key = process.argv[i].replace(/^--/, ''), value = process.argv[i + 1];
-  if (!(key in opts) || value === undefined) {
-    console.error(`usage: node check.mjs --luxel PATH --out DIR [--elements N] [--size N] [--tolerance F] [--pixel-tolerance F] [--chromium PATH] [--docs FILE] [--recipe FILE.js]`);
-    process.exit(2);
-  }
-  opts[key] = typeof opts[key] === 'number' ? Number(value) : value;
-}
-if (!opts.luxel || !opts.out) fail('--luxel and --out are required');
-if (!existsSync(opts.luxel)) fail(`${opts.luxel}: no luxel executable (build the luxel-cli target)`);
-
-// ---- what the check needs -------------------------------------------------------------------------
-if (!existsSync(opts.chromium))
-  skip(`${opts.chromium} not found: install Debian's chromium (scripts/install-deps.sh) or set LUXEL_CHROMIUM`);
-for (const pkg of ['three', 'playwright-core'])
-  if (!existsSync(path.join(here, 'node_modules', pkg, 'package.json')))
-    skip(`${path.join(here, 'node_modules', pkg)} missing: run npm ci in tools/three-check (scripts/install-deps.sh does)`);
+parseArguments(opts, 'node check.mjs --luxel PATH --out DIR [--elements N] [--size N] [--tolerance F] [--pixel-tolerance F] [--chromium PATH] [--docs FILE] [--recipe FILE.js]', report);
+requireBrowser(opts.chromium, here, report);
 const { EXRLoader } = await import('three/addons/loaders/EXRLoader.js');
 const { EXRExporter, ZIP_COMPRESSION } = await import('three/addons/exporters/EXRExporter.js');
 const THREE = await import('three');
@@ -76,12 +59,7 @@ mkdirSync(opts.out, { recursive: true });
 const glb = path.join(opts.out, 'cornell.glb'), exr = path.join(opts.out, 'luxel.exr');
 rmSync(glb, { force: true });
 rmSync(exr, { force: true });
-function luxel(args) {
-  const t = Date.now();
-  const r = spawnSync(opts.luxel, [...args, '-q'], { encoding: 'utf8' });
-  if (r.status !== 0) fail(`luxel ${args.join(' ')}: exit ${r.status}\n${r.stderr}${r.error ?? ''}`);
-  log(`luxel ${args.join(' ')} (${((Date.now() - t) / 1000).toFixed(2)} s)`);
-}
+const luxel = luxelRunner(opts.luxel, report);
 const elements = String(opts.elements), size = opts.size;
 luxel(['bake', 'cornell', '-o', glb, '--lightmaps', '--elements', elements]);
 luxel(['render', 'cornell', '--mode', 'lightmap', '--elements', elements, '--size', `${size}x${size}`, '--spp', '16', '-o', exr]);

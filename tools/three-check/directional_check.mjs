@@ -18,41 +18,26 @@
 //    stripe by more than that (the stripes differ by a factor of 2 to 4: no direction, no stripes).
 //
 // Exit status: 0 pass, 1 fail, 77 skipped (Chromium or node_modules missing; the reason is printed).
-import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { renderInChromium } from './browser.mjs';
+import { luxelRunner, parseArguments, regionMean, relative, reporter, requireBrowser } from './check_common.mjs';
 import { writePng } from './debug_png.mjs';
 
-const SKIP = 77;
 const here = path.dirname(fileURLToPath(import.meta.url));
 const started = Date.now();
-const log = (s) => console.log(`directional-check: ${s}`);
-const fail = (s) => { console.error(`directional-check: FAIL: ${s}`); process.exit(1); };
-const skip = (s) => { console.log(`directional-check: SKIP: ${s}`); process.exit(SKIP); };
+const report = reporter('directional-check');
+const { log, fail } = report;
 
 const opts = {
   luxel: '', out: '', mode: 'sh-l1', elements: 1600, size: 256, tolerance: 0.02,
   chromium: process.env.LUXEL_CHROMIUM || '/usr/bin/chromium',
   docs: path.resolve(here, '../../docs/baking.md'),
 };
-for (let i = 2; i < process.argv.length; i += 2) {
-  const key = process.argv[i].replace(/^--/, ''), value = process.argv[i + 1];
-  if (!(key in opts) || value === undefined) {
-    console.error('usage: node directional_check.mjs --luxel PATH --out DIR [--mode M] [--elements N] [--size N] [--tolerance F] [--chromium PATH] [--docs FILE]');
-    process.exit(2);
-  }
-  opts[key] = typeof opts[key] === 'number' ? Number(value) : value;
-}
-if (!opts.luxel || !opts.out) fail('--luxel and --out are required');
-if (!existsSync(opts.luxel)) fail(`${opts.luxel}: no luxel executable (build the luxel-cli target)`);
-if (!existsSync(opts.chromium))
-  skip(`${opts.chromium} not found: install Debian's chromium (scripts/install-deps.sh) or set LUXEL_CHROMIUM`);
-for (const pkg of ['three', 'playwright-core'])
-  if (!existsSync(path.join(here, 'node_modules', pkg, 'package.json')))
-    skip(`${path.join(here, 'node_modules', pkg)} missing: run npm ci in tools/three-check (scripts/install-deps.sh does)`);
+parseArguments(opts, 'node directional_check.mjs --luxel PATH --out DIR [--mode M] [--elements N] [--size N] [--tolerance F] [--chromium PATH] [--docs FILE]', report);
+requireBrowser(opts.chromium, here, report);
 const { EXRLoader } = await import('three/addons/loaders/EXRLoader.js');
 const THREE = await import('three');
 
@@ -85,12 +70,7 @@ writeFileSync(path.join(opts.out, 'floor.json'), JSON.stringify({
 const scene = path.join(opts.out, 'floor.json'), glb = path.join(opts.out, 'floor.glb'), exr = path.join(opts.out, 'luxel.exr');
 rmSync(glb, { force: true });
 rmSync(exr, { force: true });
-function luxel(args) {
-  const t = Date.now();
-  const r = spawnSync(opts.luxel, [...args, '-q'], { encoding: 'utf8' });
-  if (r.status !== 0) fail(`luxel ${args.join(' ')}: exit ${r.status}\n${r.stderr}${r.error ?? ''}`);
-  log(`luxel ${args.join(' ')} (${((Date.now() - t) / 1000).toFixed(2)} s)`);
-}
+const luxel = luxelRunner(opts.luxel, report);
 const elements = String(opts.elements), size = opts.size;
 luxel(['bake', scene, '-o', glb, '--lightmaps', '--directional', opts.mode, '--elements', elements]);
 luxel(['render', scene, '--mode', 'lightmap', '--directional', opts.mode, '--elements', elements,
@@ -120,14 +100,7 @@ log(`three.js r${renders[0].three}, ${renders[0].material}, WebGL renderer: ${re
 const h = 5 * Math.tan(25 * Math.PI / 180);
 const column = (x) => Math.round((0.5 + x / (2 * h)) * size);
 const regions = [-2, -1, 0, 1].map((s) => [column(s + 0.25), Math.round(0.38 * size), column(s + 0.75), Math.round(0.62 * size)]);
-function mean(pixels, [x0, y0, x1, y1]) {
-  const s = [0, 0, 0];
-  for (let y = y0; y < y1; ++y)
-    for (let x = x0; x < x1; ++x)
-      for (let c = 0; c < 3; ++c) s[c] += pixels[((size - 1 - y) * size + x) * 4 + c];  // rows are bottom-up
-  return s.map((v) => v / ((x1 - x0) * (y1 - y0)));
-}
-const relative = (a, b) => Math.max(...a.map((v, c) => Math.abs(v - b[c]) / Math.max(Math.abs(b[c]), 1e-6)));
+const mean = (pixels, region) => regionMean(pixels, size, region);
 const pct = (v) => `${(v * 100).toFixed(2)}%`;
 let ok = true;
 const worst = (pixels) => Math.max(...regions.map((r) => relative(mean(pixels, r), mean(ref.data, r))));

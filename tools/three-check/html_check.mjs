@@ -27,20 +27,18 @@
 //    requested nothing but its own file, and kept its frame count going.
 //
 // Exit status: 0 pass, 1 fail, 77 skipped (Chromium or node_modules missing; the reason is printed).
-import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import zlib from 'node:zlib';
 
+import { luxelRunner, parseArguments, reporter, requireBrowser } from './check_common.mjs';
 import { writeDebugPng } from './debug_png.mjs';
 
-const SKIP = 77;
 const here = path.dirname(fileURLToPath(import.meta.url));
 const started = Date.now();
-const log = (s) => console.log(`html-check: ${s}`);
-const fail = (s) => { console.error(`html-check: FAIL: ${s}`); process.exit(1); };
-const skip = (s) => { console.log(`html-check: SKIP: ${s}`); process.exit(SKIP); };
+const report = reporter('html-check');
+const { log, fail } = report;
 
 // ---- arguments ------------------------------------------------------------------------------------
 const opts = {
@@ -48,21 +46,8 @@ const opts = {
   chromium: process.env.LUXEL_CHROMIUM || '/usr/bin/chromium',
   docs: path.resolve(here, '../../docs/baking.md'),
 };
-for (let i = 2; i < process.argv.length; i += 2) {
-  const key = process.argv[i].replace(/^--/, ''), value = process.argv[i + 1];
-  if (!(key in opts) || value === undefined) {
-    console.error('usage: node html_check.mjs --luxel PATH --out DIR [--elements N] [--size N] [--tolerance F] [--pixel-tolerance F] [--chromium PATH] [--docs FILE]');
-    process.exit(2);
-  }
-  opts[key] = typeof opts[key] === 'number' ? Number(value) : value;
-}
-if (!opts.luxel || !opts.out) fail('--luxel and --out are required');
-if (!existsSync(opts.luxel)) fail(`${opts.luxel}: no luxel executable (build the luxel-cli target)`);
-if (!existsSync(opts.chromium))
-  skip(`${opts.chromium} not found: install Debian's chromium (scripts/install-deps.sh) or set LUXEL_CHROMIUM`);
-for (const pkg of ['three', 'playwright-core'])
-  if (!existsSync(path.join(here, 'node_modules', pkg, 'package.json')))
-    skip(`${path.join(here, 'node_modules', pkg)} missing: run npm ci in tools/three-check (scripts/install-deps.sh does)`);
+parseArguments(opts, 'node html_check.mjs --luxel PATH --out DIR [--elements N] [--size N] [--tolerance F] [--pixel-tolerance F] [--chromium PATH] [--docs FILE]', report);
+requireBrowser(opts.chromium, here, report);
 const { chromium } = await import('playwright-core');
 const { EXRLoader } = await import('three/addons/loaders/EXRLoader.js');
 const THREE = await import('three');
@@ -70,12 +55,7 @@ const THREE = await import('three');
 // ---- 1. luxel: the bakes with their pages, and luxel's own view of each ---------------------------
 const size = opts.size, elements = String(opts.elements);
 mkdirSync(opts.out, { recursive: true });
-function luxel(args) {
-  const t = Date.now();
-  const r = spawnSync(opts.luxel, [...args, '-q'], { encoding: 'utf8' });
-  if (r.status !== 0) fail(`luxel ${args.join(' ')}: exit ${r.status}\n${r.stderr}${r.error ?? ''}`);
-  log(`luxel ${args.join(' ')} (${((Date.now() - t) / 1000).toFixed(2)} s)`);
-}
+const luxel = luxelRunner(opts.luxel, report);
 function readExr(file) {
   const b = readFileSync(file);
   const image = new EXRLoader().setDataType(THREE.FloatType).parse(b.buffer.slice(b.byteOffset, b.byteOffset + b.length));

@@ -18,40 +18,25 @@
 //    more (the sun has moved).
 //
 // Exit status: 0 pass, 1 fail, 77 skipped (Chromium or node_modules missing; the reason is printed).
-import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { renderInChromium } from './browser.mjs';
+import { luxelRunner, parseArguments, regionMean, relative, reporter, requireBrowser } from './check_common.mjs';
 
-const SKIP = 77;
 const here = path.dirname(fileURLToPath(import.meta.url));
 const started = Date.now();
-const log = (s) => console.log(`transfer-check: ${s}`);
-const fail = (s) => { console.error(`transfer-check: FAIL: ${s}`); process.exit(1); };
-const skip = (s) => { console.log(`transfer-check: SKIP: ${s}`); process.exit(SKIP); };
+const report = reporter('transfer-check');
+const { log, fail } = report;
 
 const opts = {
   luxel: '', out: '', bands: 3, elements: 3000, size: 256, tolerance: 0.02,
   chromium: process.env.LUXEL_CHROMIUM || '/usr/bin/chromium',
   docs: path.resolve(here, '../../docs/baking.md'),
 };
-for (let i = 2; i < process.argv.length; i += 2) {
-  const key = process.argv[i].replace(/^--/, ''), value = process.argv[i + 1];
-  if (!(key in opts) || value === undefined) {
-    console.error('usage: node transfer_check.mjs --luxel PATH --out DIR [--bands N] [--elements N] [--size N] [--tolerance F] [--chromium PATH] [--docs FILE]');
-    process.exit(2);
-  }
-  opts[key] = typeof opts[key] === 'number' ? Number(value) : value;
-}
-if (!opts.luxel || !opts.out) fail('--luxel and --out are required');
-if (!existsSync(opts.luxel)) fail(`${opts.luxel}: no luxel executable (build the luxel-cli target)`);
-if (!existsSync(opts.chromium))
-  skip(`${opts.chromium} not found: install Debian's chromium (scripts/install-deps.sh) or set LUXEL_CHROMIUM`);
-for (const pkg of ['three', 'playwright-core'])
-  if (!existsSync(path.join(here, 'node_modules', pkg, 'package.json')))
-    skip(`${path.join(here, 'node_modules', pkg)} missing: run npm ci in tools/three-check (scripts/install-deps.sh does)`);
+parseArguments(opts, 'node transfer_check.mjs --luxel PATH --out DIR [--bands N] [--elements N] [--size N] [--tolerance F] [--chromium PATH] [--docs FILE]', report);
+requireBrowser(opts.chromium, here, report);
 const { EXRLoader } = await import('three/addons/loaders/EXRLoader.js');
 const THREE = await import('three');
 
@@ -92,12 +77,7 @@ writeFileSync(path.join(opts.out, 'corner.json'), JSON.stringify({
 const scene = path.join(opts.out, 'corner.json'), glb = path.join(opts.out, 'corner.glb'), exr = path.join(opts.out, 'luxel.exr');
 rmSync(glb, { force: true });
 rmSync(exr, { force: true });
-function luxel(args) {
-  const t = Date.now();
-  const r = spawnSync(opts.luxel, [...args, '-q'], { encoding: 'utf8' });
-  if (r.status !== 0) fail(`luxel ${args.join(' ')}: exit ${r.status}\n${r.stderr}${r.error ?? ''}`);
-  log(`luxel ${args.join(' ')} (${((Date.now() - t) / 1000).toFixed(2)} s)`);
-}
+const luxel = luxelRunner(opts.luxel, report);
 const bands = String(opts.bands), elements = String(opts.elements), size = opts.size;
 luxel(['bake', scene, '-o', glb, '--lightmaps', '--transfer', bands, '--elements', elements]);
 luxel(['render', scene, '--mode', 'lightmap', '--transfer', bands, '--sun-direction', turnedSun.join(','),
@@ -130,14 +110,7 @@ const regions = {
   'block, front': [0.62, 0.55, 0.78, 0.68],
 };
 const box = ([x0, y0, x1, y1]) => [x0, y0, x1, y1].map((f) => Math.round(f * size));
-function mean(pixels, region) {
-  const [x0, y0, x1, y1] = box(region), s = [0, 0, 0];
-  for (let y = y0; y < y1; ++y)
-    for (let x = x0; x < x1; ++x)
-      for (let c = 0; c < 3; ++c) s[c] += pixels[((size - 1 - y) * size + x) * 4 + c];
-  return s.map((v) => v / ((x1 - x0) * (y1 - y0)));
-}
-const relative = (a, b) => Math.max(...a.map((v, c) => Math.abs(v - b[c]) / Math.max(Math.abs(b[c]), 1e-6)));
+const mean = (pixels, region) => regionMean(pixels, size, box(region));
 const pct = (v) => `${(v * 100).toFixed(2)}%`;
 let ok = true, fallbackWorst = 0;
 log(`region means (red channel), ${opts.bands} bands, the sun turned to ${turnedSun}; tolerance ${pct(opts.tolerance)}:`);

@@ -1,0 +1,57 @@
+// Stratified directions over an element's hemisphere, jittered deterministically per element: the
+// validity test of lightmap texels, the transfer bake's visibility and the gathered SH directions
+// all draw theirs here, so that the same element gets the same directions every run.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+#include "luxel/scene.h"
+
+namespace luxel {
+
+// `side` x `side` strata over the hemisphere about unit `n`: stratum (i, j) of one element. The
+// jitter is an xorshift stream seeded by the element's index and a salt (one per use).
+class HemisphereStrata {
+ public:
+  HemisphereStrata(Vec3 n, int side, size_t element, uint32_t salt) : n_(n), side_(side) {
+    const Vec3 a = std::abs(n.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+    t_ = glm::normalize(glm::cross(a, n));
+    b_ = glm::cross(n, t_);
+    state_ = uint32_t(element) * 2654435761u + salt;
+  }
+
+  // Cosine-weighted (pdf cos / pi): for irradiance, and for visibility as the cosine sees it.
+  Vec3 cosine(int i, int j) {
+    const auto [u1, u2] = jittered(i, j);
+    const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
+    return r * std::cos(phi) * t_ + r * std::sin(phi) * b_ + std::sqrt(std::max(0.0f, 1.0f - u1)) * n_;
+  }
+  // Uniform over the hemisphere (pdf 1 / 2 pi): cos theta uniform in [0, 1].
+  Vec3 uniform(int i, int j) {
+    const auto [z, u2] = jittered(i, j);
+    const float s = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * std::numbers::pi_v<float> * u2;
+    return s * std::cos(phi) * t_ + s * std::sin(phi) * b_ + z * n_;
+  }
+
+ private:
+  float next() {
+    state_ ^= state_ << 13, state_ ^= state_ >> 17, state_ ^= state_ << 5;
+    return float(state_ & 0xFFFFFF) / float(0x1000000);
+  }
+  std::pair<float, float> jittered(int i, int j) {
+    const float u1 = (float(i) + next()) / float(side_);
+    const float u2 = (float(j) + next()) / float(side_);
+    return {u1, u2};
+  }
+  Vec3 n_, t_, b_;
+  int side_;
+  uint32_t state_;
+};
+
+// The side of the square number of strata at most `rays` (at least 1).
+inline int strataSide(int rays) { return std::max(1, int(std::sqrt(double(std::max(rays, 1))))); }
+
+}  // namespace luxel
