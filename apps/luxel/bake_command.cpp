@@ -119,12 +119,9 @@ int runBake(const BakeArgs& a) {
     std::optional<TransferBake> transfer;
     BakedLightmaps baked;
     if (a.transferBands > 0) {
-      const AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
-      baked.atlas = buildLightmapAtlas(scene, ao);
-      TransferBakeOptions to;
-      to.bands = a.transferBands;
-      to.texels.dilation = ao.gutter;
-      transfer = bakeTransfer(scene, baked.atlas, to, bar.callback());
+      BakedTransfer t = bakeTransfer(scene, recipe, a.transferBands, bar.callback());
+      baked.atlas = std::move(t.atlas);
+      transfer = std::move(t.transfer);
       const DistantLightSh light = distantLightSh(scene, a.transferBands);
       baked.bake = relitLightmaps(*transfer, light);
       baked.bake.solution.stats.warnings = light.warnings;

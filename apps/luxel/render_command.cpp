@@ -161,12 +161,9 @@ int runRender(const RenderArgs& a) {
     if (a.sunDirection && std::none_of(scene.lights.begin(), scene.lights.end(),
                                        [](const Light& l) { return l.type == Light::Type::Directional; }))
       throw Error(fmt::format("scene '{}' has no sun for --sun-direction to turn (add one with --sun)", sceneName));
-    const AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
-    const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
-    TransferBakeOptions to;
-    to.bands = a.transferBands;
-    to.texels.dilation = ao.gutter;  // as the lightmap recipe: the gutter filled
-    const TransferBake transfer = bakeTransfer(scene, atlas, to, bar.callback());
+    const BakedTransfer baked = bakeTransfer(scene, recipe, a.transferBands, bar.callback());
+    const LightmapAtlas& atlas = baked.atlas;
+    const TransferBake& transfer = baked.transfer;
     if (a.sunDirection) {  // turned after the bake: the transfer does not depend on the light
       const Vec3 d = glm::normalize(parseVec3(*a.sunDirection, "sun-direction"));
       for (Light& l : scene.lights)

@@ -56,6 +56,16 @@ struct TransferBake {
 TransferBake bakeTransfer(const Scene& scene, const LightmapAtlas& atlas, const TransferBakeOptions& options = {},
                           const ProgressCallback& progress = {});
 
+// The recipe `luxel render --mode lightmap --transfer` and `luxel bake --lightmaps --transfer`
+// share: the lightmap recipe's atlas (its density and pages; its solve is not read), then a
+// transfer bake of `bands` bands whose dilation fills the atlas's gutter.
+struct BakedTransfer {
+  LightmapAtlas atlas;
+  TransferBake transfer;
+};
+BakedTransfer bakeTransfer(const Scene& scene, const LightmapRecipe& recipe, int bands,
+                           const ProgressCallback& progress = {});
+
 // The irradiance pages of a transfer bake under `light` (H = sum_i T_i L_i per texel and channel),
 // in LightmapBake::pages' layout. Throws Error when the band counts differ.
 std::vector<std::vector<Rgb>> relightTransfer(const TransferBake& transfer, const DistantLightSh& light);

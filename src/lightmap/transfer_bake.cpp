@@ -268,6 +268,17 @@ TransferBake bakeTransfer(const Scene& scene, const LightmapAtlas& atlas, const 
   return out;
 }
 
+BakedTransfer bakeTransfer(const Scene& scene, const LightmapRecipe& recipe, int bands, const ProgressCallback& progress) {
+  const AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
+  coefficientsOf(bands);  // before the atlas, which can take a while
+  BakedTransfer out{buildLightmapAtlas(scene, ao), {}};
+  TransferBakeOptions to;
+  to.bands = bands;
+  to.texels.dilation = ao.gutter;
+  out.transfer = bakeTransfer(scene, out.atlas, to, progress);
+  return out;
+}
+
 std::vector<std::vector<Rgb>> relightTransfer(const TransferBake& transfer, const DistantLightSh& light) {
   if (light.bands != transfer.bands)
     throw Error(fmt::format("relighting a {}-band transfer with {}-band light", transfer.bands, light.bands));
