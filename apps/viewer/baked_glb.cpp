@@ -143,6 +143,15 @@ BakedGlb readBakedGlb(const std::filesystem::path& path) {
       glb.hasLightmaps = glb.hasLightmaps || out.lightmap >= 0;
     }
     out.doubleSided = m.doubleSided;
+    out.normalTexture = imageOf(m.normalTexture.index);
+    out.normalScale = float(m.normalTexture.scale);
+    if (auto it = m.extensions.find("LUXEL_lightmap_directional"); it != m.extensions.end() && it->second.IsObject()) {
+      const tinygltf::Value& ext = it->second;
+      if (ext.Has("mode") && ext.Get("mode").IsString()) out.directionalMode = ext.Get("mode").Get<std::string>();
+      const tinygltf::Value& textures = ext.Get("textures");
+      if (textures.IsArray())
+        for (size_t k = 0; k < textures.ArrayLen(); ++k) out.directionImages.push_back(imageOf(int(number(textures.Get(int(k)).Get("index")))));
+    }
     glb.materials.push_back(out);
   }
 
@@ -169,6 +178,12 @@ BakedGlb readBakedGlb(const std::filesystem::path& path) {
       if (p.attributes.count("TEXCOORD_1")) out.uv1 = read.floats<2>(p.attributes.at("TEXCOORD_1"), "TEXCOORD_1");
       if (p.attributes.count("COLOR_0"))
         for (const glm::vec3& c : read.floats<3>(p.attributes.at("COLOR_0"), "COLOR_0")) out.colors.push_back(c * colorScale);
+      const glm::mat3 linear(world), normalMatrix = glm::transpose(glm::inverse(linear));
+      if (p.attributes.count("NORMAL"))
+        for (const glm::vec3& v : read.floats<3>(p.attributes.at("NORMAL"), "NORMAL")) out.normals.push_back(glm::normalize(normalMatrix * v));
+      if (p.attributes.count("TANGENT"))
+        for (const glm::vec4& t : read.floats<4>(p.attributes.at("TANGENT"), "TANGENT"))
+          out.tangents.push_back(glm::vec4(glm::normalize(linear * glm::vec3(t)), t.w < 0.0f ? -1.0f : 1.0f));
       if (p.indices >= 0) {
         out.indices = read.indices(p.indices, out.positions.size());
       } else {
@@ -177,7 +192,8 @@ BakedGlb readBakedGlb(const std::filesystem::path& path) {
       }
       const size_t n = out.positions.size();
       if ((!out.uv0.empty() && out.uv0.size() != n) || (!out.uv1.empty() && out.uv1.size() != n) ||
-          (!out.colors.empty() && out.colors.size() != n))
+          (!out.colors.empty() && out.colors.size() != n) || (!out.normals.empty() && out.normals.size() != n) ||
+          (!out.tangents.empty() && out.tangents.size() != n))
         throw Error(fmt::format("{}: a primitive of mesh {} has attributes of different lengths", file, node.mesh));
       out.material = p.material >= 0 && size_t(p.material) < glb.materials.size() ? p.material : -1;
       glb.primitives.push_back(std::move(out));

@@ -1,8 +1,9 @@
 // What `luxel bake` put in a glb, read back as an engine reads it (tinygltf): the meshes as written,
 // their materials, and the baked light (docs/baking.md): per-vertex radiance or irradiance
 // (COLOR_0 times the scene's vertexColorScale) or lightmaps (RGBM PNG pages on TEXCOORD_1, named in
-// each material copy's extras). The viewer's "baked" view draws it, so a bake can be checked in
-// the same window as the live solve.
+// each material copy's extras), with the directions of LUXEL_lightmap_directional read at the
+// normal map's normal. The viewer's "baked" view draws it, so a bake can be checked in the same
+// window as the live solve.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +22,8 @@ struct BakedGlb {
     std::vector<Vec3> positions;  // world space (node transforms applied)
     std::vector<Vec2> uv0, uv1;   // empty when absent
     std::vector<Rgb> colors;      // COLOR_0 times vertexColorScale; empty when absent
+    std::vector<Vec3> normals;       // NORMAL in world space; empty when absent
+    std::vector<glm::vec4> tangents; // TANGENT in world space (w: the bitangent's sign); empty when absent
     std::vector<uint32_t> indices;
     int material = -1;
   };
@@ -31,6 +34,11 @@ struct BakedGlb {
     int lightmap = -1;     // image index (linear RGBM)
     float rgbmRange = 1.0f;
     bool doubleSided = false;
+    int normalTexture = -1;  // image index (linear data)
+    float normalScale = 1.0f;
+    // LUXEL_lightmap_directional (docs/baking.md): the mode ("" for none) and its textures' images.
+    std::string directionalMode;
+    std::vector<int> directionImages;
   };
   struct Image {
     int width = 0, height = 0;

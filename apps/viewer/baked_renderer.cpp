@@ -19,7 +19,12 @@ struct Vertex {
   Vec3 position;
   Vec2 uv0, uv1;
   Rgb color;
+  Vec3 normal;
+  glm::vec4 tangent;
 };
+
+// baked.frag's uDirectional: the LUXEL_lightmap_directional modes.
+int directionalCode(const std::string& mode) { return mode == "sh-l1" ? 1 : mode == "dominant" ? 2 : mode == "sh-l2" ? 3 : 0; }
 
 // The baked view's "kinds" (baked.frag): what a primitive carries.
 constexpr int kNothing = 0, kVertexRadiance = 1, kVertexIrradiance = 2, kLightmap = 3;
@@ -33,16 +38,19 @@ struct BakedRenderer::Gl {
     GLsizei first = 0, count = 0;
     int material = -1;
     int kind = kNothing;
+    bool directional = false;  // a directional lightmap under a normal map: read at the map's normal
   };
   std::vector<Draw> draws;
   std::vector<BakedGlb::Material> materials;
   std::vector<GLuint> srgb, linear;  // per image: as a base colour (sRGB) and as a lightmap (linear)
+  std::vector<GLuint> normalMaps;    // per image: as a normal map (linear, repeated, mipmapped), or 0
   ~Gl() {
     GLuint buffers[] = {vbo, ibo};
     glDeleteBuffers(2, buffers);
     glDeleteVertexArrays(1, &vao);
     for (GLuint t : srgb) glDeleteTextures(1, &t);
     for (GLuint t : linear) glDeleteTextures(1, &t);
+    for (GLuint t : normalMaps) glDeleteTextures(1, &t);
   }
 };
 
@@ -65,7 +73,10 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
     const uint32_t base = uint32_t(vertices.size());
     for (size_t i = 0; i < p.positions.size(); ++i)
       vertices.push_back({p.positions[i], p.uv0.empty() ? Vec2(0.0f) : p.uv0[i], p.uv1.empty() ? Vec2(0.0f) : p.uv1[i],
-                          p.colors.empty() ? Rgb(0.0f) : p.colors[i]});
+                          p.colors.empty() ? Rgb(0.0f) : p.colors[i], p.normals.empty() ? Vec3(0.0f) : p.normals[i],
+                          p.tangents.empty() ? glm::vec4(0.0f) : p.tangents[i]});
+    d.directional = d.kind == kLightmap && m && !p.normals.empty() && !p.tangents.empty() && !p.uv0.empty() &&
+                    m->normalTexture >= 0 && directionalCode(m->directionalMode) > 0;
     for (uint32_t i : p.indices) indices.push_back(base + i);
     d.count = GLsizei(indices.size()) - d.first;
     g.draws.push_back(d);
@@ -86,6 +97,8 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
   attribute(1, 2, offsetof(Vertex, uv0));
   attribute(2, 2, offsetof(Vertex, uv1));
   attribute(3, 3, offsetof(Vertex, color));
+  attribute(4, 3, offsetof(Vertex, normal));
+  attribute(5, 4, offsetof(Vertex, tangent));
   // Base colour images are sRGB with mipmaps and repeat, lightmaps linear, clamped, unfiltered
   // across levels (docs/baking.md: sampled clamp-to-edge without mipmaps).
   for (const BakedGlb::Image& im : glb.images) {
@@ -96,6 +109,13 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
     }
     g.srgb.push_back(s);
     g.linear.push_back(l);
+  }
+  g.normalMaps.assign(glb.images.size(), 0);
+  for (const BakedGlb::Material& m : glb.materials) {
+    const int i = m.normalTexture;
+    if (i < 0 || size_t(i) >= glb.images.size() || g.normalMaps[size_t(i)] || glb.images[size_t(i)].width <= 0) continue;
+    const BakedGlb::Image& im = glb.images[size_t(i)];
+    g.normalMaps[size_t(i)] = makeTexture({GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, true, GL_REPEAT}, im.width, im.height, im.rgba.data());
   }
   gl::Context::check("viewer: the baked glb");
 }
@@ -136,6 +156,17 @@ void BakedRenderer::draw(const glm::mat4& viewProjection, float outputScale) {
     glUniform1i(loc("uBaseTexture"), baseTexture);
     if (baseTexture) glBindTextureUnit(0, g.srgb[size_t(m.baseTexture)]);
     if (d.kind == kLightmap && m.lightmap >= 0 && size_t(m.lightmap) < g.linear.size()) glBindTextureUnit(1, g.linear[size_t(m.lightmap)]);
+    // Directional: the normal map (unit 2) and the direction textures (units 3..10), as data.
+    auto linearImage = [&](int image) { return image >= 0 && size_t(image) < g.linear.size() ? g.linear[size_t(image)] : 0u; };
+    const GLuint normalMap = m.normalTexture >= 0 && size_t(m.normalTexture) < g.normalMaps.size() ? g.normalMaps[size_t(m.normalTexture)] : 0u;
+    const bool directional = d.directional && normalMap &&
+                             std::all_of(m.directionImages.begin(), m.directionImages.end(), [&](int i) { return linearImage(i) != 0; });
+    glUniform1i(loc("uDirectional"), directional ? directionalCode(m.directionalMode) : 0);
+    if (directional) {
+      glUniform1f(loc("uNormalScale"), m.normalScale);
+      glBindTextureUnit(2, normalMap);
+      for (size_t k = 0; k < m.directionImages.size() && k < 8; ++k) glBindTextureUnit(GLuint(3 + k), linearImage(m.directionImages[k]));
+    }
     glDrawElements(GL_TRIANGLES, d.count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(size_t(d.first) * sizeof(uint32_t)));
   }
   glDisable(GL_CULL_FACE);

@@ -372,14 +372,20 @@ layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec2 aUv0;
 layout(location = 2) in vec2 aUv1;
 layout(location = 3) in vec3 aColor;
+layout(location = 4) in vec3 aNormal;
+layout(location = 5) in vec4 aTangent;
 uniform mat4 uViewProjection;
 out vec2 vUv0;
 out vec2 vUv1;
 out vec3 vColor;
+out vec3 vNormal;
+out vec4 vTangent;
 void main() {
   vUv0 = aUv0;
   vUv1 = aUv1;
   vColor = aColor;
+  vNormal = aNormal;
+  vTangent = aTangent;
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
 )";
@@ -388,7 +394,15 @@ const float kInvPi = 0.31830988618;
 in vec2 vUv0;
 in vec2 vUv1;
 in vec3 vColor;
+in vec3 vNormal;
+in vec4 vTangent;
 uniform int uKind;  // 0 nothing baked, 1 vertex radiance, 2 vertex irradiance, 3 lightmap
+// LUXEL_lightmap_directional (docs/baking.md): 0 none, 1 sh-l1, 2 dominant, 3 sh-l2. The lightmap is
+// the irradiance at the geometric normal; the directions say how it changes at the normal map's.
+uniform int uDirectional;
+uniform float uNormalScale;
+layout(binding = 2) uniform sampler2D uNormalMap;
+layout(binding = 3) uniform sampler2D uDirection[8];
 uniform vec4 uBaseColor;
 uniform bool uBaseTexture;
 uniform vec3 uEmission;
@@ -398,6 +412,41 @@ layout(binding = 0) uniform sampler2D uBaseMap;   // sRGB, decoded by the sample
 layout(binding = 1) uniform sampler2D uLightMap;  // RGBM, linear
 layout(location = 0) out vec4 outRadiance;
 layout(location = 1) out uint outElement;
+// One directional light plus a constant (Sloan 2008), in units of the band-0 integral.
+float luxelL1(vec3 q, vec3 n) {
+  float len = length(q), r = min(len, 1.0);
+  return 0.25 * (1.0 - r) + max(dot(n, q), 0.0) * (len > 0.0 ? r / len : 0.0);
+}
+vec3 directionalFactor(vec3 n, vec3 n0) {
+  vec3 f, f0;
+  if (uDirectional == 1) {
+    vec3 qx = 2.0 * texture(uDirection[0], vUv1).rgb - 1.0;
+    vec3 qy = 2.0 * texture(uDirection[1], vUv1).rgb - 1.0;
+    vec3 qz = 2.0 * texture(uDirection[2], vUv1).rgb - 1.0;
+    for (int c = 0; c < 3; ++c) {
+      vec3 q = vec3(qx[c], qy[c], qz[c]);
+      f[c] = luxelL1(q, n);
+      f0[c] = luxelL1(q, n0);
+    }
+  } else if (uDirectional == 2) {
+    vec3 q = 2.0 * texture(uDirection[0], vUv1).rgb - 1.0;
+    f = vec3(luxelL1(q, n));
+    f0 = vec3(luxelL1(q, n0));
+  } else {
+    vec3 q[9];
+    q[0] = vec3(1.0);
+    for (int i = 1; i < 9; ++i) q[i] = (2.0 * texture(uDirection[i - 1], vUv1).rgb - 1.0) * (i < 4 ? 1.7320508 : 2.2360680);
+    for (int k = 0; k < 2; ++k) {
+      vec3 d = k == 0 ? n : n0;
+      vec3 e = 3.1415927 * 0.282095 * q[0] + 2.0943951 * 0.488603 * (q[1] * d.y + q[2] * d.z + q[3] * d.x) +
+               0.7853982 * (1.092548 * (q[4] * d.x * d.y + q[5] * d.y * d.z + q[7] * d.x * d.z) +
+                            0.315392 * q[6] * (3.0 * d.z * d.z - 1.0) + 0.546274 * q[8] * (d.x * d.x - d.y * d.y));
+      if (k == 0) f = e; else f0 = e;
+    }
+  }
+  return vec3(f0.r > 0.0 ? max(f.r, 0.0) / f0.r : 1.0, f0.g > 0.0 ? max(f.g, 0.0) / f0.g : 1.0,
+              f0.b > 0.0 ? max(f.b, 0.0) / f0.b : 1.0);
+}
 void main() {
   vec3 base = uBaseColor.rgb;
   if (uBaseTexture) base *= texture(uBaseMap, vUv0).rgb;
@@ -406,7 +455,15 @@ void main() {
   else if (uKind == 2) radiance += base * kInvPi * vColor;
   else if (uKind == 3) {
     vec4 rgbm = texture(uLightMap, vUv1);
-    radiance += base * kInvPi * rgbm.rgb * rgbm.a * uRgbmRange;
+    vec3 h = rgbm.rgb * rgbm.a * uRgbmRange;
+    if (uDirectional > 0) {
+      // glTF's tangent frame: bitangent = cross(normal, tangent) * w, both along the image's up.
+      vec3 n0 = normalize(vNormal), t = normalize(vTangent.xyz), b = cross(n0, t) * vTangent.w;
+      vec3 m = 2.0 * texture(uNormalMap, vUv0).rgb - 1.0;
+      vec3 n = normalize(t * (m.x * uNormalScale) + b * (m.y * uNormalScale) + n0 * m.z);
+      h *= directionalFactor(n, n0);
+    }
+    radiance += base * kInvPi * h;
   }
   outRadiance = vec4(min(radiance * uOutputScale, vec3(60000.0)), 1.0);
   outElement = 0u;
