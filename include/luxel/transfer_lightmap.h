@@ -43,10 +43,6 @@ struct TransferBake {
   LightmapBake texels;  // the texel layout, state, validity, seam statistics (of band 0); no pages
   int bands = 0;
   std::vector<std::vector<std::vector<Rgb>>> planes;  // [coefficient][page][texel]
-  // The same coefficients texel by texel, for relighting at memory speed: every texel that is not
-  // Empty (page * pageSize^2 + index), and its bands^2 coefficients together.
-  std::vector<uint64_t> packedTexels;
-  std::vector<Rgb> packed;
   uint64_t shots = 0;
   double unshotFraction = 0.0;
   double secondsDirect = 0.0, secondsShoot = 0.0;

@@ -322,9 +322,7 @@ constexpr const char* kTransferExtension = "LUXEL_lightmap_transfer";
 struct LightmapTextures {
   std::vector<int> texture;
   std::vector<float> range;
-  std::string directionalMode;
-  std::vector<std::vector<int32_t>> directional;  // per image: its direction textures' images
-  const GlbOptions* options = nullptr;            // the transfer's images and light
+  const GlbOptions* options = nullptr;  // the direction and transfer textures, and the transfer's light
   std::map<std::pair<uint32_t, int32_t>, int> copies;
 };
 
@@ -342,29 +340,24 @@ int lightmapMaterial(tinygltf::Model& model, LightmapTextures& lightmaps, uint32
     tinygltf::Value::Object extras;
     extras["luxel"] = tinygltf::Value(info);
     g.extras = tinygltf::Value(extras);
-    if (!lightmaps.directionalMode.empty() && size_t(page) < lightmaps.directional.size() &&
-        !lightmaps.directional[size_t(page)].empty()) {
+    const GlbOptions& o = *lightmaps.options;
+    // A texture of `o.images` read through the lightmap's UVs.
+    auto textureInfo = [&](int32_t image) {
+      tinygltf::Value::Object t;
+      t["index"] = tinygltf::Value(lightmaps.texture[size_t(image)]);
+      t["texCoord"] = tinygltf::Value(1);
+      return t;
+    };
+    if (!o.directionalMode.empty() && size_t(page) < o.directionalImages.size() && !o.directionalImages[size_t(page)].empty()) {
       tinygltf::Value::Array textures;
-      for (int32_t image : lightmaps.directional[size_t(page)]) {
-        tinygltf::Value::Object t;
-        t["index"] = tinygltf::Value(lightmaps.texture[size_t(image)]);
-        t["texCoord"] = tinygltf::Value(1);
-        textures.push_back(tinygltf::Value(t));
-      }
+      for (int32_t image : o.directionalImages[size_t(page)]) textures.push_back(tinygltf::Value(textureInfo(image)));
       tinygltf::Value::Object ext;
-      ext["mode"] = tinygltf::Value(lightmaps.directionalMode);
+      ext["mode"] = tinygltf::Value(o.directionalMode);
       ext["textures"] = tinygltf::Value(textures);
       g.extensions[kDirectionalExtension] = tinygltf::Value(ext);
     }
-    const GlbOptions* o = lightmaps.options;
-    if (o && o->transferBands > 0 && size_t(page) < o->transferImages.size() && !o->transferImages[size_t(page)].empty()) {
-      const auto& images = o->transferImages[size_t(page)];
-      auto textureInfo = [&](int32_t image) {
-        tinygltf::Value::Object t;
-        t["index"] = tinygltf::Value(lightmaps.texture[size_t(image)]);
-        t["texCoord"] = tinygltf::Value(1);
-        return t;
-      };
+    if (o.transferBands > 0 && size_t(page) < o.transferImages.size() && !o.transferImages[size_t(page)].empty()) {
+      const auto& images = o.transferImages[size_t(page)];
       auto rgb = [](Rgb c) {
         return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(c.r)), tinygltf::Value(double(c.g)),
                                                       tinygltf::Value(double(c.b))});
@@ -373,19 +366,19 @@ int lightmapMaterial(tinygltf::Model& model, LightmapTextures& lightmaps, uint32
       band0["rgbmRange"] = tinygltf::Value(double(lightmaps.range[size_t(images[0])]));
       tinygltf::Value::Array ratios, sky, suns;
       for (size_t k = 1; k < images.size(); ++k) ratios.push_back(tinygltf::Value(textureInfo(images[k])));
-      for (const Rgb& c : o->transferSky) sky.push_back(rgb(c));
-      for (const GlbOptions::Sun& sun : o->transferSuns) {
+      for (const Rgb& c : o.transferSky) sky.push_back(rgb(c));
+      for (const GlbOptions::Sun& sun : o.transferSuns) {
         tinygltf::Value::Object v;
         v["direction"] = rgb(sun.direction);
         v["irradiance"] = rgb(sun.irradiance);
         suns.push_back(tinygltf::Value(v));
       }
       tinygltf::Value::Object ext;
-      ext["bands"] = tinygltf::Value(o->transferBands);
+      ext["bands"] = tinygltf::Value(o.transferBands);
       ext["band0"] = tinygltf::Value(band0);
       ext["ratios"] = tinygltf::Value(ratios);
       tinygltf::Value::Array scales;
-      for (float v : o->transferRatioScales[size_t(page)]) scales.push_back(tinygltf::Value(double(v)));
+      for (float v : o.transferRatioScales[size_t(page)]) scales.push_back(tinygltf::Value(double(v)));
       ext["ratioScale"] = tinygltf::Value(scales);
       ext["sky"] = tinygltf::Value(sky);
       ext["suns"] = tinygltf::Value(suns);
@@ -555,8 +548,6 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
   }
   lightmaps.options = &options;
   if (options.transferBands > 0) model.extensionsUsed.push_back(kTransferExtension);
-  lightmaps.directionalMode = options.directionalMode;
-  lightmaps.directional = options.directionalImages;
   if (!options.directionalMode.empty()) model.extensionsUsed.push_back(kDirectionalExtension);
   const float colorScale = vertexColorScale(options);
   const ElementIndex index = options.elements ? indexElements(scene, *options.elements) : ElementIndex{};

@@ -131,11 +131,12 @@ void finishPlanes(const LightmapBakeOptions& options, LightmapBake& bake, int pa
     while (left > 0) {
       std::vector<std::pair<size_t, size_t>> wave;
       std::vector<Rgb> values;  // planes.size() per texel of the wave
+      std::vector<Rgb> sum(planes.size());
       for (size_t e = 0; e < set.elements.size(); ++e) {
         const auto& t = texels[e];
         const size_t i = size_t(t.y) * size_t(size) + t.x;
         if (known[t.page][i]) continue;
-        std::vector<Rgb> sum(planes.size(), Rgb(0.0f));
+        std::fill(sum.begin(), sum.end(), Rgb(0.0f));
         int count = 0;
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {

@@ -39,11 +39,7 @@ std::array<float, kShBand3Coefficients> basis(Vec3 d) { return shBasis16(d); }
 
 // T_direct per element: (pi / N) sum over N stratified cosine-weighted directions that escape of
 // Y_i(w), the estimate of the integral of V cos Y_i over the hemisphere.
-void directTransfer(const SurfaceSet& set, int rays, int count, std::vector<Rgb>& out) {
-  std::vector<Polygon> polys;
-  polys.reserve(set.faces.size());
-  for (const SurfaceFace& f : set.faces) polys.push_back(Polygon{f.corners, f.triangle ? 3 : 4});
-  RayTracer tracer(polys);
+void directTransfer(const SurfaceSet& set, RayTracer& tracer, int rays, int count, std::vector<Rgb>& out) {
   const int side = strataSide(rays);
   const float offset = rayOffsetFor(set.sceneExtent);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, set.elements.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
@@ -237,13 +233,14 @@ TransferBake bakeTransfer(const Scene& scene, const LightmapAtlas& atlas, const 
   if (set.elements.empty()) throw Error(fmt::format("scene '{}' has no texels to bake transfer into", scene.name));
   const size_t ne = set.elements.size();
 
+  // The transport's ray tracer (over the same faces) serves the visibility rays too.
+  CpuTransport transport(scene, set, FormFactorOptions{});
   auto t0 = Clock::now();
   std::vector<Rgb> direct(ne * size_t(count), Rgb(0.0f));
-  directTransfer(set, options.directRays, count, direct);
+  directTransfer(set, transport.tracer(), options.directRays, count, direct);
   out.secondsDirect = since(t0);
 
   t0 = Clock::now();
-  CpuTransport transport(scene, set, FormFactorOptions{});
   TransferShooter shooter{set, transport, count, direct, {}, {}, {}, {}, 0, 0};
   shooter.unshot.resize(ne * size_t(count));
   for (size_t e = 0; e < ne; ++e)
@@ -258,13 +255,6 @@ TransferBake bakeTransfer(const Scene& scene, const LightmapAtlas& atlas, const 
   for (auto& p : out.planes) planes.push_back(&p);
   lightmap::finishPlanes(options.texels, out.texels, atlas.pageCount, planes,
                          [&](size_t k, size_t e) { return shooter.transfer[e * size_t(count) + k]; });
-  const size_t n = size_t(out.texels.pageSize) * size_t(out.texels.pageSize);
-  for (size_t p = 0; p < out.texels.state.size(); ++p)
-    for (size_t i = 0; i < n; ++i) {
-      if (out.texels.state[p][i] == LightmapBake::Empty) continue;
-      out.packedTexels.push_back(p * n + i);
-      for (int k = 0; k < count; ++k) out.packed.push_back(out.planes[size_t(k)][p][i]);
-    }
   return out;
 }
 
@@ -285,17 +275,17 @@ std::vector<std::vector<Rgb>> relightTransfer(const TransferBake& transfer, cons
   const size_t count = transfer.planes.size();
   const size_t n = size_t(transfer.texels.pageSize) * size_t(transfer.texels.pageSize);
   std::vector<std::vector<Rgb>> out(transfer.texels.state.size(), std::vector<Rgb>(n, Rgb(0.0f)));
-  Rgb l[kShBand3Coefficients];
-  std::copy(light.coefficients.begin(), light.coefficients.end(), l);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, transfer.packedTexels.size(), 2048), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t t = r.begin(); t < r.end(); ++t) {
-      const Rgb* c = transfer.packed.data() + t * count;
-      Rgb h(0.0f);
-      for (size_t k = 0; k < count; ++k) h += c[k] * l[k];
-      const uint64_t at = transfer.packedTexels[t];
-      out[at / n][at % n] = glm::max(h, Rgb(0.0f));  // band-limited light rings below zero in deep shadow
-    }
-  });
+  for (size_t p = 0; p < out.size(); ++p) {
+    const auto& state = transfer.texels.state[p];
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i < r.end(); ++i) {
+        if (state[i] == LightmapBake::Empty) continue;  // outside every chart and gutter
+        Rgb h(0.0f);
+        for (size_t k = 0; k < count; ++k) h += transfer.planes[k][p][i] * light.coefficients[k];
+        out[p][i] = glm::max(h, Rgb(0.0f));  // band-limited light rings below zero in deep shadow
+      }
+    });
+  }
   return out;
 }
 
