@@ -55,6 +55,8 @@ RenderOptions renderOptionsFor(const Scene& scene, const ViewArgs& a) {
   ro.camera = cameraFor(scene, a);
   std::tie(ro.width, ro.height) = parseSize(a.size);
   ro.samplesPerPixel = a.spp;
+  ro.indirect = parseIndirect(a.indirect);
+  ro.gatherRays = a.gatherRays;
   ro.mode = parseRenderMode(a.mode);
   validateRenderOptions(ro);
   return ro;
@@ -91,12 +93,21 @@ void addViewOptions(CLI::App& c, ViewArgs& a) {
   addCameraOptions(c, a);
   c.add_option("--size", a.size, "Image size WxH")->capture_default_str();
   c.add_option("--spp", a.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+  c.add_option("--indirect", a.indirect,
+               "hq mode's indirect light: vertex-gather (gathered at element vertices), pixel-gather (per pixel "
+               "sample: sharper, noisier) or interpolated (the solution's, fastest)")
+      ->capture_default_str();
+  c.add_option("--gather-rays", a.gatherRays,
+               fmt::format("Gather rays per vertex (default {}) or per pixel sample (default {})",
+                           kDefaultVertexGatherRays, kDefaultPixelGatherRays))
+      ->check(CLI::Range(0, 65536));
   c.add_option("--tonemap", a.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
   c.add_option("--exposure", a.exposure, "PNG exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));
 }
 
 void checkViewArgs(const ViewArgs& a) {
   parseSize(a.size);
+  parseIndirect(a.indirect);
   if (a.eye) parseVec3(*a.eye, "eye");
   if (a.target) parseVec3(*a.target, "target");
   if (a.up) parseVec3(*a.up, "up");

@@ -23,6 +23,8 @@ struct ViewArgs {
   float fov = 0.0f;
   std::string size = "512x512";
   int spp = 16;
+  std::string indirect = "vertex-gather";  // hq mode's indirect light (RenderOptions::Indirect)
+  int gatherRays = 0;                      // per vertex or per pixel sample; 0: the default
   std::string mode = "hq";
   std::string toneCurve = "filmic";
   float exposure = 0.0f;
@@ -48,7 +50,7 @@ struct RenderArgs : ViewArgs {
 
 // Adds --camera, --eye, --target, --up and --fov.
 void addCameraOptions(CLI::App& command, ViewArgs& args);
-// Adds those and --size, --spp, --tonemap and --exposure (each
+// Adds those and --size, --spp, --indirect, --gather-rays, --tonemap and --exposure (each
 // command adds its own --mode, whose choices differ).
 void addViewOptions(CLI::App& command, ViewArgs& args);
 // Checks the view options that need no scene (the mode only when it is hq or radiosity): throws Error.

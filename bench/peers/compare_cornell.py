@@ -39,6 +39,7 @@ without Blender's own start-up and the scene building (~0.8 s).
 """
 
 import argparse
+import re
 import importlib.util
 import itertools
 import json
@@ -80,6 +81,8 @@ def parse_args():
                    help="luxel runs per setting (median time); runs over 5 s are not repeated")
     p.add_argument("--reuse", action="store_true",
                    help="do not re-render images whose EXR and timing JSON exist")
+    p.add_argument("--regions", type=int, default=4,
+                   help="the worst-region error is over a grid of this many regions a side")
     p.add_argument("--border", type=int, default=2,
                    help="exclude pixels within this many pixels of an edge-straddling pixel")
     p.add_argument("--markdown", help="write the tables here")
@@ -203,6 +206,8 @@ def build_mask(size, border=2):
 
 def run_luxel(args, mode, elements, spp):
     name = f"luxel_{mode}_e{elements}_s{spp}_{args.luxel_solver}"
+    if args.luxel_extra.strip():  # different extra arguments must not reuse each other's renders
+        name += "_" + re.sub(r"[^A-Za-z0-9]+", "", args.luxel_extra)
     exr = os.path.join(args.outdir, name + ".exr")
     meta = os.path.join(args.outdir, name + ".timing.json")
     if args.reuse and os.path.exists(exr) and os.path.exists(meta):
@@ -290,7 +295,21 @@ def main():
         corr = math.sqrt(max(mse - ref_var, 0.0)) / ref_mean
         bias = img[m].mean() / ref_mean - 1.0
         corr0 = math.sqrt(max((d[m0] ** 2).mean() - ref_var0, 0.0)) / ref_mean0
-        return raw, corr, bias, corr0
+        # The worst region: the image cut into regions x regions squares, each one's mean over its
+        # masked pixels against the reference's (regions under a tenth masked are left out).
+        worst, where = 0.0, ""
+        g = args.regions
+        for ry in range(g):
+            for rx in range(g):
+                sel = np.zeros(mask.shape, bool)
+                sel[ry * size // g:(ry + 1) * size // g, rx * size // g:(rx + 1) * size // g] = True
+                sel &= mask
+                if sel.sum() < 0.1 * size * size / (g * g):
+                    continue
+                e = img[sel].sum() / ref[sel].sum() - 1.0
+                if abs(e) > abs(worst):
+                    worst, where = e, f"row {ry} col {rx}"
+        return raw, corr, bias, corr0, worst, where
 
     rows = []
     for spp in [int(s) for s in args.cycles_spp.split(",") if s]:
@@ -339,17 +358,18 @@ def main():
 
     out(f"| renderer | settings | time (s) | rel. RMSE (raw) | rel. RMSE (noise-corrected) "
         f"| mean bias | Cycles spp for same error | Cycles time for same error (s) "
-        f"| Cycles/luxel time | rel. RMSE, border 0 (noise-corrected) |")
-    out("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        f"| Cycles/luxel time | rel. RMSE, border 0 (noise-corrected) | worst region "
+        f"({args.regions}x{args.regions}) |")
+    out("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
-        raw, corr, bias, corr0 = r["err"]
+        raw, corr, bias, corr0, worst, where = r["err"]
         if r["renderer"] == "luxel":
             spp_eq, t_eq = cycles_time_for(corr)
             extra = f"{spp_eq:.0f} | {t_eq:.2f} | {t_eq / r['seconds']:.1f}"
         else:
             extra = " |  | "
         out(f"| {r['renderer']} | {r['settings']} | {r['seconds']:.3f} | {raw:.4f} | {corr:.4f} "
-            f"| {bias * 100:+.2f}% | {extra} | {corr0:.4f} |")
+            f"| {bias * 100:+.2f}% | {extra} | {corr0:.4f} | {worst * 100:+.2f}% ({where}) |")
     out()
     out(f"Cycles fit: rel. RMSE = {c:.4f} / sqrt(spp); time = {a:.3f} s + {b * 1000:.2f} ms * spp "
         f"(at 256 spp: fit error {c / 16:.4f}, fit time {a + 256 * b:.2f} s)")

@@ -56,6 +56,8 @@ def parse_args():
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--size", type=int, default=256, help="image width = height")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--bounces", type=int, default=64,
+                   help="diffuse bounces; 0 renders the direct light alone (to check it apart)")
     p.add_argument("--json", help="write render settings and time here")
     p.add_argument("--two-sided-light", action="store_true",
                    help="let the light emit from both faces (Cycles' default), for checking")
@@ -242,8 +244,8 @@ def configure(args):
     c.use_animated_seed = False
     c.pixel_filter_type = "BOX"
     c.filter_width = 1.0
-    c.max_bounces = 64
-    c.diffuse_bounces = 64
+    c.max_bounces = args.bounces
+    c.diffuse_bounces = args.bounces
     c.glossy_bounces = 64
     c.transmission_bounces = 64
     c.volume_bounces = 64

@@ -15,25 +15,47 @@ struct RenderOptions {
     // The seeds' display: all light, direct included, interpolated from the element solution.
     // Normal maps are ignored.
     Radiosity,
-    // Direct light evaluated per pixel with shadow rays (exact shadows); only the indirect part
-    // comes from the element solution. The direct light's receiver cosine uses the material's
-    // normal map (Material::normalTexture) where there is one; the indirect part does not.
+    // Direct light evaluated per pixel with shadow rays towards stratified points of each light
+    // (exact shadows, smooth penumbrae), and the indirect light found as `indirect` says. The
+    // receiver cosine of the direct light (and of a per-pixel gather) is taken at the material's
+    // normal map (Material::normalTexture) where there is one.
     HighQuality,
+  };
+  // Where HighQuality finds the indirect light (render/final_gather.h).
+  enum class Indirect {
+    // The element solution's indirect irradiance, interpolated: the fastest, but the
+    // discretisation shows (patches shooting their mean, elements averaged across contacts).
+    Interpolated,
+    // A final gather at the element vertices, interpolated per pixel: rays read the solution one
+    // bounce away, with the direct light traced where they land. Smooth, and cheap at any image size.
+    VertexGather,
+    // A final gather at every pixel sample: no interpolation at all, so contact shadows and
+    // normal maps reach the indirect light too, at the price of noise.
+    PixelGather,
   };
   Mode mode = Mode::HighQuality;
   Camera camera;
   int width = 512;
   int height = 512;
   int samplesPerPixel = 16;  // pixel jitter, and one shadow ray per light per sample
+  Indirect indirect = Indirect::VertexGather;
+  // Gather rays per vertex (VertexGather) or per pixel sample (PixelGather); 0 takes the mode's
+  // default: kDefaultPixelGatherRays, or kDefaultVertexGatherRays where the scene's vertices allow
+  // (render/final_gather.h keeps the whole gather to about 16 million rays).
+  int gatherRays = 0;
   uint32_t seed = 7;
 };
+
+inline constexpr int kDefaultVertexGatherRays = 256;
+inline constexpr int kDefaultPixelGatherRays = 4;
 
 inline constexpr int kMaxImageSide = 32768;
 // 16384 x 16384: the float image alone is 3 GiB, and a bigger poster is rendered in tiles.
 inline constexpr uint64_t kMaxImagePixels = uint64_t(16384) * 16384;
 
 // Throws Error when the options are absurd: a side outside [1, kMaxImageSide], more than
-// kMaxImagePixels pixels, samples outside [1, 65536], a field of view outside (0, 180) degrees, a
+// kMaxImagePixels pixels, samples outside [1, 65536], gather rays outside [0, 65536] (or, per pixel
+// sample, their product with the samples over 2^20), a field of view outside (0, 180) degrees, a
 // camera whose eye, target and up do not span a frame or lie beyond kMaxCoordinate. render() calls
 // it; a caller can call it before the solve, to fail early.
 void validateRenderOptions(const RenderOptions& options);
@@ -50,6 +72,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
              RenderStats* stats = nullptr);
 
 RenderOptions::Mode parseRenderMode(const std::string& name);  // "radiosity" | "hq"
+// "interpolated" | "vertex-gather" | "pixel-gather"
+RenderOptions::Indirect parseIndirect(const std::string& name);
 
 // The per-vertex (element corner) values of a per-element quantity, averaged over the elements
 // that meet there on the same smooth surface (same material, normals within 30 degrees).

@@ -9,6 +9,14 @@
 
 namespace luxel {
 
+// A corner field at a hit's parameters (RayTracer::intersect's u, v): barycentric on triangles,
+// bilinear on quads.
+template <typename T>
+T interpolateCorners(const T* c, int count, float u, float v) {
+  if (count == 3) return (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
+  return (1.0f - u) * (1.0f - v) * c[0] + u * (1.0f - v) * c[1] + u * v * c[2] + (1.0f - u) * v * c[3];
+}
+
 // elementCornerValues (luxel/render.h) over `groups`, built from the same surfaces.
 std::vector<Rgb> elementCornerValues(const SurfaceSet& surfaces, const CornerGroups& groups, const std::vector<Rgb>& perElement);
 

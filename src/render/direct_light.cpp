@@ -11,6 +11,13 @@ namespace {
 constexpr size_t kMaxExplicitEmitters = 16;
 constexpr int kSampledEmitters = 4;
 
+// Each emitter's point is `u` shifted by an irrational step (a Cranley-Patterson rotation), so that
+// the emitters of one sample do not all take the same corner of their strata.
+Vec2 rotated(Vec2 u, size_t k) {
+  const Vec2 step(0.61803399f, 0.41421356f);
+  return glm::fract(u + float(k) * step);
+}
+
 }  // namespace
 
 DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
@@ -38,7 +45,7 @@ DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
 }
 
 void DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides,
-                                Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
+                                Vec2 u, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
                                 std::vector<Rgb>& values) const {
   Vec3 pn = em.polygon.normal();
   float f = pointToPolygonFormFactor(x, shading, em.polygon, pn, sides, em.sides);
@@ -46,8 +53,11 @@ void DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n,
   // f already counts only the part of the emitter above the shading plane; visibility is sampled
   // there. A point of it below the geometric plane is hidden by the surface itself: like any other
   // occluder, that is what the visibility sample estimates.
+  // The first try is the stratified point; a point behind the receiver's plane is drawn again.
   Vec3 y;
-  if (!pointInFront(em.polygon, x, shading, [&] { return rng.next(); }, y)) return;
+  int drawn = 0;
+  const auto next = [&] { return drawn < 2 ? u[drawn++] : rng.next(); };
+  if (!pointInFront(em.polygon, x, shading, next, y)) return;
   Vec3 d = y - x;
   if (sides == Sides::Front && glm::dot(n, d) < 0.0f) return;
   Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
@@ -56,25 +66,27 @@ void DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n,
   values.push_back(em.exitance * (f * weight));
 }
 
-void DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Rng& rng, float rayOffset,
+void DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
                          std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
   if (emitters_.size() <= kMaxExplicitEmitters) {
-    for (const Emitter& em : emitters_)
-      sampleEmitter(em, 1.0f, x, n, shading, sides, rng, rayOffset, rays, values);
+    for (size_t k = 0; k < emitters_.size(); ++k)
+      sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, rotated(u, k), rng, rayOffset, rays, values);
   } else {
     for (int i = 0; i < kSampledEmitters; ++i) {
       size_t k = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.next()) - cdf_.begin());
       k = std::min(k, emitters_.size() - 1);
       float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
       if (p <= 0.0f) continue;
-      sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, rng, rayOffset, rays,
-                    values);
+      sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, rotated(u, size_t(i)), rng,
+                    rayOffset, rays, values);
     }
   }
-  for (const Light& light : scene_.lights) {
+  for (size_t k = 0; k < scene_.lights.size(); ++k) {
+    const Light& light = scene_.lights[k];
     // The cosine at the shading normal; a direction behind the geometric plane is blocked by the
     // surface (never the case when shading == n: sampleLight gives those no light).
-    LightSample ls = sampleLight(light, x, shading, sides, up_, rng.next(), rng.next());
+    const Vec2 ul = rotated(u, emitters_.size() + k);
+    LightSample ls = sampleLight(light, x, shading, sides, up_, ul.x, ul.y);
     if (!ls.valid()) continue;
     if (sides == Sides::Front && glm::dot(n, ls.direction) < 0.0f) continue;
     Vec3 xo = x + n * (glm::dot(n, ls.direction) >= 0.0f ? rayOffset : -rayOffset);

@@ -1,26 +1,34 @@
 // Rendering a solution: ray-cast primary visibility against the elements, radiance
-// L = Le + rho(x) / pi * H(x) with H interpolated smoothly from element corners (nodal averaging),
-// and, in high-quality mode, the direct part of H evaluated per pixel with shadow rays (the
-// "final gather of direct light" of two-pass methods, e.g. Chen et al., SIGGRAPH 1991).
-// Normal maps (render/normal_map.h) reach only that per-pixel direct light: its receiver cosine
-// is taken at the perturbed normal. The indirect part stays the element irradiance, which carries
-// no direction to tilt, and radiosity mode ignores normal maps altogether.
+// L = Le + rho(x) / pi * H(x).
+// - Radiosity mode: H interpolated smoothly from element corners (nodal averaging).
+// - High-quality mode, a two-pass method (Wallace, Cohen and Greenberg, SIGGRAPH 1987; Chen et al.,
+//   SIGGRAPH 1991): the direct part of H per pixel with shadow rays towards stratified points of
+//   each light, and the indirect part from the solution, interpolated or gathered by rays that
+//   read it one bounce away (render/final_gather.h; RenderOptions::Indirect).
+// Normal maps (render/normal_map.h) tilt the receiver cosine of what is found per pixel (the
+// direct light, and a per-pixel gather); radiosity mode ignores them.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/multi_jitter.h"
 #include "core/random.h"
 #include "luxel/error.h"
 #include "luxel/render.h"
 #include "render/camera_frame.h"
+#include "render/corner_values.h"
 #include "render/direct_light.h"
+#include "render/final_gather.h"
 #include "render/normal_map.h"
+#include "trace/element_polygons.h"
+#include "trace/hemisphere_rays.h"
 #include "trace/ray_tracer.h"
 #include "transport/light_sampling.h"
 
@@ -29,12 +37,11 @@ namespace {
 
 constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 constexpr int kTile = 16;
+constexpr int kMaxGatherRays = 65536;
+constexpr uint64_t kMaxGatherRaysPerPixel = uint64_t(1) << 20;
 
-template <typename T>
-T interpolate(const T* c, int count, float u, float v) {
-  if (count == 3) return (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
-  return (1.0f - u) * (1.0f - v) * c[0] + u * (1.0f - v) * c[1] + u * v * c[2] + (1.0f - u) * v * c[3];
-}
+// Salts of a pixel's sample patterns (core/multi_jitter.h), one per use.
+enum PatternUse : uint32_t { kPixelFootprint = 1, kLightPoints = 2, kGatherDirections = 3 };
 
 }  // namespace
 
@@ -48,6 +55,13 @@ void validateRenderOptions(const RenderOptions& o) {
                             double(o.width) * o.height * sizeof(Rgb) / double(1u << 30)));
   if (o.samplesPerPixel < 1 || o.samplesPerPixel > 65536)
     throw Error(fmt::format("samples per pixel {} must be between 1 and 65536", o.samplesPerPixel));
+  if (o.gatherRays < 0 || o.gatherRays > kMaxGatherRays)
+    throw Error(fmt::format("gather rays {} must be between 0 and {}", o.gatherRays, kMaxGatherRays));
+  if (o.indirect == RenderOptions::Indirect::PixelGather &&
+      uint64_t(o.gatherRays) * uint64_t(o.samplesPerPixel) > kMaxGatherRaysPerPixel)
+    throw Error(fmt::format("{} gather rays at {} samples per pixel is {} rays a pixel, over the limit of {}",
+                            o.gatherRays, o.samplesPerPixel, uint64_t(o.gatherRays) * uint64_t(o.samplesPerPixel),
+                            kMaxGatherRaysPerPixel));
   const Camera& c = o.camera;
   if (!(c.fovY > 0.0f && c.fovY < 180.0f))
     throw Error(fmt::format("camera '{}': field of view {} must be in (0, 180) degrees", c.name, c.fovY));
@@ -60,6 +74,13 @@ void validateRenderOptions(const RenderOptions& o) {
   const Vec3 f = c.target - c.eye;
   if (!(glm::length(f) > 0.0f) || !(glm::length(glm::cross(f, c.up)) > 0.0f))
     throw Error(fmt::format("camera '{}': eye, target and up must span a frame", c.name));
+}
+
+RenderOptions::Indirect parseIndirect(const std::string& name) {
+  if (name == "interpolated") return RenderOptions::Indirect::Interpolated;
+  if (name == "vertex-gather") return RenderOptions::Indirect::VertexGather;
+  if (name == "pixel-gather") return RenderOptions::Indirect::PixelGather;
+  throw Error(fmt::format("unknown indirect light '{}' (expected interpolated, vertex-gather or pixel-gather)", name));
 }
 
 RenderOptions::Mode parseRenderMode(const std::string& name) {
@@ -76,30 +97,30 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
                             solution.irradiance.size(), surfaces.elements.size()));
   const auto start = std::chrono::steady_clock::now();
   const bool hq = options.mode == RenderOptions::Mode::HighQuality;
+  using Indirect = RenderOptions::Indirect;
+  const bool pixelGather = hq && options.indirect == Indirect::PixelGather;
+  const bool vertexGather = hq && options.indirect == Indirect::VertexGather;
 
-  // The irradiance field to interpolate: all of it, or only the indirect part in HQ mode.
+  // The irradiance field to interpolate: all of it in radiosity mode; in HQ mode only the indirect
+  // part, since the direct part is traced per pixel (and at every gather ray's hit).
   std::vector<Rgb> field = solution.irradiance;
   if (hq)
     for (size_t e = 0; e < field.size(); ++e)
       field[e] = glm::max(field[e] - solution.directIrradiance[e], Rgb(0.0f));
   const std::vector<Rgb> corners = elementCornerValues(surfaces, field);
 
-  // The two sides of a two-sided face are coplanar twins, and a ray would hit either at random.
-  // Only the side facing the camera goes into the BVH (its twin is the same geometry, so shadow
-  // rays still see everything); slots of the other side hold an empty polygon.
-  std::vector<Polygon> polygons(surfaces.elements.size());
-  for (size_t e = 0; e < polygons.size(); ++e) {
-    const Element& el = surfaces.elements[e];
-    const bool hasTwin = surfaces.faces[el.face].twin >= 0;
-    if (!hasTwin || glm::dot(el.normal, options.camera.eye - el.centroid) > 0.0f)
-      polygons[e] = el.polygon;
-    else
-      polygons[e] = Polygon{{el.centroid, el.centroid, el.centroid, el.centroid}, 3};
-  }
+  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(surfaces);
   RayTracer tracer(polygons);
   DirectLight direct(scene, surfaces);
+  const FinalGather gather(surfaces, tracer, direct, corners);
   const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
+  // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at
+  // vertices, each vertex when a pixel first needs it.
+  std::optional<VertexGather> vertexGathered;
+  if (vertexGather)
+    vertexGathered.emplace(surfaces, gather, options.gatherRays, options.seed);
+  const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
 
   // Background: the sky where there is one.
   std::vector<const Light*> skies;
@@ -112,6 +133,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const int tilesX = (options.width + kTile - 1) / kTile, tilesY = (options.height + kTile - 1) / kTile;
   const int tileCount = tilesX * tilesY;
   const int spp = options.samplesPerPixel;
+  const uint32_t gatherCount = uint32_t(spp) * uint32_t(gatherRays);
+  const float perGatherRay = gatherRays > 0 ? 1.0f / float(gatherRays) : 0.0f;
   std::atomic<int> tilesDone{0};
   std::atomic<bool> cancelled{false};
 
@@ -125,15 +148,16 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     std::vector<RTCRay> shadowRays;
     std::vector<Rgb> shadowValues;
     std::vector<Rgb*> shadowTargets;
-    std::vector<Rgb> weights;  // rho(x) / pi per primary hit, for the direct light
+    std::vector<RTCRayHit> gathers;
+    std::vector<Rgb> gatherWeights;  // what a gather ray's radiance is multiplied by
+    std::vector<Rgb*> gatherTargets;
     for (int s = 0; s < spp; ++s) {
       hits.clear();
       for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
-          Rng rng(hashCombine(hashCombine(options.seed, uint32_t(y * options.width + x)), uint32_t(s)));
-          float sx = (float(x) + rng.next()) / float(options.width);
-          float sy = (float(y) + rng.next()) / float(options.height);
-          Vec3 d = cam.direction(sx, sy);
+          const uint32_t pixel = uint32_t(y * options.width + x);
+          const Vec2 j = multiJitter(uint32_t(s), uint32_t(spp), hashCombine(hashCombine(options.seed, pixel), kPixelFootprint));
+          Vec3 d = cam.direction((float(x) + j.x) / float(options.width), (float(y) + j.y) / float(options.height));
           RTCRayHit rh;
           rh.ray = makeRay(cam.eye, d, 0.0f, std::numeric_limits<float>::infinity());
           hits.push_back(rh);
@@ -143,6 +167,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
       shadowRays.clear();
       shadowValues.clear();
       shadowTargets.clear();
+      gathers.clear();
+      gatherWeights.clear();
+      gatherTargets.clear();
       size_t i = 0;
       for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x, ++i) {
@@ -163,30 +190,61 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
           const bool front = glm::dot(el.normal, dir) < 0.0f;
           if (!front) continue;  // the back of a one-sided surface takes no part in transport
 
-          Vec2 uv = face.uv(interpolate(el.param.data(), count, u, v));
+          Vec2 uv = face.uv(interpolateCorners(el.param.data(), count, u, v));
           Rgb rho = m.reflectance;
           if (m.reflectanceTexture >= 0) rho *= scene.textures[size_t(m.reflectanceTexture)].sample(uv);
           Rgb le = m.emission;
           if (m.emissionTexture >= 0 && m.isEmissive()) le *= scene.textures[size_t(m.emissionTexture)].sample(uv);
           sum += le;
-          sum += rho * (kInvPi * interpolate(&corners[size_t(e) * 4], count, u, v));
+          if (!pixelGather) {
+            const Rgb* c = vertexGathered ? vertexGathered->corners(e) : &corners[size_t(e) * 4];
+            sum += rho * (kInvPi * interpolateCorners(c, count, u, v));
+          }
+          if (!hq) continue;
 
-          if (hq) {
-            Vec3 p = cam.eye + dir * rh.ray.tfar;
-            Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, uint32_t(y * options.width + x)), uint32_t(s)));
-            const size_t before = shadowRays.size();
-            const Vec3 shading = m.normalTexture >= 0 ? shadingNormal(scene, face.mesh, face.meshFace, uv, el.normal)
-                                                      : el.normal;
-            direct.sample(p, el.normal, shading, Sides::Front, rng, rayOffset, shadowRays, shadowValues);
-            for (size_t k = before; k < shadowRays.size(); ++k) {
-              shadowValues[k] *= rho * kInvPi;
-              shadowTargets.push_back(&sum);
+          const uint32_t pixel = uint32_t(y * options.width + x);
+          const uint32_t pattern = hashCombine(options.seed, pixel);
+          const Vec3 p = cam.eye + dir * rh.ray.tfar;
+          const Vec3 shading = m.normalTexture >= 0 ? shadingNormal(scene, face.mesh, face.meshFace, uv, el.normal)
+                                                    : el.normal;
+          Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, pixel), uint32_t(s)));
+          const size_t before = shadowRays.size();
+          const Vec2 lightPoint = multiJitter(uint32_t(s), uint32_t(spp), hashCombine(pattern, kLightPoints));
+          direct.sample(p, el.normal, shading, Sides::Front, lightPoint, rng, rayOffset, shadowRays, shadowValues);
+          for (size_t k = before; k < shadowRays.size(); ++k) {
+            shadowValues[k] *= rho * kInvPi;
+            shadowTargets.push_back(&sum);
+          }
+
+          // Cosine-distributed about the geometric normal, so the estimate of rho / pi * H is
+          // rho * L; a normal map's cosine enters as the ratio max(0, shading . d) / (n . d).
+          // (FinalGather::add multiplies by rho / pi at the hit; the weights carry the rest.)
+          const HemisphereFrame frame(el.normal);
+          const Vec3 origin = p + el.normal * rayOffset;
+          for (int r = 0; r < gatherRays; ++r) {
+            const Vec2 g = multiJitter(uint32_t(s) * uint32_t(gatherRays) + uint32_t(r), gatherCount,
+                                       hashCombine(pattern, kGatherDirections));
+            const Vec3 d = frame.cosine(g.x, g.y);
+            float w = perGatherRay;
+            if (shading != el.normal) {
+              const float cn = glm::dot(el.normal, d);
+              w *= cn > 1e-6f ? std::max(0.0f, glm::dot(shading, d)) / cn : 0.0f;
             }
+            if (w <= 0.0f) continue;
+            RTCRayHit gh;
+            gh.ray = makeRay(origin, d, 0.0f, std::numeric_limits<float>::infinity());
+            gh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            gh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            gathers.push_back(gh);
+            gatherWeights.push_back(rho * w);
+            gatherTargets.push_back(&sum);
           }
         }
       tracer.occluded(shadowRays);
       for (size_t k = 0; k < shadowRays.size(); ++k)
         if (!isOccluded(shadowRays[k])) *shadowTargets[k] += shadowValues[k];
+      if (!gathers.empty())
+        gather.add(gathers, gatherWeights, gatherTargets, hashCombine(uint32_t(tile) * 0x9E3779B9u, uint32_t(s)));
     }
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {

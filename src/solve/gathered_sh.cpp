@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/spherical_harmonics.h"
+#include "trace/element_polygons.h"
 #include "trace/hemisphere_rays.h"
 #include "trace/ray_tracer.h"
 
@@ -18,15 +19,7 @@ std::vector<Rgb> gatherIncidentSh(const SurfaceSet& surfaces, const std::vector<
   const size_t ne = surfaces.elements.size();
   std::vector<Rgb> out(ne * size_t(count), Rgb(0.0f));
   const float offset = rayOffsetFor(surfaces.sceneExtent);
-  // Coplanar twins (two-sided faces) would be hit at random: each is nudged along its own normal,
-  // so that a ray from either side meets the side that faces it first.
-  std::vector<Polygon> polygons(ne);
-  for (size_t e = 0; e < ne; ++e) {
-    const Element& el = surfaces.elements[e];
-    polygons[e] = el.polygon;
-    if (surfaces.faces[el.face].twin >= 0)
-      for (int k = 0; k < polygons[e].count; ++k) polygons[e].v[size_t(k)] += 0.5f * offset * el.normal;
-  }
+  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(surfaces);
   RayTracer tracer(polygons);
   const int side = strataSide(rays);
   const float perRay = 2.0f * std::numbers::pi_v<float> / float(side * side);  // uniform: 2 pi / N

@@ -12,28 +12,42 @@
 
 namespace luxel {
 
+// A frame about unit `n` and the two hemisphere warps every gatherer here uses.
+struct HemisphereFrame {
+  explicit HemisphereFrame(Vec3 normal) : n(normal) {
+    const Vec3 a = std::abs(n.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
+    t = glm::normalize(glm::cross(a, n));
+    b = glm::cross(n, t);
+  }
+  // Cosine-weighted (pdf cos / pi) from a point of [0,1)^2: for irradiance, and for visibility as
+  // the cosine sees it.
+  Vec3 cosine(float u1, float u2) const {
+    const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
+    return r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
+  }
+  // Uniform over the hemisphere (pdf 1 / 2 pi): cos theta uniform in [0, 1].
+  Vec3 uniform(float z, float u2) const {
+    const float s = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * std::numbers::pi_v<float> * u2;
+    return s * std::cos(phi) * t + s * std::sin(phi) * b + z * n;
+  }
+  Vec3 n, t, b;
+};
+
 // `side` x `side` strata over the hemisphere about unit `n`: stratum (i, j) of one element. The
 // jitter is an xorshift stream seeded by the element's index and a salt (one per use).
 class HemisphereStrata {
  public:
-  HemisphereStrata(Vec3 n, int side, size_t element, uint32_t salt) : n_(n), side_(side) {
-    const Vec3 a = std::abs(n.x) > 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0);
-    t_ = glm::normalize(glm::cross(a, n));
-    b_ = glm::cross(n, t_);
+  HemisphereStrata(Vec3 n, int side, size_t element, uint32_t salt) : frame_(n), side_(side) {
     state_ = uint32_t(element) * 2654435761u + salt;
   }
 
-  // Cosine-weighted (pdf cos / pi): for irradiance, and for visibility as the cosine sees it.
   Vec3 cosine(int i, int j) {
     const auto [u1, u2] = jittered(i, j);
-    const float r = std::sqrt(u1), phi = 2.0f * std::numbers::pi_v<float> * u2;
-    return r * std::cos(phi) * t_ + r * std::sin(phi) * b_ + std::sqrt(std::max(0.0f, 1.0f - u1)) * n_;
+    return frame_.cosine(u1, u2);
   }
-  // Uniform over the hemisphere (pdf 1 / 2 pi): cos theta uniform in [0, 1].
   Vec3 uniform(int i, int j) {
     const auto [z, u2] = jittered(i, j);
-    const float s = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * std::numbers::pi_v<float> * u2;
-    return s * std::cos(phi) * t_ + s * std::sin(phi) * b_ + z * n_;
+    return frame_.uniform(z, u2);
   }
 
  private:
@@ -46,7 +60,7 @@ class HemisphereStrata {
     const float u2 = (float(j) + next()) / float(side_);
     return {u1, u2};
   }
-  Vec3 n_, t_, b_;
+  HemisphereFrame frame_;
   int side_;
   uint32_t state_;
 };

@@ -1,0 +1,200 @@
+// A final gather over a radiosity solution: see render/final_gather.h.
+#include "render/final_gather.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <numbers>
+#include <unordered_map>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/random.h"
+#include "mesh/corner_groups.h"
+#include "render/corner_values.h"
+#include "trace/hemisphere_rays.h"
+
+namespace luxel {
+namespace {
+
+constexpr float kInvPi = std::numbers::inv_pi_v<float>;
+
+}  // namespace
+
+FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
+                         const std::vector<Rgb>& indirectCorners)
+    : surfaces_(surfaces),
+      tracer_(tracer),
+      direct_(direct),
+      corners_(indirectCorners),
+      rayOffset_(rayOffsetFor(surfaces.sceneExtent)) {}
+
+size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
+                        uint32_t seed) const {
+  tracer_.intersect(rays, false);
+  std::vector<RTCRay> shadowRays;
+  std::vector<Rgb> shadowValues;
+  std::vector<Rgb*> shadowTargets;
+  size_t backs = 0;
+  for (size_t k = 0; k < rays.size(); ++k) {
+    const RTCRayHit& rh = rays[k];
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    const uint32_t h = rh.hit.primID;
+    const Element& hit = surfaces_.elements[h];
+    const Vec3 d(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+    if (glm::dot(hit.normal, d) >= 0.0f) {
+      ++backs;
+      continue;
+    }
+    const Rgb weight = weights[k] * hit.reflectance * kInvPi;
+    *targets[k] += weight * interpolateCorners(&corners_[size_t(h) * 4], hit.polygon.count, rh.hit.u, rh.hit.v);
+    Rng rng(hashCombine(seed, uint32_t(k)));
+    const Vec3 q = Vec3(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z) + d * rh.ray.tfar;
+    const size_t before = shadowRays.size();
+    direct_.sample(q, hit.normal, hit.normal, Sides::Front, rng, rayOffset_, shadowRays, shadowValues);
+    for (size_t r = before; r < shadowRays.size(); ++r) {
+      shadowValues[r] *= weight;
+      shadowTargets.push_back(targets[k]);
+    }
+  }
+  tracer_.occluded(shadowRays);
+  for (size_t r = 0; r < shadowRays.size(); ++r)
+    if (!isOccluded(shadowRays[r])) *shadowTargets[r] += shadowValues[r];
+  return backs;
+}
+
+namespace {
+
+struct VertexKey {
+  uint32_t x, y, z, firstElement;
+  bool operator==(const VertexKey&) const = default;
+};
+struct VertexKeyHash {
+  size_t operator()(const VertexKey& k) const {
+    return hashCombine(hashCombine(hashCombine(k.x, k.y), k.z), k.firstElement);
+  }
+};
+
+uint32_t bitsOf(float f) {
+  uint32_t b;
+  std::memcpy(&b, &f, sizeof b);
+  return b;
+}
+
+enum : uint8_t { kPending = 0, kRunning = 1, kDone = 2 };
+
+}  // namespace
+
+VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed)
+    : surfaces_(surfaces), gather_(gather), seed_(seed) {
+  const CornerGroups groups(surfaces, kDefaultCreaseCosine);
+  const size_t ne = surfaces.elements.size();
+  // Slots that share a position and a smooth surface (the group's first member names it) are one vertex.
+  vertexOf_.assign(ne * 4, 0);
+  std::unordered_map<VertexKey, uint32_t, VertexKeyHash> index;
+  index.reserve(ne * 2);
+  for (uint32_t e = 0; e < ne; ++e) {
+    const Element& el = surfaces.elements[e];
+    for (int c = 0; c < el.polygon.count; ++c) {
+      const Vec3 p = el.polygon.v[size_t(c)];
+      uint32_t first = e;
+      for (uint32_t m : groups.at(e, c)) first = std::min(first, m);
+      const VertexKey key{bitsOf(p.x), bitsOf(p.y), bitsOf(p.z), first};
+      auto [it, added] = index.try_emplace(key, uint32_t(vertices_.size()));
+      if (added) vertices_.push_back(Vertex{p});
+      Vertex& v = vertices_[it->second];
+      v.normal += el.area * el.normal;
+      v.centroids += el.centroid;
+      ++v.slots;
+      vertexOf_[size_t(e) * 4 + size_t(c)] = it->second;
+    }
+  }
+  if (rays <= 0)
+    rays = int(std::clamp(kVertexGatherRayBudget / std::max<size_t>(vertices_.size(), 1), size_t(16),
+                          size_t(kDefaultVertexGatherRays)));
+  side_ = strataSide(rays);
+  corners_.assign(ne * 4, Rgb(0.0f));
+  vertexState_ = std::make_unique<std::atomic<uint8_t>[]>(vertices_.size());
+  elementState_ = std::make_unique<std::atomic<uint8_t>[]>(ne);
+  for (size_t v = 0; v < vertices_.size(); ++v) vertexState_[v].store(kPending, std::memory_order_relaxed);
+  for (size_t e = 0; e < ne; ++e) elementState_[e].store(kPending, std::memory_order_relaxed);
+}
+
+VertexGather::~VertexGather() = default;
+
+// Runs `publish` once for `state`: the first caller runs it, later ones wait until it is done.
+// The work never waits on other work, so the wait always ends.
+template <typename Publish>
+void VertexGather::once(std::atomic<uint8_t>& state, Publish&& publish) {
+  if (state.load(std::memory_order_acquire) == kDone) return;
+  uint8_t expected = kPending;
+  if (state.compare_exchange_strong(expected, kRunning, std::memory_order_acq_rel)) {
+    publish();
+    state.store(kDone, std::memory_order_release);
+    state.notify_all();
+    return;
+  }
+  while (state.load(std::memory_order_acquire) != kDone) state.wait(kRunning, std::memory_order_acquire);
+}
+
+void VertexGather::gatherVertex(uint32_t vi) {
+  Vertex& v = vertices_[vi];
+  const float length = glm::length(v.normal);
+  if (!(length > 0.0f)) return;
+  const Vec3 n = v.normal / length;
+  const Vec3 towardsCentroids = v.centroids / float(v.slots) - v.position;
+  const Vec3 origin = v.position + 0.01f * towardsCentroids + rayOffsetFor(surfaces_.sceneExtent) * n;
+  const int count = side_ * side_;
+  HemisphereStrata strata(n, side_, vi, seed_);
+  std::vector<RTCRayHit> hits(static_cast<size_t>(count));
+  for (int j = 0; j < side_; ++j)
+    for (int i = 0; i < side_; ++i) {
+      RTCRayHit& rh = hits[size_t(j * side_ + i)];
+      rh.ray = makeRay(origin, strata.cosine(i, j), 0.0f, std::numeric_limits<float>::infinity());
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+  // Cosine-distributed: the irradiance is pi times the mean radiance.
+  const std::vector<Rgb> weights(static_cast<size_t>(count), Rgb(std::numbers::pi_v<float> / float(count)));
+  Rgb sum(0.0f);
+  const std::vector<Rgb*> targets(static_cast<size_t>(count), &sum);
+  const size_t backs = gather_.add(hits, weights, targets, hashCombine(seed_, vi));
+  v.irradiance = sum;
+  v.inside = 2 * backs > size_t(count);
+}
+
+const Rgb* VertexGather::corners(uint32_t e) {
+  once(elementState_[e], [&] {
+    const int n = surfaces_.elements[e].polygon.count;
+    const uint32_t* vs = &vertexOf_[size_t(e) * 4];
+    for (int c = 0; c < n; ++c) once(vertexState_[vs[c]], [&] { gatherVertex(vs[c]); });
+    Rgb outside(0.0f);
+    int outsideCount = 0;
+    for (int c = 0; c < n; ++c) {
+      const Vertex& v = vertices_[vs[c]];
+      corners_[size_t(e) * 4 + size_t(c)] = v.irradiance;
+      if (!v.inside) outside += v.irradiance, ++outsideCount;
+    }
+    if (outsideCount > 0 && outsideCount < n)
+      for (int c = 0; c < n; ++c)
+        if (vertices_[vs[c]].inside) corners_[size_t(e) * 4 + size_t(c)] = outside / float(outsideCount);
+  });
+  return &corners_[size_t(e) * 4];
+}
+
+std::vector<Rgb> VertexGather::all() {
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(surfaces_.elements.size()), 16),
+                    [&](const tbb::blocked_range<uint32_t>& r) {
+                      for (uint32_t e = r.begin(); e < r.end(); ++e) corners(e);
+                    });
+  return corners_;
+}
+
+size_t VertexGather::verticesGathered() const {
+  size_t n = 0;
+  for (size_t v = 0; v < vertices_.size(); ++v) n += vertexState_[v].load(std::memory_order_relaxed) == kDone;
+  return n;
+}
+
+}  // namespace luxel

@@ -1,0 +1,100 @@
+// The final gather of two-pass methods (Chen, Rushmeier, Miller and Turner, "A Progressive
+// Multi-Pass Method for Global Illumination", SIGGRAPH 1991; Reichert's and Lischinski's
+// gathering of a radiosity solution): the indirect irradiance at a point is gathered by rays over
+// its hemisphere, each reading the radiance the solution leaves where the ray lands. Where it
+// lands, the direct light is traced again (a shadow ray per light) and only the indirect part is
+// interpolated from the elements; so the element solution is met one bounce away and only through
+// its indirect light, where its discretisation error (patches shooting their mean, elements
+// averaged across a block's footprint) is smallest.
+//
+// Emission met by a gather ray is not counted, nor is the sky met by one that escapes: both are
+// direct light, which the caller traces at the point itself.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "luxel/render.h"
+#include "render/direct_light.h"
+#include "trace/ray_tracer.h"
+
+namespace luxel {
+
+inline constexpr size_t kVertexGatherRayBudget = size_t(1) << 24;
+
+class FinalGather {
+ public:
+  // `indirectCorners`: the solution's indirect irradiance at element corners (elementCornerValues
+  // of irradiance minus direct irradiance). `tracer` holds the elements with twins apart
+  // (trace/element_polygons.h).
+  FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
+              const std::vector<Rgb>& indirectCorners);
+
+  // One batch of gather rays, traced here. Adds weights[i] * L_i to *targets[i], where L_i is the
+  // reflected radiance (rho / pi times the irradiance) at the point rays[i] lands on; misses and
+  // the backs of one-sided surfaces bring nothing. `seed` picks the hits' light samples. Returns
+  // how many of the rays met the back of a surface (an element whose gather rays mostly do is
+  // inside a solid).
+  size_t add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
+             uint32_t seed) const;
+
+ private:
+  const SurfaceSet& surfaces_;
+  const RayTracer& tracer_;
+  const DirectLight& direct_;
+  const std::vector<Rgb>& corners_;
+  float rayOffset_;
+};
+
+// The indirect irradiance gathered at element corners, `rays` cosine-stratified rays per vertex,
+// each vertex on first demand (an image gathers only what it sees). Corners that meet on one
+// smooth surface (mesh/corner_groups.h) share one gather, at a point moved a hundredth of the way
+// towards the elements' centroids so that rays along a crease meet the other wall. A vertex inside
+// a solid (under a block standing on the floor: most of its rays meet backs) takes the mean of its
+// element's other corners, so that a floor element the block half covers is not darkened by the
+// corners under it.
+class VertexGather {
+ public:
+  // `rays` per vertex; 0 takes kDefaultVertexGatherRays, fewer (down to 16) where the scene has so
+  // many vertices that the gather would pass kVertexGatherRayBudget rays: there the elements are
+  // small on screen and neighbouring pixels average the noise.
+  VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed);
+  ~VertexGather();
+  VertexGather(const VertexGather&) = delete;
+  VertexGather& operator=(const VertexGather&) = delete;
+
+  // Element e's 4 corner slots (as elementCornerValues lays them out), gathered now if they were
+  // not before. Safe to call from many threads at once.
+  const Rgb* corners(uint32_t e);
+  // Every element's corners, gathered in parallel: 4 slots per element.
+  std::vector<Rgb> all();
+  size_t vertexCount() const { return vertices_.size(); }
+  int raysPerVertex() const { return side_ * side_; }
+  size_t verticesGathered() const;
+
+ private:
+  struct Vertex {
+    Vec3 position{0.0f};
+    Vec3 normal{0.0f};
+    Vec3 centroids{0.0f};  // summed over the slots that share it, for the nudge inwards
+    uint32_t slots = 0;
+    Rgb irradiance{0.0f};
+    bool inside = false;
+  };
+  void gatherVertex(uint32_t v);
+  template <typename Publish>
+  void once(std::atomic<uint8_t>& state, Publish&& publish);
+
+  const SurfaceSet& surfaces_;
+  const FinalGather& gather_;
+  int side_;
+  uint32_t seed_;
+  std::vector<uint32_t> vertexOf_;  // 4 slots per element
+  std::vector<Vertex> vertices_;
+  std::vector<Rgb> corners_;  // 4 slots per element, valid once the element's state is done
+  std::unique_ptr<std::atomic<uint8_t>[]> vertexState_, elementState_;
+};
+
+}  // namespace luxel
