@@ -57,6 +57,7 @@ RenderOptions renderOptionsFor(const Scene& scene, const ViewArgs& a) {
   ro.samplesPerPixel = a.spp;
   ro.indirect = parseIndirect(a.indirect);
   ro.gatherRays = a.gatherRays;
+  ro.seed = a.renderSeed;
   ro.mode = parseRenderMode(a.mode);
   validateRenderOptions(ro);
   return ro;
@@ -101,6 +102,9 @@ void addViewOptions(CLI::App& c, ViewArgs& a) {
                fmt::format("Gather rays per vertex (default {}) or per pixel sample (default {})",
                            kDefaultVertexGatherRays, kDefaultPixelGatherRays))
       ->check(CLI::Range(0, 65536));
+  c.add_option("--render-seed", a.renderSeed,
+               "Seed of the image's samples (pixel jitter, light points, gather rays); the solver's is --set seed=N")
+      ->capture_default_str();
   c.add_option("--tonemap", a.toneCurve, "PNG tone curve: filmic, reinhard or clamp")->capture_default_str();
   c.add_option("--exposure", a.exposure, "PNG exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));
 }
@@ -235,7 +239,8 @@ int runRender(const RenderArgs& a) {
     RunRecord record;
     record.scene = sceneName;
     record.solve = s;
-    record.image = RunRecord::Image{width, height, a.spp, a.mode, meanLuminance(image), rs.rays, rs.seconds};
+    record.image = RunRecord::Image{width, height, a.spp, a.mode, meanLuminance(image), rs.rays, rs.seconds,
+                                    a.mode == "hq" ? a.indirect : std::string()};
     record.threads = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
     record.outputs = a.outputs;
     record.totalSeconds = total;

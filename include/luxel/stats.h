@@ -21,6 +21,7 @@ struct RunRecord {
     double meanLuminance = 0.0;  // cd/m^2 (radiance weighted by Rec. 709 luminance)
     uint64_t renderRays = 0;
     double renderSeconds = 0.0;
+    std::string indirect;  // hq mode's indirect light (--indirect); empty in other modes
   };
   std::optional<Image> image;
   int threads = 0;

@@ -1,6 +1,8 @@
 #include "render/direct_light.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "transport/light_sampling.h"
 
@@ -31,9 +33,10 @@ DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
       if (faceDone[e.face]) continue;
       faceDone[e.face] = true;
       const SurfaceFace& f = surfaces.faces[e.face];
-      emitters_.push_back({Polygon{f.corners, f.triangle ? 3 : 4}, e.exitance, sides});
+      const Polygon polygon{f.corners, f.triangle ? 3 : 4};
+      emitters_.push_back({polygon, polygon.normal(), polygon.area(), e.exitance, sides});
     } else {
-      emitters_.push_back({e.polygon, e.exitance, sides});
+      emitters_.push_back({e.polygon, e.polygon.normal(), e.polygon.area(), e.exitance, sides});
     }
   }
   float total = 0.0f;
@@ -44,41 +47,54 @@ DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
   for (float& c : cdf_) c /= total > 0.0f ? total : 1.0f;
 }
 
-void DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides,
-                                Vec2 u, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
-                                std::vector<Rgb>& values) const {
-  Vec3 pn = em.polygon.normal();
-  float f = pointToPolygonFormFactor(x, shading, em.polygon, pn, sides, em.sides);
-  if (f <= 0.0f) return;
-  // f already counts only the part of the emitter above the shading plane; visibility is sampled
-  // there. A point of it below the geometric plane is hidden by the surface itself: like any other
-  // occluder, that is what the visibility sample estimates.
-  // The first try is the stratified point; a point behind the receiver's plane is drawn again.
+Rgb DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides,
+                               Vec2 u, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
+                               std::vector<Rgb>& values) const {
+  const Vec3 pn = em.normal;
+  const float f = pointToPolygonFormFactor(x, shading, em.polygon, pn, sides, em.sides);
+  if (f <= 0.0f) return Rgb(0.0f);
+  // f counts only the part of the emitter above the shading plane; the point is drawn there. The
+  // first try is the stratified point; a point behind the receiver's plane is drawn again.
   Vec3 y;
   int drawn = 0;
   const auto next = [&] { return drawn < 2 ? u[drawn++] : rng.next(); };
-  if (!pointInFront(em.polygon, x, shading, next, y)) return;
-  Vec3 d = y - x;
-  if (sides == Sides::Front && glm::dot(n, d) < 0.0f) return;
-  Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
-  Vec3 yo = y + pn * (glm::dot(pn, d) <= 0.0f ? rayOffset : -rayOffset);
+  if (!pointInFront(em.polygon, x, shading, next, y)) return Rgb(0.0f);  // a sliver
+  const Vec3 d = y - x;
+  const float r2 = glm::dot(d, d);
+  if (!(r2 > 0.0f)) return Rgb(0.0f);
+  const Vec3 w = d / std::sqrt(r2);
+  const float cosReceiver = sides == Sides::Both ? std::abs(glm::dot(shading, w)) : std::max(0.0f, glm::dot(shading, w));
+  const float cosEmitter = em.sides == Sides::Both ? std::abs(glm::dot(pn, w)) : std::max(0.0f, -glm::dot(pn, w));
+  // What the shadow ray decides: this point's estimate of the factor, A k(y) (uniform points: the
+  // bilinear map of polygonPoint is uniform on triangles and parallelograms, as emitters are).
+  bool wholeInFront = true;
+  for (int c = 0; c < em.polygon.count; ++c) wholeInFront &= glm::dot(em.polygon.v[size_t(c)] - x, shading) >= 0.0f;
+  const float area = wholeInFront ? em.area : areaInFront(em.polygon, x, shading);
+  const float decided = area * cosReceiver * cosEmitter * std::numbers::inv_pi_v<float> / r2;
+  const Rgb always = em.exitance * ((f - decided) * weight);
+  // A point below the geometric plane is hidden by the surface itself: blocked, without a ray.
+  if (sides == Sides::Front && glm::dot(n, d) < 0.0f) return always;
+  const Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
+  const Vec3 yo = y + pn * (glm::dot(pn, d) <= 0.0f ? rayOffset : -rayOffset);
   rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
-  values.push_back(em.exitance * (f * weight));
+  values.push_back(em.exitance * (decided * weight));
+  return always;
 }
 
-void DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
-                         std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
+Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
+                        std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
+  Rgb always(0.0f);
   if (emitters_.size() <= kMaxExplicitEmitters) {
     for (size_t k = 0; k < emitters_.size(); ++k)
-      sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, rotated(u, k), rng, rayOffset, rays, values);
+      always += sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, rotated(u, k), rng, rayOffset, rays, values);
   } else {
     for (int i = 0; i < kSampledEmitters; ++i) {
       size_t k = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.next()) - cdf_.begin());
       k = std::min(k, emitters_.size() - 1);
       float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
       if (p <= 0.0f) continue;
-      sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, rotated(u, size_t(i)), rng,
-                    rayOffset, rays, values);
+      always += sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, rotated(u, size_t(i)),
+                              rng, rayOffset, rays, values);
     }
   }
   for (size_t k = 0; k < scene_.lights.size(); ++k) {
@@ -93,6 +109,7 @@ void DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng&
     rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
     values.push_back(ls.irradiance);
   }
+  return always;
 }
 
 }  // namespace luxel

@@ -2,6 +2,7 @@
 #include "render/final_gather.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <numbers>
@@ -19,6 +20,10 @@ namespace luxel {
 namespace {
 
 constexpr float kInvPi = std::numbers::inv_pi_v<float>;
+// A hit nearer than this many of its element's edge lengths gathers its own indirect light with
+// kNearHitSide^2 rays.
+constexpr float kNearHitElements = 2.0f;
+constexpr int kNearHitSide = 3;
 
 }  // namespace
 
@@ -32,10 +37,26 @@ FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, co
 
 size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
                         uint32_t seed) const {
+  return add(rays, weights, targets, seed, true);
+}
+
+size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
+                        uint32_t seed, bool gatherNearHits) const {
   tracer_.intersect(rays, false);
-  std::vector<RTCRay> shadowRays;
-  std::vector<Rgb> shadowValues;
-  std::vector<Rgb*> shadowTargets;
+  // Per thread and per level (the near hits' gathers are a second level), kept between calls.
+  struct Scratch {
+    std::vector<RTCRay> shadowRays;
+    std::vector<Rgb> shadowValues;
+    std::vector<Rgb*> shadowTargets;
+    std::vector<RTCRayHit> second;  // the near hits' own gathers
+    std::vector<Rgb> secondWeights;
+    std::vector<Rgb*> secondTargets;
+  };
+  thread_local Scratch levels[2];
+  Scratch& scratch = levels[gatherNearHits ? 0 : 1];
+  auto& [shadowRays, shadowValues, shadowTargets, second, secondWeights, secondTargets] = scratch;
+  shadowRays.clear(), shadowValues.clear(), shadowTargets.clear();
+  second.clear(), secondWeights.clear(), secondTargets.clear();
   size_t backs = 0;
   for (size_t k = 0; k < rays.size(); ++k) {
     const RTCRayHit& rh = rays[k];
@@ -48,11 +69,31 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
       continue;
     }
     const Rgb weight = weights[k] * hit.reflectance * kInvPi;
-    *targets[k] += weight * interpolateCorners(&corners_[size_t(h) * 4], hit.polygon.count, rh.hit.u, rh.hit.v);
-    Rng rng(hashCombine(seed, uint32_t(k)));
     const Vec3 q = Vec3(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z) + d * rh.ray.tfar;
+    if (gatherNearHits && rh.ray.tfar < kNearHitElements * std::sqrt(hit.area)) {
+      // A hit within a couple of elements: the elements there are seen large, and their
+      // averaging (a block's footprint, a crease) with them, so the hit gathers its own indirect
+      // light, from the solution one bounce further.
+      HemisphereStrata strata(hit.normal, kNearHitSide, hashCombine(seed, uint32_t(k)), 0x6e656172u);
+      const Vec3 origin = q + rayOffset_ * hit.normal;
+      const Rgb perRay = weight * (std::numbers::pi_v<float> / float(kNearHitSide * kNearHitSide));
+      for (int j = 0; j < kNearHitSide; ++j)
+        for (int i = 0; i < kNearHitSide; ++i) {
+          RTCRayHit g;
+          g.ray = makeRay(origin, strata.cosine(i, j), 0.0f, std::numeric_limits<float>::infinity());
+          g.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          g.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+          second.push_back(g);
+          secondWeights.push_back(perRay);
+          secondTargets.push_back(targets[k]);
+        }
+    } else {
+      *targets[k] += weight * interpolateCorners(&corners_[size_t(h) * 4], hit.polygon.count, rh.hit.u, rh.hit.v);
+    }
+    Rng rng(hashCombine(seed, uint32_t(k)));
     const size_t before = shadowRays.size();
-    direct_.sample(q, hit.normal, hit.normal, Sides::Front, rng, rayOffset_, shadowRays, shadowValues);
+    *targets[k] += weight * direct_.sample(q, hit.normal, hit.normal, Sides::Front, rng, rayOffset_, shadowRays,
+                                           shadowValues);
     for (size_t r = before; r < shadowRays.size(); ++r) {
       shadowValues[r] *= weight;
       shadowTargets.push_back(targets[k]);
@@ -61,6 +102,7 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
   tracer_.occluded(shadowRays);
   for (size_t r = 0; r < shadowRays.size(); ++r)
     if (!isOccluded(shadowRays[r])) *shadowTargets[r] += shadowValues[r];
+  if (!second.empty()) add(second, secondWeights, secondTargets, hashCombine(seed, 0x5ec0u), false);
   return backs;
 }
 

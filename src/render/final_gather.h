@@ -5,7 +5,9 @@
 // lands, the direct light is traced again (a shadow ray per light) and only the indirect part is
 // interpolated from the elements; so the element solution is met one bounce away and only through
 // its indirect light, where its discretisation error (patches shooting their mean, elements
-// averaged across a block's footprint) is smallest.
+// averaged across a block's footprint) is smallest. A hit within two of its element's edge lengths
+// sees those elements large, and gathers its own indirect light in turn (9 rays) from the solution
+// one bounce further.
 //
 // Emission met by a gather ray is not counted, nor is the sky met by one that escapes: both are
 // direct light, which the caller traces at the point itself.
@@ -41,6 +43,9 @@ class FinalGather {
              uint32_t seed) const;
 
  private:
+  size_t add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets, uint32_t seed,
+             bool gatherNearHits) const;
+
   const SurfaceSet& surfaces_;
   const RayTracer& tracer_;
   const DirectLight& direct_;

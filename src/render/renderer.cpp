@@ -210,7 +210,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
           Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, pixel), uint32_t(s)));
           const size_t before = shadowRays.size();
           const Vec2 lightPoint = multiJitter(uint32_t(s), uint32_t(spp), hashCombine(pattern, kLightPoints));
-          direct.sample(p, el.normal, shading, Sides::Front, lightPoint, rng, rayOffset, shadowRays, shadowValues);
+          sum += rho * kInvPi *
+                 direct.sample(p, el.normal, shading, Sides::Front, lightPoint, rng, rayOffset, shadowRays, shadowValues);
           for (size_t k = before; k < shadowRays.size(); ++k) {
             shadowValues[k] *= rho * kInvPi;
             shadowTargets.push_back(&sum);

@@ -53,6 +53,7 @@ std::string statsJson(const RunRecord& r) {
     j["image"] = {{"width", r.image->width},         {"height", r.image->height},
                   {"spp", r.image->samplesPerPixel}, {"mode", r.image->mode},
                   {"mean_luminance", r.image->meanLuminance}, {"render_rays", r.image->renderRays}};
+  if (r.image && !r.image->indirect.empty()) j["image"]["indirect"] = r.image->indirect;
   return j.dump(2) + "\n";
 }
 

@@ -228,6 +228,14 @@ float pointPolygonDistance(Vec3 p, const Polygon& poly) {
   return inside ? std::abs(height) : edgeDistance;
 }
 
+float areaInFront(const Polygon& poly, Vec3 p, Vec3 n) {
+  Vec3 r[8];
+  const int count = clipAbove(p, n, poly, r);
+  Vec3 twice(0.0f);  // the fan's summed cross products: twice the vector area
+  for (int i = 1; i + 1 < count; ++i) twice += glm::cross(r[i] - r[0], r[i + 1] - r[0]);
+  return 0.5f * glm::length(twice);
+}
+
 float polygonSolidAngle(Vec3 p, const Polygon& poly) {
   // Van Oosterom and Strackee, "The Solid Angle of a Plane Triangle", IEEE TBME 30(2), 1983.
   double omega = 0.0;

@@ -47,6 +47,9 @@ double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source
 // Solid angle of a polygon seen from `p` (Van Oosterom and Strackee 1983, per fan triangle).
 float polygonSolidAngle(Vec3 p, const Polygon& poly);
 
+// The area of the part of `poly` above the plane through `p` with normal `n`.
+float areaInFront(const Polygon& poly, Vec3 p, Vec3 n);
+
 // Euclidean distance from `p` to the (filled) planar convex polygon.
 float pointPolygonDistance(Vec3 p, const Polygon& poly);
 

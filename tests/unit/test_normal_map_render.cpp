@@ -191,7 +191,7 @@ TEST(NormalMapRender, EmitterFormFactorUsesTheShadingNormal) {
   for (int i = 0; i < samples; ++i) {
     rays.clear();
     values.clear();
-    direct.sample(x, n, kTilted, Sides::Front, rng, 1e-5f, rays, values);
+    sum += direct.sample(x, n, kTilted, Sides::Front, rng, 1e-5f, rays, values).g;
     tracer.occluded(rays);
     for (size_t k = 0; k < rays.size(); ++k)
       if (!isOccluded(rays[k])) sum += values[k].g;

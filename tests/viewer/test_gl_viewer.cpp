@@ -38,6 +38,9 @@ Image renderLikeLuxel(const luxel::viewer::Viewer& v, luxel::RenderOptions::Mode
   ro.camera = v.camera().toCamera();
   ro.width = ro.height = size;
   ro.samplesPerPixel = 16;
+  // The viewer interpolates the solution's indirect light, as `--indirect interpolated` does; the
+  // default gather differs from both where the solution's discretisation shows (render/final_gather.h).
+  ro.indirect = luxel::RenderOptions::Indirect::Interpolated;
   luxel::Session& s = const_cast<luxel::Session&>(v.session());
   return luxel::render(s.scene(), s.surfaces(), s.solution(), ro);
 }
