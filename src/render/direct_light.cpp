@@ -49,18 +49,12 @@ DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
 
 Rgb DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides,
                                Vec2 u, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
-                               std::vector<Rgb>& values, Estimator estimator) const {
+                               std::vector<Rgb>& values) const {
   const Vec3 pn = em.normal;
-  int inFront = 0;
-  for (int c = 0; c < em.polygon.count; ++c) inFront += glm::dot(em.polygon.v[size_t(c)] - x, shading) > 0.0f;
-  if (inFront == 0) return Rgb(0.0f);
-  float f = 0.0f;
-  if (estimator == Estimator::FormFactor) {
-    f = pointToPolygonFormFactor(x, shading, em.polygon, pn, sides, em.sides);
-    if (f <= 0.0f) return Rgb(0.0f);
-  }
-  // The point is drawn on the part above the shading plane, the part f counts. The first try is
-  // the stratified point; a point behind the receiver's plane is drawn again.
+  const float f = pointToPolygonFormFactor(x, shading, em.polygon, pn, sides, em.sides);
+  if (f <= 0.0f) return Rgb(0.0f);
+  // f counts only the part of the emitter above the shading plane; the point is drawn there. The
+  // first try is the stratified point; a point behind the receiver's plane is drawn again.
   Vec3 y;
   int drawn = 0;
   const auto next = [&] { return drawn < 2 ? u[drawn++] : rng.next(); };
@@ -73,9 +67,11 @@ Rgb DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, 
   const float cosEmitter = em.sides == Sides::Both ? std::abs(glm::dot(pn, w)) : std::max(0.0f, -glm::dot(pn, w));
   // What the shadow ray decides: this point's estimate of the factor, A k(y) (uniform points: the
   // bilinear map of polygonPoint is uniform on triangles and parallelograms, as emitters are).
-  const float area = inFront == em.polygon.count ? em.area : areaInFront(em.polygon, x, shading);
+  bool wholeInFront = true;
+  for (int c = 0; c < em.polygon.count; ++c) wholeInFront &= glm::dot(em.polygon.v[size_t(c)] - x, shading) >= 0.0f;
+  const float area = wholeInFront ? em.area : areaInFront(em.polygon, x, shading);
   const float decided = area * cosReceiver * cosEmitter * std::numbers::inv_pi_v<float> / r2;
-  const Rgb always = estimator == Estimator::FormFactor ? em.exitance * ((f - decided) * weight) : Rgb(0.0f);
+  const Rgb always = em.exitance * ((f - decided) * weight);
   // A point below the geometric plane is hidden by the surface itself: blocked, without a ray.
   if (sides == Sides::Front && glm::dot(n, d) < 0.0f) return always;
   const Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
@@ -86,12 +82,11 @@ Rgb DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, 
 }
 
 Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
-                        std::vector<RTCRay>& rays, std::vector<Rgb>& values, Estimator estimator) const {
+                        std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
   Rgb always(0.0f);
   if (emitters_.size() <= kMaxExplicitEmitters) {
     for (size_t k = 0; k < emitters_.size(); ++k)
-      always += sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, rotated(u, k), rng, rayOffset, rays, values,
-                              estimator);
+      always += sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, rotated(u, k), rng, rayOffset, rays, values);
   } else {
     for (int i = 0; i < kSampledEmitters; ++i) {
       size_t k = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.next()) - cdf_.begin());
@@ -99,7 +94,7 @@ Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& 
       float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
       if (p <= 0.0f) continue;
       always += sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, rotated(u, size_t(i)),
-                              rng, rayOffset, rays, values, estimator);
+                              rng, rayOffset, rays, values);
     }
   }
   for (size_t k = 0; k < scene_.lights.size(); ++k) {

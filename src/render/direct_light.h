@@ -24,32 +24,26 @@ class DirectLight {
  public:
   DirectLight(const Scene& scene, const SurfaceSet& surfaces);
 
-  // How an emitter's sample is weighed. FormFactor: F - A k(y) (1 - V(y)) (above), exact where
-  // nothing is in the way, for pixels, where noise shows. Kernel: A k(y) V(y), also unbiased, with
-  // no analytic factor to compute and more noise: for a final gather's hits, which are averaged by
-  // the hundred (the analytic factor at every hit was a quarter of a Cornell render).
-  enum class Estimator { FormFactor, Kernel };
-
   // One sample: appends shadow rays and the irradiance each brings if unoccluded, and returns the
   // irradiance that comes whatever the rays find (which may be negative).
   Rgb sample(Vec3 x, Vec3 n, Sides sides, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
-             std::vector<Rgb>& values, Estimator estimator = Estimator::FormFactor) const {
-    return sample(x, n, n, sides, rng, rayOffset, rays, values, estimator);
+             std::vector<Rgb>& values) const {
+    return sample(x, n, n, sides, rng, rayOffset, rays, values);
   }
   // The same with the point of each light's area (or solid angle) taken from `u`, a stratified
   // sample (core/multi_jitter.h), so that a pixel's samples cover a lamp evenly and penumbrae come
   // out smooth; `rng` draws the rest (emitters by power, retries behind the receiver's plane).
   Rgb sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
-             std::vector<RTCRay>& rays, std::vector<Rgb>& values, Estimator estimator = Estimator::FormFactor) const;
+             std::vector<RTCRay>& rays, std::vector<Rgb>& values) const;
   // The same with a shading normal (a normal map's, render/normal_map.h) for the receiver's cosine,
   // max(0, shading . l): the irradiance a surface of that orientation would get. Shadow rays leave
   // from the geometric surface (offset along n), and with Sides::Front light from behind its
   // geometric plane counts as occluded, since the surface itself is in the way. With shading == n
   // this is the call above, sample for sample.
   Rgb sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
-             std::vector<Rgb>& values, Estimator estimator = Estimator::FormFactor) const {
+             std::vector<Rgb>& values) const {
     const Vec2 u(rng.next(), rng.next());
-    return sample(x, n, shading, sides, u, rng, rayOffset, rays, values, estimator);
+    return sample(x, n, shading, sides, u, rng, rayOffset, rays, values);
   }
 
  private:
@@ -61,8 +55,7 @@ class DirectLight {
     Sides sides;
   };
   Rgb sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u,
-                    Rng& rng, float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values,
-                    Estimator estimator) const;
+                    Rng& rng, float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values) const;
 
   const Scene& scene_;
   Vec3 up_;

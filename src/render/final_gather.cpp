@@ -93,7 +93,7 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
     Rng rng(hashCombine(seed, uint32_t(k)));
     const size_t before = shadowRays.size();
     *targets[k] += weight * direct_.sample(q, hit.normal, hit.normal, Sides::Front, rng, rayOffset_, shadowRays,
-                                           shadowValues, DirectLight::Estimator::Kernel);
+                                           shadowValues);
     for (size_t r = before; r < shadowRays.size(); ++r) {
       shadowValues[r] *= weight;
       shadowTargets.push_back(targets[k]);
