@@ -92,6 +92,9 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
     }
     Rng rng(hashCombine(seed, uint32_t(k)));
     const size_t before = shadowRays.size();
+    // The form-factor estimator here too: the kernel alone (A k(y) V(y)) skips the analytic factor
+    // and is unbiased, but heavy-tailed next to a large emitter (a furnace's walls came out 35%
+    // low at 64 rays a vertex).
     *targets[k] += weight * direct_.sample(q, hit.normal, hit.normal, Sides::Front, rng, rayOffset_, shadowRays,
                                            shadowValues);
     for (size_t r = before; r < shadowRays.size(); ++r) {
