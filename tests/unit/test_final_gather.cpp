@@ -185,6 +185,25 @@ TEST(FinalGather, EveryIndirectModeRendersTheFurnaceAtItsClosedForm) {
   }
 }
 
+// The furnace with the block standing in it, rendered: every pixel is Le / (1 - rho) = 2. The
+// block's walls are emitters next to the floor, partly hidden from it by the block's other walls:
+// the direct light's shadow rays decide a little of each sample (F - A k(y) (1 - V(y))), with a
+// heavy tail where y is close, and the gather's hits see the floor's footprint (above).
+TEST(FinalGather, TheFurnaceWithABlockRendersAtItsClosedForm) {
+  Solved s = solveFurnace(furnaceWithBlock(), 3000);
+  RenderOptions ro;
+  ro.camera = Camera{.name = "above", .eye = Vec3(0.1f, 0.9f, 0.1f), .target = Vec3(0.5f, 0.0f, 0.5f),
+                     .up = Vec3(0, 1, 0), .fovY = 70.0f};
+  ro.width = ro.height = 48;
+  ro.samplesPerPixel = 16;
+  const Image image = render(s.scene, s.surfaces, s.solution, ro);
+  double sum = 0.0, worst = 0.0;
+  for (const Rgb& p : image.pixels) sum += p.g, worst = std::max(worst, std::abs(double(p.g) - 2.0));
+  // Measured: mean 1.9969, worst pixel 0.040 off.
+  EXPECT_NEAR(sum / double(image.pixels.size()), 2.0, 0.01);
+  EXPECT_LT(worst, 0.1);
+}
+
 TEST(FinalGather, AbsurdRayCountsAreRefused) {
   RenderOptions ro;
   ro.camera = builtin::furnace(0.5f, 1.0f).cameras[0];
