@@ -58,6 +58,7 @@ RenderOptions renderOptionsFor(const Scene& scene, const ViewArgs& a) {
   ro.indirect = parseIndirect(a.indirect);
   ro.gatherRays = a.gatherRays;
   ro.seed = a.renderSeed;
+  ro.gatherBounces = a.gatherBounces;
   ro.mode = parseRenderMode(a.mode);
   validateRenderOptions(ro);
   return ro;
@@ -102,6 +103,10 @@ void addViewOptions(CLI::App& c, ViewArgs& a) {
                fmt::format("Gather rays per vertex (default {}) or per pixel sample (default {})",
                            kDefaultVertexGatherRays, kDefaultPixelGatherRays))
       ->check(CLI::Range(0, 65536));
+  c.add_option("--gather-bounces", a.gatherBounces,
+               "Bounces gathered before the solution is read: 1, or 2 (a coarse gather of every vertex first)")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
   c.add_option("--render-seed", a.renderSeed,
                "Seed of the image's samples (pixel jitter, light points, gather rays); the solver's is --set seed=N")
       ->capture_default_str();

@@ -43,11 +43,16 @@ struct RenderOptions {
   // default: kDefaultPixelGatherRays, or kDefaultVertexGatherRays where the scene's vertices allow
   // (render/final_gather.h keeps the whole gather to about 16 million rays).
   int gatherRays = 0;
+  // Bounces gathered before the solution is read: 1, at the gather's hits; 2 (default), where the
+  // hits read a coarse gather of every vertex (kCoarseGatherRays each), which halves what is left
+  // of the solution's error for a tenth more time (docs/performance.md, "Against a peer").
+  int gatherBounces = 2;
   uint32_t seed = 7;
 };
 
 inline constexpr int kDefaultVertexGatherRays = 256;
 inline constexpr int kDefaultPixelGatherRays = 4;
+inline constexpr int kCoarseGatherRays = 16;
 
 inline constexpr int kMaxImageSide = 32768;
 // 16384 x 16384: the float image alone is 3 GiB, and a bigger poster is rendered in tiles.
@@ -55,7 +60,7 @@ inline constexpr uint64_t kMaxImagePixels = uint64_t(16384) * 16384;
 
 // Throws Error when the options are absurd: a side outside [1, kMaxImageSide], more than
 // kMaxImagePixels pixels, samples outside [1, 65536], gather rays outside [0, 65536] (or, per pixel
-// sample, their product with the samples over 2^20), a field of view outside (0, 180) degrees, a
+// sample, their product with the samples over 2^20), gather bounces other than 1 or 2, a field of view outside (0, 180) degrees, a
 // camera whose eye, target and up do not span a frame or lie beyond kMaxCoordinate. render() calls
 // it; a caller can call it before the solve, to fail early.
 void validateRenderOptions(const RenderOptions& options);

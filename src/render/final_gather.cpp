@@ -28,8 +28,9 @@ constexpr int kNearHitSide = 3;
 }  // namespace
 
 FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
-                         const std::vector<Rgb>& indirectCorners)
-    : surfaces_(surfaces),
+                         const std::vector<Rgb>& indirectCorners, bool gatherNearHits)
+    : gatherNearHits_(gatherNearHits),
+      surfaces_(surfaces),
       tracer_(tracer),
       direct_(direct),
       corners_(indirectCorners),
@@ -37,7 +38,7 @@ FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, co
 
 size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
                         uint32_t seed) const {
-  return add(rays, weights, targets, seed, true);
+  return add(rays, weights, targets, seed, gatherNearHits_);
 }
 
 size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,

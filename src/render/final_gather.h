@@ -7,7 +7,8 @@
 // its indirect light, where its discretisation error (patches shooting their mean, elements
 // averaged across a block's footprint) is smallest. A hit within two of its element's edge lengths
 // sees those elements large, and gathers its own indirect light in turn (9 rays) from the solution
-// one bounce further.
+// one bounce further. The corners read at the hits may instead be a coarse gather of their own
+// (VertexGather over this class): the solution is then two bounces away.
 //
 // Emission met by a gather ray is not counted, nor is the sky met by one that escapes: both are
 // direct light, which the caller traces at the point itself.
@@ -31,8 +32,11 @@ class FinalGather {
   // `indirectCorners`: the solution's indirect irradiance at element corners (elementCornerValues
   // of irradiance minus direct irradiance). `tracer` holds the elements with twins apart
   // (trace/element_polygons.h).
+  // `gatherNearHits`: a hit within two of its element's edge lengths gathers its own indirect
+  // light (9 rays) instead of reading the corners there: for corners taken from the solution, whose
+  // elements average across a block's footprint; gathered corners (VertexGather) need it not.
   FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
-              const std::vector<Rgb>& indirectCorners);
+              const std::vector<Rgb>& indirectCorners, bool gatherNearHits = true);
 
   // One batch of gather rays, traced here. Adds weights[i] * L_i to *targets[i], where L_i is the
   // reflected radiance (rho / pi times the irradiance) at the point rays[i] lands on; misses and
@@ -45,6 +49,7 @@ class FinalGather {
  private:
   size_t add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets, uint32_t seed,
              bool gatherNearHits) const;
+  bool gatherNearHits_;
 
   const SurfaceSet& surfaces_;
   const RayTracer& tracer_;

@@ -55,6 +55,8 @@ void validateRenderOptions(const RenderOptions& o) {
                             double(o.width) * o.height * sizeof(Rgb) / double(1u << 30)));
   if (o.samplesPerPixel < 1 || o.samplesPerPixel > 65536)
     throw Error(fmt::format("samples per pixel {} must be between 1 and 65536", o.samplesPerPixel));
+  if (o.gatherBounces < 1 || o.gatherBounces > 2)
+    throw Error(fmt::format("gather bounces {} must be 1 or 2", o.gatherBounces));
   if (o.gatherRays < 0 || o.gatherRays > kMaxGatherRays)
     throw Error(fmt::format("gather rays {} must be between 0 and {}", o.gatherRays, kMaxGatherRays));
   if (o.indirect == RenderOptions::Indirect::PixelGather &&
@@ -117,9 +119,20 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const Vec3 up = glm::normalize(scene.up);
   // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at
   // vertices, each vertex when a pixel first needs it.
+  // With two bounces gathered, the gather's hits read a coarse gather at every vertex instead of
+  // the solution, so the solution is met two bounces away.
+  std::vector<Rgb> coarse;
+  std::optional<FinalGather> fromCoarse;
+  if ((vertexGather || pixelGather) && options.gatherBounces >= 2) {
+    VertexGather first(surfaces, gather, kCoarseGatherRays, hashCombine(options.seed, 0xc0a25eu));
+    coarse = first.all();
+    fromCoarse.emplace(surfaces, tracer, direct, coarse, /*gatherNearHits=*/false);
+  }
+  const FinalGather& finalGather = fromCoarse ? *fromCoarse : gather;
+  // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at
+  // vertices, each vertex when a pixel first needs it.
   std::optional<VertexGather> vertexGathered;
-  if (vertexGather)
-    vertexGathered.emplace(surfaces, gather, options.gatherRays, options.seed);
+  if (vertexGather) vertexGathered.emplace(surfaces, finalGather, options.gatherRays, options.seed);
   const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
 
   // Background: the sky where there is one.
@@ -245,7 +258,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
       for (size_t k = 0; k < shadowRays.size(); ++k)
         if (!isOccluded(shadowRays[k])) *shadowTargets[k] += shadowValues[k];
       if (!gathers.empty())
-        gather.add(gathers, gatherWeights, gatherTargets, hashCombine(uint32_t(tile) * 0x9E3779B9u, uint32_t(s)));
+        finalGather.add(gathers, gatherWeights, gatherTargets, hashCombine(uint32_t(tile) * 0x9E3779B9u, uint32_t(s)));
     }
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
