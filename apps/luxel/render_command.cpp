@@ -96,8 +96,9 @@ void addViewOptions(CLI::App& c, ViewArgs& a) {
   c.add_option("--size", a.size, "Image size WxH")->capture_default_str();
   c.add_option("--spp", a.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
   c.add_option("--indirect", a.indirect,
-               "hq mode's indirect light: vertex-gather (gathered at element vertices), pixel-gather (per pixel "
-               "sample: sharper, noisier) or interpolated (the solution's, fastest)")
+               "hq mode's indirect light: auto (vertex-gather where faces were cut into elements, else "
+               "interpolated), vertex-gather (gathered at element vertices), pixel-gather (per pixel sample: "
+               "sharper, noisier) or interpolated (the solution's, fastest)")
       ->capture_default_str();
   c.add_option("--gather-rays", a.gatherRays,
                fmt::format("Gather rays per vertex (default {}) or per pixel sample (default {})",
@@ -245,7 +246,7 @@ int runRender(const RenderArgs& a) {
     record.scene = sceneName;
     record.solve = s;
     record.image = RunRecord::Image{width, height, a.spp, a.mode, meanLuminance(image), rs.rays, rs.seconds,
-                                    a.mode == "hq" ? a.indirect : std::string()};
+                                    a.mode == "hq" ? std::string(indirectName(rs.indirect)) : std::string()};
     record.threads = a.threads > 0 ? a.threads : tbb::info::default_concurrency();
     record.outputs = a.outputs;
     record.totalSeconds = total;

@@ -23,7 +23,7 @@ struct ViewArgs {
   float fov = 0.0f;
   std::string size = "512x512";
   int spp = 16;
-  std::string indirect = "vertex-gather";  // hq mode's indirect light (RenderOptions::Indirect)
+  std::string indirect = "auto";  // hq mode's indirect light (RenderOptions::Indirect)
   int gatherRays = 0;                      // per vertex or per pixel sample; 0: the default
   uint32_t renderSeed = RenderOptions{}.seed;  // the image's samples (not the solver's)
   int gatherBounces = RenderOptions{}.gatherBounces;

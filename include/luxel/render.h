@@ -23,6 +23,12 @@ struct RenderOptions {
   };
   // Where HighQuality finds the indirect light (render/final_gather.h).
   enum class Indirect {
+    // VertexGather where the discretisation cut the faces into elements (at least twice as many
+    // elements as faces), Interpolated where elements are whole faces. A vertex gather is
+    // interpolated over elements: over faces of many square metres (Sibenik's walls, which the
+    // hierarchical solver keeps whole) it shows the triangles, and its few vertices sample the
+    // light poorly.
+    Auto,
     // The element solution's indirect irradiance, interpolated: the fastest, but the
     // discretisation shows (patches shooting their mean, elements averaged across contacts).
     Interpolated,
@@ -38,7 +44,7 @@ struct RenderOptions {
   int width = 512;
   int height = 512;
   int samplesPerPixel = 16;  // pixel jitter, and one shadow ray per light per sample
-  Indirect indirect = Indirect::VertexGather;
+  Indirect indirect = Indirect::Auto;
   // Gather rays per vertex (VertexGather) or per pixel sample (PixelGather); 0 takes the mode's
   // default: kDefaultPixelGatherRays, or kDefaultVertexGatherRays where the scene's vertices allow
   // (render/final_gather.h keeps the whole gather to about 16 million rays).
@@ -67,8 +73,14 @@ void validateRenderOptions(const RenderOptions& options);
 
 struct RenderStats {
   double seconds = 0.0;
-  uint64_t rays = 0;  // primary and shadow rays
+  uint64_t rays = 0;  // primary, shadow and gather rays
+  RenderOptions::Indirect indirect = RenderOptions::Indirect::Interpolated;  // what Auto chose
 };
+
+// The indirect light `options` asks for, with Auto resolved for `surfaces`.
+RenderOptions::Indirect resolvedIndirect(const RenderOptions& options, const SurfaceSet& surfaces);
+// "auto", "interpolated", "vertex-gather", "pixel-gather".
+const char* indirectName(RenderOptions::Indirect indirect);
 
 // Renders `solution` of `surfaces` (discretised from `scene`). Throws Error on absurd options
 // (validateRenderOptions) and Cancelled on request.
@@ -77,7 +89,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
              RenderStats* stats = nullptr);
 
 RenderOptions::Mode parseRenderMode(const std::string& name);  // "radiosity" | "hq"
-// "interpolated" | "vertex-gather" | "pixel-gather"
+// "auto" | "interpolated" | "vertex-gather" | "pixel-gather"
 RenderOptions::Indirect parseIndirect(const std::string& name);
 
 // The per-vertex (element corner) values of a per-element quantity, averaged over the elements

@@ -79,10 +79,28 @@ void validateRenderOptions(const RenderOptions& o) {
 }
 
 RenderOptions::Indirect parseIndirect(const std::string& name) {
+  if (name == "auto") return RenderOptions::Indirect::Auto;
   if (name == "interpolated") return RenderOptions::Indirect::Interpolated;
   if (name == "vertex-gather") return RenderOptions::Indirect::VertexGather;
   if (name == "pixel-gather") return RenderOptions::Indirect::PixelGather;
-  throw Error(fmt::format("unknown indirect light '{}' (expected interpolated, vertex-gather or pixel-gather)", name));
+  throw Error(fmt::format("unknown indirect light '{}' (expected auto, interpolated, vertex-gather or pixel-gather)",
+                          name));
+}
+
+const char* indirectName(RenderOptions::Indirect indirect) {
+  switch (indirect) {
+    case RenderOptions::Indirect::Auto: return "auto";
+    case RenderOptions::Indirect::Interpolated: return "interpolated";
+    case RenderOptions::Indirect::VertexGather: return "vertex-gather";
+    case RenderOptions::Indirect::PixelGather: return "pixel-gather";
+  }
+  return "?";
+}
+
+RenderOptions::Indirect resolvedIndirect(const RenderOptions& options, const SurfaceSet& surfaces) {
+  if (options.indirect != RenderOptions::Indirect::Auto) return options.indirect;
+  return surfaces.elements.size() >= 2 * surfaces.faces.size() ? RenderOptions::Indirect::VertexGather
+                                                                : RenderOptions::Indirect::Interpolated;
 }
 
 RenderOptions::Mode parseRenderMode(const std::string& name) {
@@ -100,8 +118,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const auto start = std::chrono::steady_clock::now();
   const bool hq = options.mode == RenderOptions::Mode::HighQuality;
   using Indirect = RenderOptions::Indirect;
-  const bool pixelGather = hq && options.indirect == Indirect::PixelGather;
-  const bool vertexGather = hq && options.indirect == Indirect::VertexGather;
+  const Indirect indirect = hq ? resolvedIndirect(options, surfaces) : Indirect::Interpolated;
+  const bool pixelGather = indirect == Indirect::PixelGather;
+  const bool vertexGather = indirect == Indirect::VertexGather;
 
   // The irradiance field to interpolate: all of it in radiosity mode; in HQ mode only the indirect
   // part, since the direct part is traced per pixel (and at every gather ray's hit).
@@ -277,6 +296,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   if (stats) {
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->rays = tracer.raysTraced();
+    stats->indirect = indirect;
   }
   return image;
 }

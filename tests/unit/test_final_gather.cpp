@@ -173,8 +173,8 @@ TEST(FinalGather, TheFloorBesideABlockIsNotDarkenedByItsFootprint) {
 // at every pixel (the direct light here has no occluder, so no visibility noise either).
 TEST(FinalGather, EveryIndirectModeRendersTheFurnaceAtItsClosedForm) {
   Solved s = solveFurnace(builtin::furnace(0.5f, 1.0f), 600);
-  for (RenderOptions::Indirect indirect : {RenderOptions::Indirect::Interpolated, RenderOptions::Indirect::VertexGather,
-                                           RenderOptions::Indirect::PixelGather}) {
+  for (RenderOptions::Indirect indirect : {RenderOptions::Indirect::Auto, RenderOptions::Indirect::Interpolated,
+                                           RenderOptions::Indirect::VertexGather, RenderOptions::Indirect::PixelGather}) {
     RenderOptions ro;
     ro.camera = s.scene.cameras[0];
     ro.width = ro.height = 24;
@@ -202,6 +202,22 @@ TEST(FinalGather, TheFurnaceWithABlockRendersAtItsClosedForm) {
   // Measured: mean 1.9969, worst pixel 0.040 off.
   EXPECT_NEAR(sum / double(image.pixels.size()), 2.0, 0.01);
   EXPECT_LT(worst, 0.1);
+}
+
+// Auto gathers where the faces were cut into elements, and interpolates where elements are whole
+// faces (the furnace's 6 faces cut into 600 elements, against 6 elements).
+TEST(FinalGather, AutoGathersOnlyOverElementsCutFromFaces) {
+  const Scene scene = builtin::furnace(0.5f, 1.0f);
+  RenderOptions ro;
+  DiscretiseOptions d;
+  d.elementBudget = 600;
+  EXPECT_EQ(resolvedIndirect(ro, discretise(scene, d)), RenderOptions::Indirect::VertexGather);
+  d.elementBudget = 6;
+  EXPECT_EQ(resolvedIndirect(ro, discretise(scene, d)), RenderOptions::Indirect::Interpolated);
+  ro.indirect = RenderOptions::Indirect::PixelGather;
+  EXPECT_EQ(resolvedIndirect(ro, discretise(scene, d)), RenderOptions::Indirect::PixelGather);
+  EXPECT_STREQ(indirectName(RenderOptions::Indirect::Auto), "auto");
+  EXPECT_EQ(parseIndirect("auto"), RenderOptions::Indirect::Auto);
 }
 
 TEST(FinalGather, AbsurdRayCountsAreRefused) {
