@@ -4,7 +4,7 @@
 // - High-quality mode, a two-pass method (Wallace, Cohen and Greenberg, SIGGRAPH 1987; Chen et al.,
 //   SIGGRAPH 1991): the direct part of H per pixel with shadow rays towards stratified points of
 //   each light, and the indirect part from the solution, interpolated or gathered by rays that
-//   read it one bounce away (render/final_gather.h; RenderOptions::Indirect).
+//   read it one or two bounces away (render/final_gather.h; RenderOptions::Indirect).
 // Normal maps (render/normal_map.h) tilt the receiver cosine of what is found per pixel (the
 // direct light, and a per-pixel gather); radiosity mode ignores them.
 #include <algorithm>
@@ -136,8 +136,6 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const FinalGather gather(surfaces, tracer, direct, corners);
   const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
-  // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at
-  // vertices, each vertex when a pixel first needs it.
   // With two bounces gathered, the gather's hits read a coarse gather at every vertex instead of
   // the solution, so the solution is met two bounces away.
   std::vector<Rgb> coarse;
