@@ -93,6 +93,21 @@ std::vector<Rgb> indirectOf(const Solution& solution) {
   return field;
 }
 
+// A final gather over a solved scene, with what it reads (members outlive the gather).
+struct GatherRig {
+  explicit GatherRig(const Solved& s)
+      : polygons(elementPolygonsTwinsApart(s.surfaces)),
+        tracer(polygons),
+        direct(s.scene, s.surfaces),
+        corners(elementCornerValues(s.surfaces, indirectOf(s.solution))),
+        gather(s.surfaces, tracer, direct, corners) {}
+  std::vector<Polygon> polygons;
+  RayTracer tracer;
+  DirectLight direct;
+  std::vector<Rgb> corners;  // the solution's indirect irradiance
+  FinalGather gather;
+};
+
 // A unit furnace, rho 0.5 and Le 1, with an open-bottomed block standing on its floor, its edges
 // off the floor's element grid so that floor elements straddle its footprint.
 constexpr float kBlockLo = 0.313f, kBlockHi = 0.687f, kBlockHeight = 0.4f;
@@ -121,12 +136,8 @@ bool onFloorBesideTheBlock(const Element& e, float within) {
 // indirect irradiance is exact up to the solution's own error at the hits (times rho).
 TEST(FinalGather, VertexGatherInAFurnaceIsExact) {
   Solved s = solveFurnace(builtin::furnace(0.5f, 1.0f), 600);
-  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(s.surfaces);
-  const RayTracer tracer(polygons);
-  const DirectLight direct(s.scene, s.surfaces);
-  const std::vector<Rgb> corners = elementCornerValues(s.surfaces, indirectOf(s.solution));
-  const FinalGather gather(s.surfaces, tracer, direct, corners);
-  VertexGather vertices(s.surfaces, gather, 64, 3);
+  const GatherRig rig(s);
+  VertexGather vertices(s.surfaces, rig.gather, 64, 3);
   const std::vector<Rgb> gathered = vertices.all();
   EXPECT_EQ(vertices.verticesGathered(), vertices.vertexCount());
   const float expected = kPi * 1.0f * 0.5f / (1.0f - 0.5f);
@@ -143,12 +154,9 @@ TEST(FinalGather, VertexGatherInAFurnaceIsExact) {
 // half-dark floor elements in the solution.
 TEST(FinalGather, TheFloorBesideABlockIsNotDarkenedByItsFootprint) {
   Solved s = solveFurnace(furnaceWithBlock(), 3000);
-  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(s.surfaces);
-  const RayTracer tracer(polygons);
-  const DirectLight direct(s.scene, s.surfaces);
-  const std::vector<Rgb> interpolated = elementCornerValues(s.surfaces, indirectOf(s.solution));
-  const FinalGather gather(s.surfaces, tracer, direct, interpolated);
-  VertexGather vertices(s.surfaces, gather, 256, 5);
+  const GatherRig rig(s);
+  const std::vector<Rgb>& interpolated = rig.corners;
+  VertexGather vertices(s.surfaces, rig.gather, 256, 5);
   const float expected = kPi * 0.5f / (1.0f - 0.5f);
   float worstInterpolated = 0.0f, worstGathered = 0.0f;
   int beside = 0;
