@@ -65,6 +65,8 @@ def parse_args():
     p = argparse.ArgumentParser(prog="compare_cornell.py")
     p.add_argument("--reference", nargs="+", required=True,
                    help="independent converged Cycles renders (different seeds, same spp)")
+    p.add_argument("--obj", help="compare on this OBJ (McGuire's Cornell box) from "
+                                 "obj_scene.MCGUIRE_CAMERA instead of the built-in box")
     p.add_argument("--luxel", default="./build/luxel")
     p.add_argument("--blender", default="blender")
     p.add_argument("--outdir", default="out/peers")
@@ -135,11 +137,20 @@ def error_map(d, scale):
 
 # ---------------------------------------------------------------------------- mask
 
-def face_ids(size, sub=8):
-    """Per pixel, the face id hit by each of sub x sub sub-pixel rays: (H, W, sub*sub), -1 = miss.
-
-    Also returns the id -> (mesh, material) table."""
-    tris, tri_face, faces = [], [], []
+def scene_geometry(obj):
+    """(polygons in metres with their face ids, faces as (mesh, material), camera, emitting
+    materials): the built-in box from cycles_cornell (its four coplanar ceiling quads one face),
+    or an OBJ from obj_scene (each polygon a face, named by its material: McGuire's files give
+    the boxes' faces under the previous `g`)."""
+    polys, faces = [], []
+    if obj:
+        meshes, materials = cc.obj_scene.load_obj(obj)
+        for _, mat, polygons in meshes:
+            for poly in polygons:
+                polys.append((np.array(poly, np.float64), len(faces)))
+                faces.append((mat, mat))
+        lights = {m for m, v in materials.items() if cc.obj_scene.emits(v)}
+        return polys, faces, cc.obj_scene.MCGUIRE_CAMERA, lights
     for mesh, mat, quads in cc.CORNELL_MESHES:
         for qi, q in enumerate(quads):
             if mesh == "ceiling" and qi > 0:
@@ -147,10 +158,20 @@ def face_ids(size, sub=8):
             else:
                 fid = len(faces)
                 faces.append((mesh, mat))
-            v = np.array(q, np.float64) * cc.MM
-            tris += [(v[0], v[1], v[2]), (v[0], v[2], v[3])]
-            tri_face += [fid, fid]
-    cam = cc.CORNELL_CAMERA
+            polys.append((np.array(q, np.float64) * cc.MM, fid))
+    return polys, faces, cc.CORNELL_CAMERA, {"light"}
+
+
+def face_ids(size, obj=None, sub=8):
+    """Per pixel, the face id hit by each of sub x sub sub-pixel rays: (H, W, sub*sub), -1 = miss.
+
+    Also returns the id -> (mesh, material) table and the emitting materials."""
+    polys, faces, cam, lights = scene_geometry(obj)
+    tris, tri_face = [], []
+    for v, fid in polys:
+        for i in range(1, len(v) - 1):
+            tris.append((v[0], v[i], v[i + 1]))
+            tri_face.append(fid)
     eye = np.array(cam["eye"])
     fwd = np.array(cam["target"]) - eye
     fwd /= np.linalg.norm(fwd)
@@ -185,11 +206,11 @@ def face_ids(size, sub=8):
             best_f[hit] = fid
         ids[r0:r1] = best_f.reshape(r1 - r0, sub, size, sub).transpose(0, 2, 1, 3).reshape(
             r1 - r0, size, sub * sub)
-    return ids, faces
+    return ids, faces, lights
 
 
-def build_mask(size, border=2):
-    ids, faces = face_ids(size)
+def build_mask(size, border=2, obj=None):
+    ids, faces, lights = face_ids(size, obj)
     first = ids[..., 0]
     straddles = (ids != first[..., None]).any(axis=2) | (first < 0)
     near = np.zeros_like(straddles)
@@ -197,7 +218,7 @@ def build_mask(size, border=2):
     for dy in range(-border, border + 1):
         for dx in range(-border, border + 1):
             near |= padded[border + dy: border + dy + size, border + dx: border + dx + size]
-    light = np.array([m == "light" for _, m in faces])
+    light = np.array([m in lights for _, m in faces])
     mask = ~near & (first >= 0) & ~light[np.maximum(first, 0)]
     return mask, np.where(straddles, -1, first), faces
 
@@ -214,7 +235,12 @@ def run_luxel(args, mode, elements, spp):
         with open(meta) as f:
             return name, exr, json.load(f)
     stats_path = os.path.join(args.outdir, name + ".stats.json")
-    cmd = [args.luxel, "render", "cornell", "-o", exr, "--size", f"{args.size}x{args.size}",
+    scene = ["cornell"]
+    if args.obj:
+        cam = cc.obj_scene.MCGUIRE_CAMERA
+        scene = [args.obj, "--eye", ",".join(map(str, cam["eye"])), "--target", ",".join(map(str, cam["target"])),
+                 "--fov", str(cam["fov_deg"])]
+    cmd = [args.luxel, "render", *scene, "-o", exr, "--size", f"{args.size}x{args.size}",
            "--spp", str(spp), "--elements", str(elements), "--solver", args.luxel_solver,
            "--mode", mode, "--stats", stats_path, "--threads", str(args.threads), "-q"]
     cmd += args.luxel_extra.split()
@@ -245,6 +271,8 @@ def run_cycles(args, spp):
                os.path.join(HERE, "cycles_cornell.py"), "--", "--spp", str(spp),
                "--seed", str(args.cycles_seed), "--out", exr, "--json", meta,
                "--threads", str(args.threads), "--size", str(args.size)]
+        if args.obj:
+            cmd += ["--obj", args.obj]
         subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     with open(meta) as f:
         info = json.load(f)
@@ -267,8 +295,8 @@ def main():
     ref = refs.mean(axis=0)
     size = ref.shape[0]
     assert ref.shape[:2] == (args.size, args.size), "reference size differs from --size"
-    mask, face_of_pixel, faces = build_mask(size, args.border)
-    mask0 = build_mask(size, 0)[0]  # also every single-face pixel, right up to the edges
+    mask, face_of_pixel, faces = build_mask(size, args.border, args.obj)
+    mask0 = build_mask(size, 0, args.obj)[0]  # also every single-face pixel, right up to the edges
     m0 = mask0[..., None].repeat(3, axis=2)
     ref_mean0 = ref[m0].mean()
     ref_var0 = (refs.var(axis=0, ddof=1) / len(refs))[m0].mean() if len(refs) > 1 else 0.0
@@ -380,7 +408,8 @@ def main():
     # Per-surface brightness: mean image / mean reference over each face's masked pixels.
     out("Per-surface mean radiance ratio (image / reference, R G B) over masked pixels:")
     out()
-    names = sorted({f[0] for f in faces if f[1] != "light"},
+    lights = scene_geometry(args.obj)[3]
+    names = sorted({f[0] for f in faces if f[1] not in lights},
                    key=lambda n: [f[0] for f in faces].index(n))
     out("| image | " + " | ".join(names) + " |")
     out("|---|" + "---|" * len(names))

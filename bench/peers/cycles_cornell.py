@@ -39,11 +39,16 @@ Blender's start-up) is printed as a line `CYCLES_RENDER_SECONDS <t>` and, with
 import argparse
 import json
 import math
+import os
 import sys
 import time
 
 import bpy
 from mathutils import Vector
+
+sys.dont_write_bytecode = True  # leave no __pycache__ in the source tree
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import obj_scene  # noqa: E402  (beside this script)
 
 MM = 0.001
 
@@ -59,6 +64,8 @@ def parse_args():
     p.add_argument("--bounces", type=int, default=64,
                    help="diffuse bounces; 0 renders the direct light alone (to check it apart)")
     p.add_argument("--json", help="write render settings and time here")
+    p.add_argument("--obj", help="render this OBJ (and its MTL: Kd, Ke) instead of the built-in box, "
+                                 "from obj_scene.MCGUIRE_CAMERA; for McGuire's Cornell boxes")
     p.add_argument("--two-sided-light", action="store_true",
                    help="let the light emit from both faces (Cycles' default), for checking")
     p.add_argument("--emission-test", choices=["direct", "indirect"],
@@ -122,13 +129,14 @@ def light_material(name, emission, reflectance, two_sided):
     return mat
 
 
-def add_mesh(name, quads, mat):
-    """quads: lists of 4 vertices in millimetres, counter-clockwise seen from the front."""
+def add_mesh(name, quads, mat, scale=MM):
+    """quads: polygons (4 vertices for the built-in box) in millimetres (`scale` MM) or metres
+    (`scale` 1), counter-clockwise seen from the front."""
     verts, faces = [], []
     for q in quads:
         base = len(verts)
-        verts.extend(Vector(v) * MM for v in q)
-        faces.append(tuple(range(base, base + 4)))
+        verts.extend(Vector(v) * scale for v in q)
+        faces.append(tuple(range(base, base + len(q))))
     me = bpy.data.meshes.new(name)
     me.from_pydata(verts, [], faces)
     me.validate()
@@ -182,6 +190,18 @@ def build_cornell(two_sided_light):
     for name, mat, quads in CORNELL_MESHES:
         add_mesh(name, quads, mats[mat])
     add_camera(**CORNELL_CAMERA)
+
+
+def build_obj(path, two_sided_light):
+    """An OBJ as luxel reads it: Lambertian Kd, and Ke emitted from the front face only."""
+    meshes, materials = obj_scene.load_obj(path)
+    mats = {}
+    for name, m in materials.items():
+        mats[name] = (light_material(name, m["ke"], m["kd"], two_sided_light) if obj_scene.emits(m)
+                      else diffuse_material(name, m["kd"]))
+    for group, material, polygons in meshes:
+        add_mesh(f"{group} {material}", polygons, mats[material], scale=1.0)
+    add_camera(**obj_scene.MCGUIRE_CAMERA)
 
 
 def build_emission_test(kind):
@@ -297,6 +317,8 @@ def main():
     configure(args)
     if args.emission_test:
         build_emission_test(args.emission_test)
+    elif args.obj:
+        build_obj(args.obj, args.two_sided_light)
     else:
         build_cornell(args.two_sided_light)
     t0 = time.perf_counter()
@@ -309,7 +331,7 @@ def main():
                        "spp": args.spp, "size": args.size, "threads": args.threads,
                        "seed": args.seed, "sampling_pattern": bpy.context.scene.cycles.sampling_pattern,
                        "two_sided_light": args.two_sided_light,
-                       "emission_test": args.emission_test, "output": args.out,
+                       "emission_test": args.emission_test, "obj": args.obj, "output": args.out,
                        "render_seconds": seconds}, f, indent=2)
 
 
