@@ -1,6 +1,6 @@
 // The final gather of two-pass methods (Chen, Rushmeier, Miller and Turner, "A Progressive
-// Multi-Pass Method for Global Illumination", SIGGRAPH 1991; Reichert's and Lischinski's
-// gathering of a radiosity solution): the indirect irradiance at a point is gathered by rays over
+// Multi-Pass Method for Global Illumination", SIGGRAPH 1991; the per-pixel gathers over a radiosity
+// solution of Reichert 1992 and Lischinski, Tampieri and Greenberg 1993): the indirect irradiance at a point is gathered by rays over
 // its hemisphere, each reading the radiance the solution leaves where the ray lands. Where it
 // lands, the direct light is traced again (a shadow ray per light) and only the indirect part is
 // interpolated from the elements; so the element solution is met one bounce away and only through
