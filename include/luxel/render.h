@@ -33,7 +33,8 @@ struct RenderOptions {
     // discretisation shows (patches shooting their mean, elements averaged across contacts).
     Interpolated,
     // A final gather at the element vertices, interpolated per pixel: rays read the solution one
-    // bounce away, with the direct light traced where they land. Smooth, and cheap at any image size.
+    // or two bounces away (gatherBounces), with the direct light traced where they land. Smooth,
+    // and cheap at any image size.
     VertexGather,
     // A final gather at every pixel sample: no interpolation at all, so contact shadows and
     // normal maps reach the indirect light too, at the price of noise.
@@ -51,7 +52,8 @@ struct RenderOptions {
   int gatherRays = 0;
   // Bounces gathered before the solution is read: 1, at the gather's hits; 2 (default), where the
   // hits read a coarse gather of every vertex (kCoarseGatherRays each), which halves what is left
-  // of the solution's error for a tenth more time (docs/performance.md, "Against a peer").
+  // of the solution's error in no more time: the one-bounce gather's near hits gather again
+  // (docs/performance.md, "Against a peer").
   int gatherBounces = 2;
   uint32_t seed = 7;
 };
@@ -66,8 +68,8 @@ inline constexpr uint64_t kMaxImagePixels = uint64_t(16384) * 16384;
 
 // Throws Error when the options are absurd: a side outside [1, kMaxImageSide], more than
 // kMaxImagePixels pixels, samples outside [1, 65536], gather rays outside [0, 65536] (or, per pixel
-// sample, their product with the samples over 2^20), gather bounces other than 1 or 2, a field of view outside (0, 180) degrees, a
-// camera whose eye, target and up do not span a frame or lie beyond kMaxCoordinate. render() calls
+// sample, their product with the samples over 2^20), gather bounces other than 1 or 2, a field of
+// view outside (0, 180) degrees, a camera whose eye, target and up do not span a frame or lie beyond kMaxCoordinate. render() calls
 // it; a caller can call it before the solve, to fail early.
 void validateRenderOptions(const RenderOptions& options);
 
