@@ -69,8 +69,8 @@ inline constexpr uint64_t kMaxImagePixels = uint64_t(16384) * 16384;
 // Throws Error when the options are absurd: a side outside [1, kMaxImageSide], more than
 // kMaxImagePixels pixels, samples outside [1, 65536], gather rays outside [0, 65536] (or, per pixel
 // sample, their product with the samples over 2^20), gather bounces other than 1 or 2, a field of
-// view outside (0, 180) degrees, a camera whose eye, target and up do not span a frame or lie beyond kMaxCoordinate. render() calls
-// it; a caller can call it before the solve, to fail early.
+// view outside (0, 180) degrees, a camera whose eye, target and up do not span a frame or lie
+// beyond kMaxCoordinate. render() calls it; a caller can call it before the solve, to fail early.
 void validateRenderOptions(const RenderOptions& options);
 
 struct RenderStats {
