@@ -98,7 +98,7 @@ void addViewOptions(CLI::App& c, ViewArgs& a) {
   c.add_option("--indirect", a.indirect,
                "hq mode's indirect light: auto (vertex-gather where faces were cut into elements, else "
                "interpolated), vertex-gather (gathered at element vertices), pixel-gather (per pixel sample: "
-               "sharper, noisier) or interpolated (the solution's, fastest)")
+               "sharper, noisier), interpolated (the solution's, fastest) or none (the direct light alone)")
       ->capture_default_str();
   c.add_option("--gather-rays", a.gatherRays,
                fmt::format("Gather rays per vertex (default {}) or per pixel sample (default {})",

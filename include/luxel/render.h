@@ -39,6 +39,9 @@ struct RenderOptions {
     // A final gather at every pixel sample: no interpolation at all, so contact shadows and
     // normal maps reach the indirect light too, at the price of noise.
     PixelGather,
+    // No indirect light: the direct light alone, to check it apart (against a path tracer's
+    // render of one bounce, say).
+    None,
   };
   Mode mode = Mode::HighQuality;
   Camera camera;
@@ -91,7 +94,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
              RenderStats* stats = nullptr);
 
 RenderOptions::Mode parseRenderMode(const std::string& name);  // "radiosity" | "hq"
-// "auto" | "interpolated" | "vertex-gather" | "pixel-gather"
+// "auto" | "interpolated" | "vertex-gather" | "pixel-gather" | "none"
 RenderOptions::Indirect parseIndirect(const std::string& name);
 
 // The per-vertex (element corner) values of a per-element quantity, averaged over the elements

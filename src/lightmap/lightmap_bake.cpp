@@ -46,17 +46,9 @@ std::vector<uint8_t> validity(const Scene& scene, const SurfaceSet& set, int ray
     for (size_t ei = r.begin(); ei < r.end(); ++ei) {
       const Element& e = set.elements[ei];
       const Vec3 n = e.normal;
-      HemisphereStrata strata(n, side, ei, 12345u);
-      for (int j = 0; j < side; ++j)
-        for (int i = 0; i < side; ++i) {
-          const Vec3 d = strata.cosine(i, j);
-          const size_t k = size_t(j * side + i);
-          dirs[k] = d;
-          RTCRayHit& rh = hits[k];
-          rh.ray = makeRay(e.centroid + offset * n, d, 0.0f, std::numeric_limits<float>::infinity());
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        }
+      HemisphereStrata(n, side, ei, 12345u).directions(HemisphereStrata::Warp::Cosine, dirs);
+      for (size_t k = 0; k < hits.size(); ++k)
+        hits[k].ray = makeRay(e.centroid + offset * n, dirs[k], 0.0f, std::numeric_limits<float>::infinity());
       tracer.intersect(hits, false);
       int back = 0;
       for (size_t k = 0; k < hits.size(); ++k) {

@@ -48,14 +48,9 @@ void directTransfer(const SurfaceSet& set, RayTracer& tracer, int rays, int coun
     for (size_t ei = r.begin(); ei < r.end(); ++ei) {
       const Element& e = set.elements[ei];
       const Vec3 n = e.normal;
-      HemisphereStrata strata(n, side, ei, 977u);
-      for (int j = 0; j < side; ++j)
-        for (int i = 0; i < side; ++i) {
-          const Vec3 d = strata.cosine(i, j);
-          const size_t k = size_t(j * side + i);
-          dirs[k] = d;
-          batch[k] = makeRay(e.centroid + offset * n, d, 0.0f, std::numeric_limits<float>::infinity());
-        }
+      HemisphereStrata(n, side, ei, 977u).directions(HemisphereStrata::Warp::Cosine, dirs);
+      for (size_t k = 0; k < batch.size(); ++k)
+        batch[k] = makeRay(e.centroid + offset * n, dirs[k], 0.0f, std::numeric_limits<float>::infinity());
       tracer.occluded(batch);
       Rgb* t = out.data() + ei * size_t(count);
       const float w = kPi / float(batch.size());

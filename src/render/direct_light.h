@@ -4,8 +4,7 @@
 // the receiver gives F - A k(y) (1 - V(y)), A that part's area and k the point-to-point kernel
 // cos cos / (pi r^2): exact when nothing is in the way, and unbiased when something is. The
 // simpler F V(y) weights every point of the emitter alike, and comes out low where the blocked
-// part is the part the kernel favours (51% low in tests/analytic/half_shadow_scene.h; 0.5% on the
-// Cornell box's floor, measured against Cycles).
+// part is the part the kernel favours (docs/algorithms.md, "Rendering", has the measurements).
 // Emitting faces with uniform emission are used whole; faces with an emission texture are used
 // element by element so the texture's variation is kept.
 #pragma once

@@ -2,6 +2,7 @@
 #include "render/final_gather.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -75,27 +76,23 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
       // A hit within a couple of elements: the elements there are seen large, and their
       // averaging (a block's footprint, a crease) with them, so the hit gathers its own indirect
       // light, from the solution one bounce further.
-      HemisphereStrata strata(hit.normal, kNearHitSide, hashCombine(seed, uint32_t(k)), 0x6e656172u);
+      std::array<Vec3, kNearHitSide * kNearHitSide> dirs;
+      HemisphereStrata(hit.normal, kNearHitSide, hashCombine(seed, uint32_t(k)), 0x6e656172u)
+          .directions(HemisphereStrata::Warp::Cosine, dirs);
       const Vec3 origin = q + rayOffset_ * hit.normal;
-      const Rgb perRay = weight * (std::numbers::pi_v<float> / float(kNearHitSide * kNearHitSide));
-      for (int j = 0; j < kNearHitSide; ++j)
-        for (int i = 0; i < kNearHitSide; ++i) {
-          RTCRayHit g;
-          g.ray = makeRay(origin, strata.cosine(i, j), 0.0f, std::numeric_limits<float>::infinity());
-          g.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          g.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-          second.push_back(g);
-          secondWeights.push_back(perRay);
-          secondTargets.push_back(targets[k]);
-        }
+      const Rgb perRay = weight * (std::numbers::pi_v<float> / float(dirs.size()));
+      for (const Vec3& d : dirs) {
+        second.emplace_back().ray = makeRay(origin, d, 0.0f, std::numeric_limits<float>::infinity());
+        secondWeights.push_back(perRay);
+        secondTargets.push_back(targets[k]);
+      }
     } else {
       *targets[k] += weight * interpolateCorners(&corners_[size_t(h) * 4], hit.polygon.count, rh.hit.u, rh.hit.v);
     }
     Rng rng(hashCombine(seed, uint32_t(k)));
     const size_t before = shadowRays.size();
-    // The form-factor estimator here too: the kernel alone (A k(y) V(y)) skips the analytic factor
-    // and is unbiased, but heavy-tailed next to a large emitter (a furnace's walls came out 35%
-    // low at 64 rays a vertex).
+    // The form-factor estimator here too: the kernel alone (A k(y) V(y)) would skip the analytic
+    // factor and is unbiased, but heavy-tailed next to a large emitter (docs/performance.md).
     *targets[k] += weight * direct_.sample(q, hit.normal, hit.normal, Sides::Front, rng, rayOffset_, shadowRays,
                                            shadowValues);
     for (size_t r = before; r < shadowRays.size(); ++r) {
@@ -192,15 +189,11 @@ void VertexGather::gatherVertex(uint32_t vi) {
   const Vec3 towardsCentroids = v.centroids / float(v.slots) - v.position;
   const Vec3 origin = v.position + 0.01f * towardsCentroids + rayOffsetFor(surfaces_.sceneExtent) * n;
   const int count = side_ * side_;
-  HemisphereStrata strata(n, side_, vi, seed_);
-  std::vector<RTCRayHit> hits(static_cast<size_t>(count));
-  for (int j = 0; j < side_; ++j)
-    for (int i = 0; i < side_; ++i) {
-      RTCRayHit& rh = hits[size_t(j * side_ + i)];
-      rh.ray = makeRay(origin, strata.cosine(i, j), 0.0f, std::numeric_limits<float>::infinity());
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    }
+  std::vector<Vec3> dirs(static_cast<size_t>(count));
+  HemisphereStrata(n, side_, vi, seed_).directions(HemisphereStrata::Warp::Cosine, dirs);
+  std::vector<RTCRayHit> hits(dirs.size());
+  for (size_t k = 0; k < hits.size(); ++k)
+    hits[k].ray = makeRay(origin, dirs[k], 0.0f, std::numeric_limits<float>::infinity());
   // Cosine-distributed: the irradiance is pi times the mean radiance.
   const std::vector<Rgb> weights(static_cast<size_t>(count), Rgb(std::numbers::pi_v<float> / float(count)));
   Rgb sum(0.0f);

@@ -83,7 +83,8 @@ RenderOptions::Indirect parseIndirect(const std::string& name) {
   if (name == "interpolated") return RenderOptions::Indirect::Interpolated;
   if (name == "vertex-gather") return RenderOptions::Indirect::VertexGather;
   if (name == "pixel-gather") return RenderOptions::Indirect::PixelGather;
-  throw Error(fmt::format("unknown indirect light '{}' (expected auto, interpolated, vertex-gather or pixel-gather)",
+  if (name == "none") return RenderOptions::Indirect::None;
+  throw Error(fmt::format("unknown indirect light '{}' (expected auto, interpolated, vertex-gather, pixel-gather or none)",
                           name));
 }
 
@@ -93,6 +94,7 @@ const char* indirectName(RenderOptions::Indirect indirect) {
     case RenderOptions::Indirect::Interpolated: return "interpolated";
     case RenderOptions::Indirect::VertexGather: return "vertex-gather";
     case RenderOptions::Indirect::PixelGather: return "pixel-gather";
+    case RenderOptions::Indirect::None: return "none";
   }
   return "?";
 }
@@ -226,7 +228,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
           Rgb le = m.emission;
           if (m.emissionTexture >= 0 && m.isEmissive()) le *= scene.textures[size_t(m.emissionTexture)].sample(uv);
           sum += le;
-          if (!pixelGather) {
+          if (indirect == Indirect::Interpolated || vertexGather) {
             const Rgb* c = vertexGathered ? vertexGathered->corners(e) : &corners[size_t(e) * 4];
             sum += rho * (kInvPi * interpolateCorners(c, count, u, v));
           }
@@ -262,11 +264,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
               w *= cn > 1e-6f ? std::max(0.0f, glm::dot(shading, d)) / cn : 0.0f;
             }
             if (w <= 0.0f) continue;
-            RTCRayHit gh;
-            gh.ray = makeRay(origin, d, 0.0f, std::numeric_limits<float>::infinity());
-            gh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            gh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-            gathers.push_back(gh);
+            gathers.emplace_back().ray = makeRay(origin, d, 0.0f, std::numeric_limits<float>::infinity());
             gatherWeights.push_back(rho * w);
             gatherTargets.push_back(&sum);
           }

@@ -25,18 +25,13 @@ std::vector<Rgb> gatherIncidentSh(const SurfaceSet& surfaces, const std::vector<
   const float perRay = 2.0f * std::numbers::pi_v<float> / float(side * side);  // uniform: 2 pi / N
   tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RTCRayHit> hits(size_t(side * side));
+    std::vector<Vec3> dirs(hits.size());
     for (size_t ei = r.begin(); ei < r.end(); ++ei) {
       const Element& e = surfaces.elements[ei];
       const Vec3 n = e.normal;
-      HemisphereStrata strata(n, side, ei, 4099u);
-      for (int j = 0; j < side; ++j)
-        for (int i = 0; i < side; ++i) {
-          const Vec3 d = strata.uniform(i, j);
-          RTCRayHit& rh = hits[size_t(j * side + i)];
-          rh.ray = makeRay(e.centroid + offset * n, d, 0.0f, std::numeric_limits<float>::infinity());
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        }
+      HemisphereStrata(n, side, ei, 4099u).directions(HemisphereStrata::Warp::Uniform, dirs);
+      for (size_t k = 0; k < hits.size(); ++k)
+        hits[k].ray = makeRay(e.centroid + offset * n, dirs[k], 0.0f, std::numeric_limits<float>::infinity());
       tracer.intersect(hits, false);
       Rgb* c = out.data() + ei * size_t(count);
       for (const RTCRayHit& rh : hits) {

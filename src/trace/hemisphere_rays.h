@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <span>
 
 #include "luxel/scene.h"
 
@@ -48,6 +49,13 @@ class HemisphereStrata {
   Vec3 uniform(int i, int j) {
     const auto [z, u2] = jittered(i, j);
     return frame_.uniform(z, u2);
+  }
+  // Every stratum's direction, cosine-weighted or uniform, stratum (i, j) at out[j * side + i]
+  // (out holds side * side).
+  enum class Warp { Cosine, Uniform };
+  void directions(Warp warp, std::span<Vec3> out) {
+    for (int j = 0; j < side_; ++j)
+      for (int i = 0; i < side_; ++i) out[size_t(j * side_ + i)] = warp == Warp::Cosine ? cosine(i, j) : uniform(i, j);
   }
 
  private:

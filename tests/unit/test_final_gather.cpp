@@ -214,6 +214,19 @@ TEST(FinalGather, TheFurnaceWithABlockRendersAtItsClosedForm) {
 
 // Auto gathers where the faces were cut into elements, and interpolates where elements are whole
 // faces (the furnace's 6 faces cut into 600 elements, against 6 elements).
+// Without indirect light the furnace shows its emission and one bounce of the direct light:
+// Le + rho Le = 1.5 (the walls' direct irradiance is pi Le, exact with nothing in the way).
+TEST(FinalGather, NoIndirectLightLeavesTheDirectLightAlone) {
+  Solved s = solveFurnace(builtin::furnace(0.5f, 1.0f), 600);
+  RenderOptions ro;
+  ro.camera = s.scene.cameras[0];
+  ro.width = ro.height = 16;
+  ro.samplesPerPixel = 4;
+  ro.indirect = RenderOptions::Indirect::None;
+  const Image image = render(s.scene, s.surfaces, s.solution, ro);
+  for (const Rgb& p : image.pixels) ASSERT_NEAR(p.g, 1.5f, 3e-3f);
+}
+
 TEST(FinalGather, AutoGathersOnlyOverElementsCutFromFaces) {
   const Scene scene = builtin::furnace(0.5f, 1.0f);
   RenderOptions ro;
@@ -243,6 +256,7 @@ TEST(FinalGather, AbsurdRayCountsAreRefused) {
   EXPECT_NO_THROW(validateRenderOptions(ro));
   EXPECT_THROW(parseIndirect("photons"), Error);
   EXPECT_EQ(parseIndirect("pixel-gather"), RenderOptions::Indirect::PixelGather);
+  EXPECT_EQ(parseIndirect("none"), RenderOptions::Indirect::None);
 }
 
 }  // namespace
