@@ -30,7 +30,10 @@
 //    position" (L482). The thesis estimates R(C, C) by cross projection through back hemicubes;
 //    on the CPU we trace those factors exactly instead (notes 7.2, point 4), which removes the
 //    projection's undersampling and the drift that made the thesis reject an incremental
-//    projection.
+//    projection. Three tests narrow R(C, C) to the factors that changed, exactly: the pair's hull
+//    must come near the mover's box before or after the move; it must not lie in the umbra of a
+//    closed convex mover at both places (dynamic/convex_solid.h); and one of its rays must meet
+//    the mover at one place and not the other (Transport::visibilityChangedByMove).
 // Both keep every factor they have computed, so the columns of static patches that shoot after a
 // move are current: progressive iterations may run between moves without the "remove M, iterate,
 // insert M" wrapper of L843.
@@ -42,6 +45,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/stopwatch.h"
+#include "dynamic/convex_solid.h"
 #include "solve/progressive_solver.h"
 #include "solve/solver_registry.h"
 #include "transport/form_factor_options.h"
@@ -112,6 +116,23 @@ bool hullNearBox(Vec3 a, float ra, Vec3 b, float rb, const Region& box) {
   return segmentNearBox(a + t0 * ab, a + t1 * ab, box, radius);
 }
 
+// Whether one of the box's face planes, moved out by `gap`, has both polygons wholly outside it:
+// then no segment between them meets the box.
+bool planeSeparates(const Region& box, const Polygon& a, const Polygon& b, float gap) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const Vec3 u = box.axes[axis];
+    const float centre = glm::dot(u, box.centre), reach = box.half[axis] + gap;
+    float lo = std::numeric_limits<float>::max(), hi = -lo;
+    for (const Polygon* p : {&a, &b})
+      for (int i = 0; i < p->count; ++i) {
+        const float x = glm::dot(u, p->v[size_t(i)]) - centre;
+        lo = std::min(lo, x), hi = std::max(hi, x);
+      }
+    if (lo > reach || hi < -reach) return true;
+  }
+  return false;
+}
+
 class RedistributionSolver final : public ProgressiveSolver {
  public:
   RedistributionSolver(const Scene& scene, const RadiositySystem& sys, Transport& transport,
@@ -126,7 +147,14 @@ class RedistributionSolver final : public ProgressiveSolver {
     for (size_t e = 0; e < set.elements.size(); ++e)
       elementRadius_[e] = polygonRadius(set.elements[e].polygon, set.elements[e].centroid);
     bounds_.resize(scene.objects.size());
-    for (uint32_t o : scene.dynamicObjects()) bounds_[o] = boundsOf(o);
+    shapes_.resize(scene.objects.size());
+    convex_.resize(scene.objects.size(), 0);
+    for (uint32_t o : scene.dynamicObjects()) {
+      bounds_[o] = boundsOf(o);
+      shapes_[o] = shapeOf(o);
+      // A rigid move keeps a solid closed and convex: decided once.
+      convex_[o] = ConvexSolid::fromPolygons(shapes_[o], slack()).valid();
+    }
     remember();
   }
 
@@ -178,16 +206,41 @@ class RedistributionSolver final : public ProgressiveSolver {
     // Single factors of the static patches, for cross-redistribution.
     if (changed_ == ChangedFactors::ThroughMovers && !staticPatches.empty()) {
       std::vector<Region> regions;
+      std::vector<Blocker> blockers;
       for (uint32_t o : objects) {
         regions.push_back(bounds_[o]);  // where it was
         bounds_[o] = boundsOf(o);
         regions.push_back(bounds_[o]);  // where it is
+        std::vector<Polygon> now = shapeOf(o);
+        if (convex_[o]) {
+          // No point of the solid moved farther than the farthest corner (an affine move's
+          // displacement is affine, its length convex), so the solid where it was, inset by
+          // that distance, lies inside the solid where it is too.
+          float moved = 0.0f;
+          for (size_t i = 0; i < now.size(); ++i)
+            for (int c = 0; c < now[i].count; ++c)
+              moved = std::max(moved, glm::length(now[i].v[size_t(c)] - shapes_[o][i].v[size_t(c)]));
+          blockers.push_back({ConvexSolid::fromPolygons(shapes_[o], slack()), moved + slack()});
+        }
+        shapes_[o] = std::move(now);
       }
       const std::vector<uint32_t> redone = transport_.receiversRedoneByMove();
       std::vector<uint8_t> always(ne, 0);
       for (uint32_t e : movedElements) always[e] = 1;
       for (uint32_t e : redone) always[e] = 1;
-      std::vector<Transport::ElementPatch> pairs = pairsThrough(staticPatches, regions, always, isMoved);
+      std::vector<Transport::ElementPatch> pairs = pairsThrough(staticPatches, regions, blockers, always, isMoved);
+      // Of the pairs whose rays can pass where the movers were or are, the transport tells which
+      // rays' verdicts the move changed (a box that turns a degree changes only the rays that
+      // graze it); the rest keep their factors.
+      const auto firstTested = std::stable_partition(pairs.begin(), pairs.end(),
+                                                     [&](const Transport::ElementPatch& x) { return always[x.element] != 0; });
+      const std::span<const Transport::ElementPatch> tested(firstTested, pairs.end());
+      std::vector<uint8_t> changed(tested.size());
+      transport_.visibilityChangedByMove(tested, changed);
+      size_t kept = size_t(firstTested - pairs.begin());
+      for (size_t i = 0; i < tested.size(); ++i)
+        if (changed[i]) pairs[kept++] = tested[i];
+      pairs.resize(kept);
       std::vector<float> fresh(pairs.size());
       transport_.pairs(pairs, fresh);
       recomputed += pairs.size();
@@ -197,7 +250,7 @@ class RedistributionSolver final : public ProgressiveSolver {
         f = fresh[i];
       }
     } else {
-      for (uint32_t o : objects) bounds_[o] = boundsOf(o);
+      for (uint32_t o : objects) bounds_[o] = boundsOf(o), shapes_[o] = shapeOf(o);
     }
     apply(deltaH);
     factorsRecomputed_ += recomputed;
@@ -273,21 +326,55 @@ class RedistributionSolver final : public ProgressiveSolver {
     return box;
   }
 
+  // A dynamic object's patches where they are now, in patch order.
+  std::vector<Polygon> shapeOf(uint32_t object) const {
+    const SurfaceSet& set = sys_.surfaces;
+    std::vector<Polygon> shape;
+    for (const Patch& p : set.patches)
+      if (scene_.meshes[set.faces[p.face].mesh].object == object) shape.push_back(p.polygon);
+    return shape;
+  }
+
+  // Slack for the rays' offsets from the surfaces (RayTracer's rayOffsetFor is 1e-5 of the extent).
+  float slack() const { return 1e-4f * sys_.surfaces.sceneExtent; }
+
+  // A moved object's solid where it was, when it is closed and convex, and how deep a segment
+  // must pass through it to meet the object where it is too: every pair whose segments all pass
+  // that deep was blocked before the move and still is.
+  struct Blocker {
+    ConvexSolid before;
+    float depth;
+  };
+
   // The (static receiver, static patch) pairs whose light can pass through one of `regions`,
   // plus every pair of the receivers marked `always`. Every ray between an element and a patch
   // lies in the convex hull of the two polygons, which lies in the hull of the balls round them
   // (hullNearBox); a region that hull misses cannot
   // have changed the pair's visibility. Receiver patches are tested first, then their elements.
+  // Pairs in the umbra of one of `blockers` both before and after the move are left out too.
   template <typename IsMoved>
   std::vector<Transport::ElementPatch> pairsThrough(const std::vector<uint32_t>& sources,
                                                     const std::vector<Region>& regions,
+                                                    const std::vector<Blocker>& blockers,
                                                     const std::vector<uint8_t>& always, const IsMoved& isMoved) const {
     const SurfaceSet& set = sys_.surfaces;
     const size_t np = sys_.patchCount();
     std::vector<std::vector<Transport::ElementPatch>> perSource(sources.size());
-    auto near = [&](Vec3 a, float ra, Vec3 b, float rb) {
+    const float slack = this->slack();
+    // Whether a segment between the two polygons can meet one of the regions: the hull of balls
+    // round them (hullNearBox), then a face plane of the region's box that separates them.
+    auto near = [&](const Polygon& a, Vec3 ca, float ra, const Polygon& b, Vec3 cb, float rb) {
       for (const Region& r : regions)
-        if (!r.empty() && hullNearBox(a, ra, b, rb, r)) return true;
+        if (!r.empty() && hullNearBox(ca, ra + slack, cb, rb + slack, r) && !planeSeparates(r, a, b, slack)) return true;
+      return false;
+    };
+    // A ray meets a closed solid's faces when it passes through the inside and one end lies
+    // outside; the polygons' corners stand in for the rays' ends, which lie within slack of them.
+    auto blocked = [&](const Polygon& a, const Polygon& b) {
+      for (const Blocker& k : blockers)
+        if (k.before.blocksEverySegment(a, b, k.depth) &&
+            (k.before.separatedFrom(a, k.depth) || k.before.separatedFrom(b, k.depth)))
+          return true;
       return false;
     };
     tbb::parallel_for(size_t(0), sources.size(), [&](size_t k) {
@@ -300,13 +387,14 @@ class RedistributionSolver final : public ProgressiveSolver {
           for (uint32_t e : rec.elements) out.push_back({e, p});
           continue;
         }
-        // Slack for the rays' offsets from the surfaces.
-        const float slack = 1e-4f * set.sceneExtent;
-        const bool patchNear = near(rec.centroid, patchRadius_[q] + slack, src.centroid, patchRadius_[p] + slack);
-        for (uint32_t e : rec.elements)
-          if (always[e] ||
-              (patchNear && near(set.elements[e].centroid, elementRadius_[e] + slack, src.centroid, patchRadius_[p] + slack)))
+        const bool patchNear = near(rec.polygon, rec.centroid, patchRadius_[q], src.polygon, src.centroid, patchRadius_[p]) &&
+                               !blocked(rec.polygon, src.polygon);
+        for (uint32_t e : rec.elements) {
+          const Element& el = set.elements[e];
+          if (always[e] || (patchNear && near(el.polygon, el.centroid, elementRadius_[e], src.polygon, src.centroid, patchRadius_[p]) &&
+                            !blocked(el.polygon, src.polygon)))
             out.push_back({e, p});
+        }
       }
     });
     std::vector<Transport::ElementPatch> all;
@@ -354,6 +442,8 @@ class RedistributionSolver final : public ProgressiveSolver {
   std::vector<Rgb> analyticUsed_;
   std::vector<float> patchRadius_, elementRadius_;
   std::vector<Region> bounds_;  // each dynamic object's patches, where the solution last saw them
+  std::vector<std::vector<Polygon>> shapes_;  // the same patches' polygons
+  std::vector<uint8_t> convex_;               // per object: its patches close a convex solid
   uint64_t redistributions_ = 0, factorsRecomputed_ = 0;
   double secondsRedistributing_ = 0.0;
 };

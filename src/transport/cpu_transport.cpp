@@ -102,6 +102,7 @@ struct CpuTransport::Workspace {
     float analytic;
   };
   std::vector<Traced> traced;
+  std::vector<RTCRay> movedRays;  // visibilityChangedByMove: the same rays, for the moved faces' second place
 };
 
 struct CpuTransport::ThreadLocal {
@@ -163,11 +164,21 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
   auto grow = [&](int k, const Polygon& p) {
     for (int c = 0; c < p.count; ++c) lo[k] = glm::min(lo[k], p.v[size_t(c)]), hi[k] = glm::max(hi[k], p.v[size_t(c)]);
   };
+  std::vector<Polygon> before, after;
   for (uint32_t f = 0; f < surfaces_.faces.size(); ++f) {
     if (!movedFace(f)) continue;
     grow(0, facePolygons_[f]);
+    before.push_back(facePolygons_[f]);
     facePolygons_[f].v = surfaces_.faces[f].corners;
+    after.push_back(facePolygons_[f]);
     grow(1, facePolygons_[f]);
+  }
+  // The moved faces alone, where they were and where they are, for visibilityChangedByMove.
+  if (movedBefore_) movedRays_ += movedBefore_->raysTraced() + movedAfter_->raysTraced();
+  movedBefore_.reset(), movedAfter_.reset();
+  if (!before.empty()) {
+    movedBefore_ = std::make_unique<RayTracer>(before);
+    movedAfter_ = std::make_unique<RayTracer>(after);
   }
   for (uint32_t p = 0; p < surfaces_.patches.size(); ++p)
     if (movedFace(surfaces_.patches[p].face))
@@ -326,6 +337,40 @@ void CpuTransport::computeAnalytic(std::span<const Pair> pairs, float* out) cons
   flush();
 }
 
+template <typename Visit>
+void CpuTransport::forEachPairRay(uint32_t element, uint32_t patch, Visit&& visit) const {
+  const Element& e = surfaces_.elements[element];
+  const Patch& p = surfaces_.patches[patch];
+  const float distance = glm::length(e.centroid - p.centroid);
+  const bool nearField = distance < options_.nearFactor * (elementRadius_[element] + patchRadius_[patch]);
+  int wanted = patchEmits_[patch] ? options_.emitterRaysPerPair : options_.raysPerPair;
+  if (nearField) wanted = std::max(wanted, options_.nearRaysPerPair);
+  const int k = squareCount(wanted);
+  const int m = k * k;
+
+  // Deterministic per pair, so a row and a column compute the same number.
+  Rng rng(hashCombine(hashCombine(options_.seed, element), patch));
+  int permutation[256];
+  shuffledStrata(rng, m, permutation);
+  const float invK = 1.0f / float(k);
+  const auto& cells = strataCells(k);  // (column, row) of each stratum: no division per ray
+  for (int i = 0; i < m; ++i) {
+    const auto [ix, iy] = cells[size_t(i)];
+    float s = (float(ix) + rng.next()) * invK, t = (float(iy) + rng.next()) * invK;
+    Vec3 x = polygonPoint(e.polygon, s, t);
+    const auto [jx, jy] = cells[size_t(permutation[i])];
+    float su = (float(jx) + rng.next()) * invK, sv = (float(jy) + rng.next()) * invK;
+    Vec3 y = polygonPoint(p.polygon, su, sv);
+    Vec3 d = y - x;
+    // Where the two polygons cross each other's planes, some point pairs face away; A already
+    // accounts for that geometry, so V is measured over the point pairs that face each other.
+    const float cosE = glm::dot(e.normal, d), cosP = -glm::dot(p.normal, d);
+    if (cosE <= 0.0f || cosP <= 0.0f) continue;
+    const float r2 = glm::dot(d, d);
+    visit(x + e.normal * rayOffset_, y + p.normal * rayOffset_, cosE * cosP / (r2 * r2));
+  }
+}
+
 void CpuTransport::computePairs(std::span<const Pair> pairs) {
   if (pairs.size() > kPairsPerBatch) {
     for (size_t i = 0; i < pairs.size(); i += kPairsPerBatch)
@@ -346,7 +391,6 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
     const Pair& pair = pairs[pi];
     *pair.out = 0.0f;
     const Element& e = surfaces_.elements[pair.element];
-    const Patch& p = surfaces_.patches[pair.patch];
     // F = A * V (Wallace et al. 1989). Each element uses one point set for every patch, dense
     // when other geometry is close: then A's row sums in an enclosure are exactly 1, so closed
     // scenes conserve energy. V is the share of stratified, jittered rays between the two that
@@ -366,38 +410,11 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
       continue;
     }
 
-    const float distance = glm::length(e.centroid - p.centroid);
-    const bool nearField = distance < options_.nearFactor * (elementRadius_[pair.element] + patchRadius_[pair.patch]);
-    int wanted = patchEmits_[pair.patch] ? options_.emitterRaysPerPair : options_.raysPerPair;
-    if (nearField) wanted = std::max(wanted, options_.nearRaysPerPair);
-    const int k = squareCount(wanted);
-    const int m = k * k;
-
-    // Deterministic per pair, so a row and a column compute the same number.
-    Rng rng(hashCombine(hashCombine(options_.seed, pair.element), pair.patch));
-    int permutation[256];
-    shuffledStrata(rng, m, permutation);
     const size_t first = ws.rays.size();
-    const float invK = 1.0f / float(k);
-    const auto& cells = strataCells(k);  // (column, row) of each stratum: no division per ray
-    for (int i = 0; i < m; ++i) {
-      const auto [ix, iy] = cells[size_t(i)];
-      float s = (float(ix) + rng.next()) * invK, t = (float(iy) + rng.next()) * invK;
-      Vec3 x = polygonPoint(e.polygon, s, t);
-      const auto [jx, jy] = cells[size_t(permutation[i])];
-      float su = (float(jx) + rng.next()) * invK, sv = (float(jy) + rng.next()) * invK;
-      Vec3 y = polygonPoint(p.polygon, su, sv);
-      Vec3 d = y - x;
-      // Where the two polygons cross each other's planes, some point pairs face away; A already
-      // accounts for that geometry, so V is measured over the point pairs that face each other.
-      const float cosE = glm::dot(e.normal, d), cosP = -glm::dot(p.normal, d);
-      if (cosE <= 0.0f || cosP <= 0.0f) continue;
-      const float r2 = glm::dot(d, d);
-      Vec3 xo = x + e.normal * rayOffset_;
-      Vec3 yo = y + p.normal * rayOffset_;
+    forEachPairRay(pair.element, pair.patch, [&](Vec3 xo, Vec3 yo, float kernel) {
       RTCRay& ray = ws.rays.emplace_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
-      ray.id = std::bit_cast<uint32_t>(cosE * cosP / (r2 * r2));  // Embree leaves id to its caller
-    }
+      ray.id = std::bit_cast<uint32_t>(kernel);  // Embree leaves id to its caller
+    });
     const size_t valid = ws.rays.size() - first;
     if (valid == 0) {
       *pair.out = analytic;  // a sliver no sample pair straddles: too small to test, assume visible
@@ -416,6 +433,44 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
     }
     *t.out = all > 0.0f ? t.analytic * (arrived / all) : t.analytic;
   }
+}
+
+void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) {
+  if (!movedBefore_) {
+    std::fill(changed.begin(), changed.end(), uint8_t(1));
+    return;
+  }
+  ensureQuadrature();
+  // A pair's rays are blocked in the scene where they are blocked by the static faces or by the
+  // moved ones; where no ray's verdict against the moved faces differs between their two places,
+  // no ray's verdict in the scene does, and the factor is the same number as before. The moved
+  // faces alone cost a fraction of the scene's two-level BVH to test. (Testing a closed convex
+  // mover against its planes instead, without a BVH, measured no faster.)
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), kPairsPerBatch), [&](const tbb::blocked_range<size_t>& r) {
+    Workspace& ws = workspace();
+    std::vector<RTCRay>& before = ws.rays;
+    std::vector<RTCRay>& after = ws.movedRays;
+    uint32_t first[kPairsPerBatch + 1];
+    for (size_t begin = r.begin(); begin < r.end(); begin += kPairsPerBatch) {
+      const size_t count = std::min(kPairsPerBatch, r.end() - begin);
+      before.clear();
+      for (size_t i = 0; i < count; ++i) {
+        first[i] = uint32_t(before.size());
+        forEachPairRay(pairs[begin + i].element, pairs[begin + i].patch,
+                       [&](Vec3 a, Vec3 b, float) { before.push_back(makeRay(a, b - a, 0.0f, 1.0f)); });
+      }
+      first[count] = uint32_t(before.size());
+      after = before;
+      movedBefore_->occluded(before);
+      movedAfter_->occluded(after);
+      for (size_t i = 0; i < count; ++i) {
+        uint8_t differs = 0;
+        for (uint32_t j = first[i]; j < first[i + 1] && !differs; ++j)
+          differs = isOccluded(before[j]) != isOccluded(after[j]);
+        changed[begin + i] = differs;
+      }
+    }
+  });
 }
 
 void CpuTransport::columns(std::span<const uint32_t> patches, std::span<float> out) {

@@ -29,12 +29,17 @@ class CpuTransport final : public Transport {
   void analyticIrradiance(std::span<Rgb> out) override;
   void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) override;
   void lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) override;
-  uint64_t raysTraced() const override { return tracer_.raysTraced(); }
+  uint64_t raysTraced() const override {
+    return tracer_.raysTraced() + movedRays_ + (movedBefore_ ? movedBefore_->raysTraced() + movedAfter_->raysTraced() : 0);
+  }
   void elementsChanged() override;
   // Moves the objects' ray tracer instances (a commit, no rebuild) and forgets what depended on
   // where they were: pair classifications and receiver quadratures.
   void objectsMoved(std::span<const uint32_t> objects) override;
   std::vector<uint32_t> receiversRedoneByMove() const override { return redoneByMove_; }
+  // Exact per ray: each pair's rays are tested against the moved faces alone, where they were
+  // and where they are.
+  void visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) override;
 
   RayTracer& tracer() { return tracer_; }
   RayTracer* rayTracer() override { return &tracer_; }
@@ -86,6 +91,12 @@ class CpuTransport final : public Transport {
   std::vector<uint8_t> elementQuadrature_;  // receiver midpoint rule: k x k points
   std::vector<uint8_t> patchEmits_;
   std::vector<uint32_t> redoneByMove_;  // the receivers whose quadrature the last move made again
+  std::unique_ptr<RayTracer> movedBefore_, movedAfter_;  // the last move's faces, before and after it
+  uint64_t movedRays_ = 0;                                // rays earlier moves' tracers traced
+  // Calls visit(from, to, kernel) for each visibility ray of one pair, deterministic per pair
+  // (computePairs and visibilityChangedByMove cast the same ones), with its point-to-point kernel.
+  template <typename Visit>
+  void forEachPairRay(uint32_t element, uint32_t patch, Visit&& visit) const;
   struct ThreadLocal;
   std::unique_ptr<ThreadLocal> threadLocal_;
 };

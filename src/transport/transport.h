@@ -6,6 +6,7 @@
 // analytic lights from here.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -75,6 +76,16 @@ class Transport {
   // of the backend's own besides visibility (CpuTransport: receiver quadratures made denser or
   // coarser near the moved faces). Solvers that keep factors across moves recompute these.
   virtual std::vector<uint32_t> receiversRedoneByMove() const { return {}; }
+
+  // After objectsMoved: for each (element, patch) pair, whether the move can have changed its
+  // factor's visibility, that is whether one of its visibility rays meets the moved objects in
+  // one of their two places (before and after the move) and not in the other. 0 promises the
+  // factor is the same number as before the move (for receivers not in receiversRedoneByMove);
+  // backends that cannot tell say 1.
+  virtual void visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) {
+    (void)pairs;
+    std::fill(changed.begin(), changed.end(), uint8_t(1));
+  }
 };
 
 }  // namespace luxel
