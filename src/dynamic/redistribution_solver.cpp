@@ -38,6 +38,7 @@
 // move are current: progressive iterations may run between moves without the "remove M, iterate,
 // insert M" wrapper of L843.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -46,6 +47,7 @@
 
 #include "core/stopwatch.h"
 #include "dynamic/convex_solid.h"
+#include "dynamic/separating_planes.h"
 #include "solve/progressive_solver.h"
 #include "solve/solver_registry.h"
 #include "transport/form_factor_options.h"
@@ -70,67 +72,15 @@ struct Region {
   bool empty() const { return half.x < 0.0f; }
 };
 
-float polygonRadius(const Polygon& p, Vec3 centre) {
-  float r = 0.0f;
-  for (int i = 0; i < p.count; ++i) r = std::max(r, glm::length(p.v[size_t(i)] - centre));
-  return r;
-}
-
-// Whether the segment [a, b] passes within `reach` of the box (the box grown by `reach` along
-// each axis, which holds every point within `reach` of it): the slab test in the box's frame.
-bool segmentNearBox(Vec3 a, Vec3 b, const Region& box, float reach) {
-  const Vec3 p = glm::transpose(box.axes) * (a - box.centre), q = glm::transpose(box.axes) * (b - box.centre);
-  const Vec3 d = q - p, h = box.half + Vec3(reach);
-  float t0 = 0.0f, t1 = 1.0f;
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(d[i]) < 1e-12f) {
-      if (std::abs(p[i]) > h[i]) return false;
-      continue;
-    }
-    float ta = (-h[i] - p[i]) / d[i], tb = (h[i] - p[i]) / d[i];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta), t1 = std::min(t1, tb);
-    if (t0 > t1) return false;
+// The box's corners, each axis grown by `margin`: corner i has bit a set for +half[a].
+std::array<Vec3, 8> cornersOf(const Region& box, float margin) {
+  std::array<Vec3, 8> corners;
+  for (int i = 0; i < 8; ++i) {
+    Vec3 c = box.centre;
+    for (int a = 0; a < 3; ++a) c += box.axes[a] * ((i >> a & 1 ? 1.0f : -1.0f) * (box.half[a] + margin));
+    corners[size_t(i)] = c;
   }
-  return true;
-}
-
-// Whether a ray from a point within `ra` of `a` to a point within `rb` of `b` can cross the box.
-// Every such segment lies in the convex hull of the two balls, the union over t of the balls
-// round a + t (b - a) of radius ra + t (rb - ra) (Minkowski sums of convex sets), so near the
-// small end the reach is small. The box's bounding sphere first finds the window of t where the
-// hull can come near it; the box grown by the largest radius over that window is then tested
-// against that part of the segment.
-bool hullNearBox(Vec3 a, float ra, Vec3 b, float rb, const Region& box) {
-  const Vec3 ab = b - a;
-  const float length2 = glm::dot(ab, ab);
-  if (!(length2 > 0.0f)) return segmentNearBox(a, b, box, std::max(ra, rb));
-  const float reach = glm::length(box.half) + std::max(ra, rb);
-  const float t = std::clamp(glm::dot(box.centre - a, ab) / length2, 0.0f, 1.0f);
-  const Vec3 gap = a + t * ab - box.centre;
-  const float gap2 = glm::dot(gap, gap);
-  if (gap2 > reach * reach) return false;
-  const float w = std::sqrt((reach * reach - gap2) / length2);
-  const float t0 = std::max(0.0f, t - w), t1 = std::min(1.0f, t + w);
-  const float radius = ra + (rb - ra) * (rb > ra ? t1 : t0);
-  return segmentNearBox(a + t0 * ab, a + t1 * ab, box, radius);
-}
-
-// Whether one of the box's face planes, moved out by `gap`, has both polygons wholly outside it:
-// then no segment between them meets the box.
-bool planeSeparates(const Region& box, const Polygon& a, const Polygon& b, float gap) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const Vec3 u = box.axes[axis];
-    const float centre = glm::dot(u, box.centre), reach = box.half[axis] + gap;
-    float lo = std::numeric_limits<float>::max(), hi = -lo;
-    for (const Polygon* p : {&a, &b})
-      for (int i = 0; i < p->count; ++i) {
-        const float x = glm::dot(u, p->v[size_t(i)]) - centre;
-        lo = std::min(lo, x), hi = std::max(hi, x);
-      }
-    if (lo > reach || hi < -reach) return true;
-  }
-  return false;
+  return corners;
 }
 
 class RedistributionSolver final : public ProgressiveSolver {
@@ -139,13 +89,6 @@ class RedistributionSolver final : public ProgressiveSolver {
                        const ProgressiveSettings& s, double settleThreshold, ChangedFactors changed, const char* method)
       : ProgressiveSolver(sys, transport, s), scene_(scene), changed_(changed), method_(method),
         settleThreshold_(settleThreshold) {
-    const SurfaceSet& set = sys.surfaces;
-    patchRadius_.resize(set.patches.size());
-    for (size_t p = 0; p < set.patches.size(); ++p)
-      patchRadius_[p] = polygonRadius(set.patches[p].polygon, set.patches[p].centroid);
-    elementRadius_.resize(set.elements.size());
-    for (size_t e = 0; e < set.elements.size(); ++e)
-      elementRadius_[e] = polygonRadius(set.elements[e].polygon, set.elements[e].centroid);
     bounds_.resize(scene.objects.size());
     shapes_.resize(scene.objects.size());
     convex_.resize(scene.objects.size(), 0);
@@ -180,7 +123,6 @@ class RedistributionSolver final : public ProgressiveSolver {
       if (!cache_[p].empty()) (isMoved(set.patches[p].face) ? movedPatches : staticPatches).push_back(p);
     for (uint32_t e = 0; e < ne; ++e)
       if (isMoved(set.elements[e].face)) movedElements.push_back(e);
-    for (uint32_t p = 0; p < np; ++p) patchRadius_[p] = polygonRadius(set.patches[p].polygon, set.patches[p].centroid);
 
     std::vector<Rgb> deltaH(ne, Rgb(0.0f));
     uint64_t recomputed = 0;
@@ -347,11 +289,11 @@ class RedistributionSolver final : public ProgressiveSolver {
   };
 
   // The (static receiver, static patch) pairs whose light can pass through one of `regions`,
-  // plus every pair of the receivers marked `always`. Every ray between an element and a patch
-  // lies in the convex hull of the two polygons, which lies in the hull of the balls round them
-  // (hullNearBox); a region that hull misses cannot
-  // have changed the pair's visibility. Receiver patches are tested first, then their elements.
-  // Pairs in the umbra of one of `blockers` both before and after the move are left out too.
+  // plus every pair of the receivers marked `always`. A receiver on the source's side of a plane
+  // that separates the source from a region (dynamic/separating_planes.h) is clear of it; one
+  // clear of every region cannot have changed its visibility. Pairs in the umbra of one of
+  // `blockers` both before and after the move are left out too. Receiver patches are tested
+  // first, then their elements.
   template <typename IsMoved>
   std::vector<Transport::ElementPatch> pairsThrough(const std::vector<uint32_t>& sources,
                                                     const std::vector<Region>& regions,
@@ -361,13 +303,6 @@ class RedistributionSolver final : public ProgressiveSolver {
     const size_t np = sys_.patchCount();
     std::vector<std::vector<Transport::ElementPatch>> perSource(sources.size());
     const float slack = this->slack();
-    // Whether a segment between the two polygons can meet one of the regions: the hull of balls
-    // round them (hullNearBox), then a face plane of the region's box that separates them.
-    auto near = [&](const Polygon& a, Vec3 ca, float ra, const Polygon& b, Vec3 cb, float rb) {
-      for (const Region& r : regions)
-        if (!r.empty() && hullNearBox(ca, ra + slack, cb, rb + slack, r) && !planeSeparates(r, a, b, slack)) return true;
-      return false;
-    };
     // A ray meets a closed solid's faces when it passes through the inside and one end lies
     // outside; the polygons' corners stand in for the rays' ends, which lie within slack of them.
     auto blocked = [&](const Polygon& a, const Polygon& b) {
@@ -380,6 +315,16 @@ class RedistributionSolver final : public ProgressiveSolver {
     tbb::parallel_for(size_t(0), sources.size(), [&](size_t k) {
       const uint32_t p = sources[k];
       const Patch& src = set.patches[p];
+      // The planes that bound each region's shadow from this source. Rays leave surfaces up to
+      // slack off them (RayTracer's offset is a tenth of it), and the boxes are grown by it.
+      std::vector<SeparatingPlanes> shadows;
+      for (const Region& r : regions)
+        if (!r.empty()) shadows.emplace_back(src.polygon, src.normal * slack, cornersOf(r, slack), 0.01f * slack);
+      auto clear = [&](const Polygon& poly, Vec3 normal) {
+        for (const SeparatingPlanes& shadow : shadows)
+          if (!shadow.separates(poly, normal * slack)) return false;
+        return true;
+      };
       std::vector<Transport::ElementPatch>& out = perSource[k];
       for (uint32_t q = 0; q < np; ++q) {
         const Patch& rec = set.patches[q];
@@ -387,12 +332,10 @@ class RedistributionSolver final : public ProgressiveSolver {
           for (uint32_t e : rec.elements) out.push_back({e, p});
           continue;
         }
-        const bool patchNear = near(rec.polygon, rec.centroid, patchRadius_[q], src.polygon, src.centroid, patchRadius_[p]) &&
-                               !blocked(rec.polygon, src.polygon);
+        const bool unchanged = clear(rec.polygon, rec.normal) || blocked(rec.polygon, src.polygon);
         for (uint32_t e : rec.elements) {
           const Element& el = set.elements[e];
-          if (always[e] || (patchNear && near(el.polygon, el.centroid, elementRadius_[e], src.polygon, src.centroid, patchRadius_[p]) &&
-                            !blocked(el.polygon, src.polygon)))
+          if (always[e] || (!unchanged && !clear(el.polygon, el.normal) && !blocked(el.polygon, src.polygon)))
             out.push_back({e, p});
         }
       }
@@ -440,7 +383,6 @@ class RedistributionSolver final : public ProgressiveSolver {
   const char* method_;
   const double settleThreshold_;
   std::vector<Rgb> analyticUsed_;
-  std::vector<float> patchRadius_, elementRadius_;
   std::vector<Region> bounds_;  // each dynamic object's patches, where the solution last saw them
   std::vector<std::vector<Polygon>> shapes_;  // the same patches' polygons
   std::vector<uint8_t> convex_;               // per object: its patches close a convex solid
