@@ -5,6 +5,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "luxel/error.h"
 
@@ -32,6 +33,17 @@ RTCDevice device() {
   return dev;
 }
 
+// A polygon's four corners as Embree's quad geometry takes them. Triangles repeat their last
+// corner, which Embree treats as a triangle. Embree cuts a quad along its 1-3 diagonal;
+// everything else in luxel (elements, bake, glTF) cuts along 0-2, so quads go in rotated by one
+// corner (remapped in intersect).
+void writeCorners(const Polygon& p, float* out) {
+  for (int c = 0; c < 4; ++c) {
+    const Vec3& v = p.v[size_t(p.count == 4 ? (c + 1) % 4 : std::min(c, p.count - 1))];
+    out[3 * c + 0] = v.x, out[3 * c + 1] = v.y, out[3 * c + 2] = v.z;
+  }
+}
+
 // A BVH over the polygons `which` of `polygons` (all when empty).
 RTCScene buildPolygonScene(RTCDevice dev, std::span<const Polygon> polygons, const std::vector<uint32_t>* which) {
   const size_t n = which ? which->size() : polygons.size();
@@ -52,18 +64,8 @@ RTCScene buildPolygonScene(RTCDevice dev, std::span<const Polygon> polygons, con
     throw Error(fmt::format("Embree could not allocate buffers for {} polygons: {}", n, lastEmbreeError()));
   }
   for (size_t i = 0; i < n; ++i) {
-    const Polygon& p = polygons[which ? (*which)[i] : i];
-    for (int c = 0; c < 4; ++c) {
-      // Triangles repeat their last corner, which Embree's quad geometry treats as a triangle.
-      // Embree cuts a quad along its 1-3 diagonal; everything else in luxel (elements, bake,
-      // glTF) cuts along 0-2, so quads go in rotated by one corner (remapped in intersect).
-      const int src = p.count == 4 ? (c + 1) % 4 : std::min(c, p.count - 1);
-      const Vec3& v = p.v[size_t(src)];
-      vertices[12 * i + 3 * c + 0] = v.x;
-      vertices[12 * i + 3 * c + 1] = v.y;
-      vertices[12 * i + 3 * c + 2] = v.z;
-      indices[4 * i + c] = uint32_t(4 * i + c);
-    }
+    writeCorners(polygons[which ? (*which)[i] : i], vertices + 12 * i);
+    for (int c = 0; c < 4; ++c) indices[4 * i + c] = uint32_t(4 * i + c);
   }
   rtcCommitGeometry(geom);
   rtcAttachGeometry(scene, geom);
@@ -72,9 +74,15 @@ RTCScene buildPolygonScene(RTCDevice dev, std::span<const Polygon> polygons, con
   return scene;
 }
 
+// The corners a scene's polygons went in with (12 floats each), or null for an empty scene.
+const float* cornerBuffer(RTCScene scene) {
+  RTCGeometry geom = rtcGetGeometry(scene, 0);
+  return geom ? static_cast<const float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0)) : nullptr;
+}
+
 }  // namespace
 
-RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t> instanceOf) {
+RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t> instanceOf, size_t rebuiltFlatLimit) {
   if (!instanceOf.empty() && instanceOf.size() != polygons.size())
     throw Error(fmt::format("ray tracer: {} instance indices for {} polygons", instanceOf.size(), polygons.size()));
   RTCDevice dev = device();
@@ -83,7 +91,13 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
   int32_t instanceCount = 0;
   for (int32_t k : instanceOf) instanceCount = std::max(instanceCount, k + 1);
   flat_ = buildPolygonScene(dev, polygons, nullptr);
-  if (instanceCount > 0) {
+  flatCorners_ = cornerBuffer(flat_);
+  instanceCount_ = size_t(instanceCount);
+  if (instanceCount > 0 && polygons.size() <= rebuiltFlatLimit) {
+    rebuildsFlat_ = true;
+    built_.assign(polygons.begin(), polygons.end());
+    instanceOf_.assign(instanceOf.begin(), instanceOf.end());
+  } else if (instanceCount > 0) {
     // The two-level form, traced once an instance has moved: the static polygons as one
     // instance, each dynamic object as another, under a top level of a handful of leaves that a
     // commit rebuilds at once. Until then rays go through the one-level BVH of everything, which
@@ -96,6 +110,7 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
     const glm::mat4 identity(1.0f);
     for (size_t part = 0; part < members_.size(); ++part) {
       parts_.push_back(buildPolygonScene(dev, polygons, &members_[part]));
+      partCorners_.push_back(cornerBuffer(parts_.back()));
       RTCGeometry instance = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
       rtcSetGeometryInstancedScene(instance, parts_.back());
       rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
@@ -111,11 +126,16 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
 }
 
 void RayTracer::placeInstance(uint32_t instance, const glm::mat4& transform) {
-  if (instance >= instances_.size())
-    throw Error(fmt::format("ray tracer: no instance {} ({} instances)", instance, instances_.size()));
+  if (instance >= instanceCount_)
+    throw Error(fmt::format("ray tracer: no instance {} ({} instances)", instance, instanceCount_));
+  if (rebuildsFlat_) {
+    placed_.emplace_back(instance, transform);
+    return;
+  }
   if (!moved_ && flat_) {  // from now on the one-level BVH is out of date: give its memory back
     rtcReleaseScene(flat_);
     flat_ = nullptr;
+    flatCorners_ = nullptr;
   }
   moved_ = true;
   rtcSetGeometryTransform(instances_[instance], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
@@ -123,6 +143,23 @@ void RayTracer::placeInstance(uint32_t instance, const glm::mat4& transform) {
 }
 
 void RayTracer::commit() {
+  if (rebuildsFlat_ && !placed_.empty()) {
+    std::vector<const glm::mat4*> transformOf(instanceCount_, nullptr);
+    for (const auto& [instance, transform] : placed_) transformOf[instance] = &transform;  // the last placement counts
+    placed_.clear();
+    RTCGeometry geom = rtcGetGeometry(flat_, 0);
+    auto* vertices = static_cast<float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0));
+    for (size_t i = 0; i < built_.size(); ++i) {
+      if (instanceOf_[i] < 0 || !transformOf[size_t(instanceOf_[i])]) continue;
+      const glm::mat4& m = *transformOf[size_t(instanceOf_[i])];
+      Polygon p = built_[i];
+      for (int c = 0; c < p.count; ++c) p.v[size_t(c)] = Vec3(m * glm::vec4(p.v[size_t(c)], 1.0f));
+      writeCorners(p, vertices + 12 * i);
+    }
+    rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(geom);
+    rtcCommitScene(flat_);
+  }
   if (layered_) rtcCommitScene(layered_);
   if (rtcGetDeviceError(device()) != RTC_ERROR_NONE)
     throw Error(fmt::format("Embree could not update the scene: {}", lastEmbreeError()));
@@ -140,9 +177,29 @@ struct NearQuery {
   const std::function<bool(uint32_t)>* visit;
 };
 
+// Embree calls back for every primitive of a leaf whose bounds meet the query: the polygon's own
+// bounds decide.
 bool visitNearPolygon(RTCPointQueryFunctionArguments* args) {
   const auto* q = static_cast<const NearQuery*>(args->userPtr);
-  const uint32_t polygon = q->tracer->layered() ? q->tracer->polygonOf(args->context->instID[0], args->primID) : args->primID;
+  const bool layered = q->tracer->layered();
+  const float* corners = q->tracer->cornersOf(layered ? args->context->instID[0] : 0u, args->primID);
+  if (corners) {
+    Vec3 p(args->query->x, args->query->y, args->query->z);
+    float radius = args->query->radius;
+    if (args->context->instStackSize > 0) {  // into the instance's own space (a similarity)
+      const glm::mat4 toLocal = glm::make_mat4(args->context->world2inst[args->context->instStackSize - 1]);
+      p = Vec3(toLocal * glm::vec4(p, 1.0f));
+      radius *= args->similarityScale > 0.0f ? args->similarityScale : 1.0f;
+    }
+    Vec3 lo(corners[0], corners[1], corners[2]), hi = lo;
+    for (int c = 1; c < 4; ++c) {
+      const Vec3 v(corners[3 * c], corners[3 * c + 1], corners[3 * c + 2]);
+      lo = glm::min(lo, v), hi = glm::max(hi, v);
+    }
+    const Vec3 gap = glm::max(glm::max(lo - p, p - hi), Vec3(0.0f));
+    if (glm::dot(gap, gap) > radius * radius) return false;
+  }
+  const uint32_t polygon = layered ? q->tracer->polygonOf(args->context->instID[0], args->primID) : args->primID;
   if ((*q->visit)(polygon)) return false;
   args->query->radius = 0.0f;  // the visitor has seen enough: shrink the query to end traversal
   return true;                 // the query radius changed

@@ -8,6 +8,7 @@
 #include <functional>
 #include <mutex>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -25,8 +26,13 @@ class RayTracer {
   // placeInstance moves by a transform (Embree's two-level scenes: a moving object costs a
   // transform and a commit of the top level, not a rebuild); -1 puts a polygon in the static BVH.
   // With instances both forms are built: the one-level BVH of every polygon, which traces
-  // fastest, serves until the first move; the two-level form serves from then on.
-  explicit RayTracer(std::span<const Polygon> polygons, std::span<const int32_t> instanceOf = {});
+  // fastest, serves until the first move; the two-level form serves from then on. Scenes of at
+  // most `rebuiltFlatLimit` polygons keep the one-level BVH instead: a commit writes the moved
+  // polygons' corners into it and rebuilds it, which costs little at that size and keeps rays
+  // 1.5-1.7x faster than through instances.
+  explicit RayTracer(std::span<const Polygon> polygons, std::span<const int32_t> instanceOf = {},
+                     size_t rebuiltFlatLimit = kRebuiltFlatLimit);
+  static constexpr size_t kRebuiltFlatLimit = 8192;
   ~RayTracer();
   RayTracer(const RayTracer&) = delete;
   RayTracer& operator=(const RayTracer&) = delete;
@@ -48,11 +54,16 @@ class RayTracer {
   // move takes effect at commit(); rays must not be traced between the two.
   void placeInstance(uint32_t instance, const glm::mat4& transform);
   void commit();
-  size_t instanceCount() const { return instances_.size(); }
+  size_t instanceCount() const { return instanceCount_; }
   // Whether rays go through the two-level form (an instance has moved), whose primitives are
   // numbered per part: polygonOf maps a hit's (instID[0], primID) back to the polygon.
   bool layered() const { return moved_; }
   uint32_t polygonOf(unsigned instID, unsigned primID) const { return members_[instID][primID]; }
+  // A primitive's four corners as traced (in its part's own space when layered), 12 floats.
+  const float* cornersOf(unsigned part, unsigned primID) const {
+    const float* corners = moved_ ? partCorners_[part] : flatCorners_;
+    return corners ? corners + 12 * size_t(primID) : nullptr;
+  }
 
   uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
 
@@ -78,6 +89,15 @@ class RayTracer {
   std::vector<std::vector<uint32_t>> members_;
   RTCScene traced() const { return moved_ ? layered_ : flat_; }
   std::vector<uint8_t> quad_;  // per polygon: 1 for quads, whose hit (u, v) intersect remaps
+  size_t instanceCount_ = 0;
+  const float* flatCorners_ = nullptr;     // flat_'s vertex buffer
+  std::vector<const float*> partCorners_;  // each of parts_'s
+  // A one-level BVH rebuilt by commit(): the polygons where they were built, each one's
+  // instance, and the instances placed since the last commit with their transforms.
+  bool rebuildsFlat_ = false;
+  std::vector<Polygon> built_;
+  std::vector<int32_t> instanceOf_;
+  std::vector<std::pair<uint32_t, glm::mat4>> placed_;
   mutable std::atomic<uint64_t> rays_{0};
   RayRecording* recorder_ = nullptr;
   mutable std::mutex recorderMutex_;

@@ -71,13 +71,19 @@ TEST(MovingObjects, OnlyDynamicObjectsMoveAndOnlyRigidly) {
   EXPECT_THROW(scene.placeObject(box, at), Error);
 }
 
-// Two unit squares facing +z at z = 0, the second one an instance; rays down -z.
-TEST(MovingObjects, RayTracerInstancesMoveByATransform) {
+// Two unit squares facing +z at z = 0, the second one an instance; rays down -z. Both forms a
+// moving instance can take: the two-level BVH, and the one-level BVH that small scenes rebuild.
+class RayTracerInstances : public ::testing::TestWithParam<size_t> {};
+INSTANTIATE_TEST_SUITE_P(MovingObjects, RayTracerInstances, ::testing::Values(size_t(0), RayTracer::kRebuiltFlatLimit),
+                         [](const auto& info) { return info.param == 0 ? "TwoLevel" : "RebuiltOneLevel"; });
+
+TEST_P(RayTracerInstances, InstancesMoveByATransform) {
   const Polygon a{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, 4};
   const Polygon b{{Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(3, 1, 0), Vec3(2, 1, 0)}, 4};
   const Polygon polygons[] = {a, b};
   const int32_t instances[] = {-1, 0};
-  RayTracer tracer(polygons, instances);
+  RayTracer tracer(polygons, instances, GetParam());
+  EXPECT_EQ(tracer.layered(), false);
   ASSERT_EQ(tracer.instanceCount(), 1u);
   auto hitAt = [&](float x, float y) {
     RTCRayHit h;
@@ -92,8 +98,11 @@ TEST(MovingObjects, RayTracerInstancesMoveByATransform) {
   EXPECT_NEAR(h.hit.v, 0.25f, 1e-5f);
   EXPECT_EQ(hitAt(0.5f, 0.5f).hit.primID, 0u);
   // Lift the instance by 2 and slide it by 3 along x: it is found at its new place only.
+  // Placed twice before a commit: the last placement counts, relative to where it was built.
+  tracer.placeInstance(0, glm::translate(glm::mat4(1.0f), Vec3(1, 0, 0)));
   tracer.placeInstance(0, glm::translate(glm::mat4(1.0f), Vec3(3, 0, 2)));
   tracer.commit();
+  EXPECT_EQ(tracer.layered(), GetParam() == 0);
   EXPECT_EQ(hitAt(2.5f, 0.5f).hit.geomID, RTC_INVALID_GEOMETRY_ID);
   h = hitAt(5.5f, 0.25f);
   ASSERT_NE(h.hit.geomID, RTC_INVALID_GEOMETRY_ID);
@@ -110,6 +119,12 @@ TEST(MovingObjects, RayTracerInstancesMoveByATransform) {
   near.clear();
   tracer.forEachNear(Vec3(2.5f, 0.5f, 0.0f), 0.1f, [&](uint32_t p) { return near.push_back(p), true; });
   EXPECT_TRUE(near.empty());
+  // A second move, again relative to where the instance was built; the static square stays.
+  tracer.placeInstance(0, glm::translate(glm::mat4(1.0f), Vec3(0, 2, 0)));
+  tracer.commit();
+  EXPECT_EQ(hitAt(5.5f, 0.25f).hit.geomID, RTC_INVALID_GEOMETRY_ID);
+  EXPECT_EQ(hitAt(2.5f, 2.5f).hit.primID, 1u);
+  EXPECT_EQ(hitAt(0.5f, 0.5f).hit.primID, 0u);
 }
 
 // Moving the box in a session and solving again gives what a fresh session of the scene with
