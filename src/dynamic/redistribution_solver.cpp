@@ -30,10 +30,11 @@
 //    position" (L482). The thesis estimates R(C, C) by cross projection through back hemicubes;
 //    on the CPU we trace those factors exactly instead (notes 7.2, point 4), which removes the
 //    projection's undersampling and the drift that made the thesis reject an incremental
-//    projection. Three tests narrow R(C, C) to the factors that changed, exactly: the pair's hull
-//    must come near the mover's box before or after the move; it must not lie in the umbra of a
-//    closed convex mover at both places (dynamic/convex_solid.h); and one of its rays must meet
-//    the mover at one place and not the other (Transport::visibilityChangedByMove).
+//    projection. Three tests narrow R(C, C) to the factors that changed, exactly: no plane may
+//    separate the receiver from the mover's box on the source's side, before or after the move
+//    (dynamic/separating_planes.h); the receiver's patch must not lie in the umbra of a closed
+//    convex mover at both places (trace/convex_solid.h); and one of the pair's rays must meet the
+//    mover at one place and not the other (Transport::visibilityChangedByMove).
 // Both keep every factor they have computed, so the columns of static patches that shoot after a
 // move are current: progressive iterations may run between moves without the "remove M, iterate,
 // insert M" wrapper of L843.
@@ -46,7 +47,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/stopwatch.h"
-#include "dynamic/convex_solid.h"
+#include "trace/convex_solid.h"
 #include "dynamic/separating_planes.h"
 #include "solve/progressive_solver.h"
 #include "solve/solver_registry.h"
@@ -96,7 +97,7 @@ class RedistributionSolver final : public ProgressiveSolver {
       bounds_[o] = boundsOf(o);
       shapes_[o] = shapeOf(o);
       // A rigid move keeps a solid closed and convex: decided once.
-      convex_[o] = ConvexSolid::fromPolygons(shapes_[o], slack()).valid();
+      convex_[o] = ConvexSolid::fromPolygons(shapes_[o], 0.1f * slack()).valid();
     }
     remember();
   }
@@ -162,7 +163,8 @@ class RedistributionSolver final : public ProgressiveSolver {
           for (size_t i = 0; i < now.size(); ++i)
             for (int c = 0; c < now[i].count; ++c)
               moved = std::max(moved, glm::length(now[i].v[size_t(c)] - shapes_[o][i].v[size_t(c)]));
-          blockers.push_back({ConvexSolid::fromPolygons(shapes_[o], slack()), moved + slack()});
+          // The faces lie within the solid's tolerance of its planes.
+          blockers.push_back({ConvexSolid::fromPolygons(shapes_[o], 0.1f * slack()), moved + 1.1f * slack()});
         }
         shapes_[o] = std::move(now);
       }
@@ -291,9 +293,10 @@ class RedistributionSolver final : public ProgressiveSolver {
   // The (static receiver, static patch) pairs whose light can pass through one of `regions`,
   // plus every pair of the receivers marked `always`. A receiver on the source's side of a plane
   // that separates the source from a region (dynamic/separating_planes.h) is clear of it; one
-  // clear of every region cannot have changed its visibility. Pairs in the umbra of one of
-  // `blockers` both before and after the move are left out too. Receiver patches are tested
-  // first, then their elements.
+  // clear of every region cannot have changed its visibility. Receiver patches are tested first,
+  // then their elements. Receiver patches in the umbra of one of `blockers` both before and after
+  // the move are left out too (for single elements the test costs more than the rays it saves,
+  // which the transport settles against the solid one by one).
   template <typename IsMoved>
   std::vector<Transport::ElementPatch> pairsThrough(const std::vector<uint32_t>& sources,
                                                     const std::vector<Region>& regions,
@@ -335,7 +338,7 @@ class RedistributionSolver final : public ProgressiveSolver {
         const bool unchanged = clear(rec.polygon, rec.normal) || blocked(rec.polygon, src.polygon);
         for (uint32_t e : rec.elements) {
           const Element& el = set.elements[e];
-          if (always[e] || (!unchanged && !clear(el.polygon, el.normal) && !blocked(el.polygon, src.polygon)))
+          if (always[e] || (!unchanged && !clear(el.polygon, el.normal)))
             out.push_back({e, p});
         }
       }

@@ -13,6 +13,7 @@
 
 #include "luxel/solve.h"
 #include "transport/form_factor_options.h"
+#include "trace/convex_solid.h"
 #include "trace/ray_tracer.h"
 #include "transport/transport.h"
 
@@ -92,6 +93,9 @@ class CpuTransport final : public Transport {
   std::vector<uint8_t> patchEmits_;
   std::vector<uint32_t> redoneByMove_;  // the receivers whose quadrature the last move made again
   std::unique_ptr<RayTracer> movedBefore_, movedAfter_;  // the last move's faces, before and after it
+  // When every object the last move moved is a closed convex solid: each one where it was, and
+  // the margin within which it moved (the farthest corner's distance, and rounding).
+  std::vector<std::pair<ConvexSolid, float>> movedSolids_;
   uint64_t movedRays_ = 0;                                // rays earlier moves' tracers traced
   // Calls visit(from, to, kernel) for each visibility ray of one pair, deterministic per pair
   // (computePairs and visibilityChangedByMove cast the same ones), with its point-to-point kernel.

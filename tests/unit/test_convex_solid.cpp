@@ -1,4 +1,4 @@
-// ConvexSolid (src/dynamic/convex_solid.h): which polygon sets bound a closed convex solid, the
+// ConvexSolid (src/trace/convex_solid.h): which polygon sets bound a closed convex solid, the
 // segment test against the solid inset by a depth, and the corner rule that proves every segment
 // between two polygons blocked.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/random.h"
-#include "dynamic/convex_solid.h"
+#include "trace/convex_solid.h"
 #include "transport/form_factor.h"
 
 namespace luxel {
@@ -75,6 +75,25 @@ TEST(ConvexSolid, ASegmentMeetsTheSolidInsetByLessThanItsDepth) {
   // Parallel to a face plane, inside and outside it.
   EXPECT_TRUE(cube.segmentMeets(Vec3(0.0f, -3.0f, 0.5f), Vec3(0.0f, 3.0f, 0.5f), 0.4f));
   EXPECT_FALSE(cube.segmentMeets(Vec3(0.0f, -3.0f, 0.5f), Vec3(0.0f, 3.0f, 0.5f), 0.6f));
+}
+
+TEST(ConvexSolid, SegmentsAreClearCrossingOrUnsureWithinAMargin) {
+  const ConvexSolid cube = ConvexSolid::fromPolygons(boxFaces(Vec3(-1.0f), Vec3(1.0f)), 1e-5f);
+  using S = ConvexSolid::Segment;
+  const float margin = 0.1f;
+  EXPECT_EQ(cube.classify(Vec3(-3, 0, 0), Vec3(3, 0, 0), margin), S::Crosses);      // through the middle
+  EXPECT_EQ(cube.classify(Vec3(-3, 1.2f, 0), Vec3(3, 1.2f, 0), margin), S::Clear);  // 0.2 above the top
+  EXPECT_EQ(cube.classify(Vec3(-3, 1.05f, 0), Vec3(3, 1.05f, 0), margin), S::Unsure);
+  EXPECT_EQ(cube.classify(Vec3(-3, 0.95f, 0), Vec3(3, 0.95f, 0), margin), S::Unsure);
+  EXPECT_EQ(cube.classify(Vec3(-3, 0.85f, 0), Vec3(3, 0.85f, 0), margin), S::Crosses);
+  EXPECT_EQ(cube.classify(Vec3(-3, 0, 0), Vec3(-1.05f, 0, 0), margin), S::Unsure);  // stops at a face
+  EXPECT_EQ(cube.classify(Vec3(-3, 0, 0), Vec3(-1.2f, 0, 0), margin), S::Clear);
+  // Wholly inside: it meets no face.
+  EXPECT_EQ(cube.classify(Vec3(-0.5f, 0, 0), Vec3(0.5f, 0, 0), margin), S::Unsure);
+  // From inside to far outside: it crosses a face.
+  EXPECT_EQ(cube.classify(Vec3(0, 0, 0), Vec3(0, 0, 5), margin), S::Crosses);
+  // Rising away from the top.
+  EXPECT_EQ(cube.classify(Vec3(-3, 1.1f, 0), Vec3(0, 1.1f + 3.0f, 0), margin), S::Clear);
 }
 
 TEST(ConvexSolid, CornersDecideWhetherEverySegmentIsBlocked) {

@@ -1,8 +1,9 @@
 // A moving object's solid, when its faces close a convex polyhedron: the half-spaces of its
 // faces. Cross-redistribution uses it to prove without tracing that the light between two
-// polygons was blocked by the object before a move and still is after it, so that their factor
-// cannot have changed (van de Hoef 2013 redistributes only "the radiosity that passes through the
-// modified geometry"; a pair in the object's umbra at both places passes none).
+// polygons, or along one ray, was blocked by the object before a move and still is after it, or
+// passed it by and still does, so that their factor cannot have changed (van de Hoef 2013
+// redistributes only "the radiosity that passes through the modified geometry"; a pair in the
+// object's umbra at both places passes none).
 //
 // Why the corners decide: for a convex solid K and a point x, the set of points y whose segment
 // [x, y] meets K is convex (x + s (k - x), k in K, s >= 1, is closed under convex combination).
@@ -35,6 +36,13 @@ class ConvexSolid {
   // Whether the segment [a, b] meets the solid with its planes moved `inset` inwards (the points
   // at least `inset` deep inside it).
   bool segmentMeets(Vec3 a, Vec3 b, float inset) const;
+
+  // What a segment does with the solid's faces wherever the solid stands within `margin` of here
+  // (every point moved by less): Clear, it misses them (it misses the solid grown by margin);
+  // Crosses, it meets them (it passes deeper than margin inside, with an end outside the solid
+  // grown by margin); Unsure otherwise.
+  enum class Segment { Clear, Crosses, Unsure };
+  Segment classify(Vec3 a, Vec3 b, float margin) const;
 
   // Whether every segment between the two polygons (their convex hulls) meets the solid inset by
   // `inset`: tested on the corner pairs, which suffices (see the top of the file).

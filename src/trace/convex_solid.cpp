@@ -1,4 +1,4 @@
-#include "dynamic/convex_solid.h"
+#include "trace/convex_solid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,6 +55,30 @@ bool ConvexSolid::segmentMeets(Vec3 a, Vec3 b, float inset) const {
     if (t0 > t1) return false;
   }
   return true;
+}
+
+ConvexSolid::Segment ConvexSolid::classify(Vec3 a, Vec3 b, float margin) const {
+  // Cyrus and Beck twice over, for the solid grown and shrunk by the margin.
+  const Vec3 d = b - a;
+  float grownIn = 0.0f, grownOut = 1.0f, shrunkIn = 0.0f, shrunkOut = 1.0f;
+  bool endOutside = false;
+  for (const glm::vec4& q : planes_) {
+    const Vec3 n(q);
+    const float start = glm::dot(n, a) - q.w, rate = glm::dot(n, d);
+    endOutside |= start > margin || start + rate > margin;
+    if (rate == 0.0f) {
+      if (start > margin) return Segment::Clear;
+      if (start > -margin) shrunkOut = -1.0f;  // parallel, outside the shrunk solid
+      continue;
+    }
+    const float tGrown = -(start - margin) / rate, tShrunk = -(start + margin) / rate;
+    if (rate > 0.0f)
+      grownOut = std::min(grownOut, tGrown), shrunkOut = std::min(shrunkOut, tShrunk);
+    else
+      grownIn = std::max(grownIn, tGrown), shrunkIn = std::max(shrunkIn, tShrunk);
+    if (grownIn > grownOut) return Segment::Clear;
+  }
+  return shrunkIn <= shrunkOut && endOutside ? Segment::Crosses : Segment::Unsure;
 }
 
 bool ConvexSolid::blocksEverySegment(const Polygon& a, const Polygon& b, float inset) const {
