@@ -7,8 +7,9 @@
 //    tracer's instance (transform and top-level commit) and the quadratures near it;
 //  - SibenikInstanceCommit: the ray tracer's part of a move alone: the instance's transform and the
 //    top-level commit;
-//  - SibenikAnalyticLight: the sun and sky's irradiance on every element, which a move changes
-//    anywhere the object's shadow may fall (recomputed in full today).
+//  - SibenikAnalyticLight: the sun and sky's irradiance on every element, traced in full;
+//  - SibenikAnalyticLightAfterMove: the same brought up to date after a move of the object
+//    (Transport::updateLightIrradianceAfterMove: only where its shadow was or is).
 // The object is the scene's mesh at the 90th percentile of face count, made a dynamic object.
 // Run: build/luxel-bench --benchmark_filter=Sibenik (skips when the scene is not unzipped).
 #include <algorithm>
@@ -109,10 +110,37 @@ void SibenikAnalyticLight(benchmark::State& state) {
   }
 }
 
+void SibenikAnalyticLightAfterMove(benchmark::State& state) {
+  Sibenik* s = sibenik();
+  if (!s) return state.SkipWithError("sibenik-cathedral not unzipped under the build folder");
+  CpuTransport transport(s->scene, s->surfaces, FormFactorOptions{});
+  std::vector<uint32_t> lights(s->scene.lights.size());
+  for (uint32_t i = 0; i < lights.size(); ++i) lights[i] = i;
+  std::vector<Rgb> irradiance(s->surfaces.elements.size());
+  transport.lightIrradiance(lights, irradiance);
+  const glm::mat4 rest = s->scene.objects[s->object].transform;
+  const uint32_t moved[] = {s->object};
+  size_t redone = 0;
+  int k = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    const glm::mat4 to = glm::translate(glm::mat4(1.0f), Vec3(0.0f, 0.01f * float(++k % 10), 0.0f)) * rest;
+    s->scene.placeObject(s->object, to);
+    s->surfaces.placeObject(s->scene, s->object);
+    transport.objectsMoved(moved);
+    state.ResumeTiming();
+    redone += transport.updateLightIrradianceAfterMove(lights, irradiance);
+    benchmark::DoNotOptimize(irradiance.data());
+  }
+  state.counters["elements again"] = double(redone) / double(state.iterations());
+  state.counters["elements"] = double(s->surfaces.elements.size());
+}
+
 BENCHMARK(SibenikTransportBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(SibenikMoveObject)->Unit(benchmark::kMillisecond)->Iterations(20);
 BENCHMARK(SibenikInstanceCommit)->Unit(benchmark::kMicrosecond)->Iterations(200);
 BENCHMARK(SibenikAnalyticLight)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(SibenikAnalyticLightAfterMove)->Unit(benchmark::kMillisecond)->Iterations(10);
 
 }  // namespace
 }  // namespace luxel

@@ -195,7 +195,19 @@ void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
   useContext();
   if (objects.empty()) return;
   transport_->objectsMoved(objects);
-  ++geometry_;  // every light's part is traced again: the move changed what it sees
+  // Every light's part follows the move: the transport computes again what the move can have
+  // changed (the moved elements, and the shadows of the moved objects where they were and are).
+  const uint64_t before = geometry_++;
+  const Stopwatch watch;
+  const size_t ne = surfaces_.elements.size();
+  for (uint32_t i = 0; i < lightParts_.size() && i < scene_.lights.size(); ++i) {
+    LightPart& part = lightParts_[i];
+    if (part.geometry != before || part.irradiance.size() != ne || !sameLight(part.light, scene_.lights[i])) continue;
+    const uint32_t one[] = {i};
+    transport_->updateLightIrradianceAfterMove(one, part.irradiance);
+    part.geometry = geometry_;
+  }
+  analyticSeconds_ += watch.seconds();
   computeAnalytic();
   system_->refresh(analytic_);
   checkpointKey_.reset(), finalCheckpointWritten_ = false;

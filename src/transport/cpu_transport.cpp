@@ -183,6 +183,8 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
     movedBefore_ = std::make_unique<RayTracer>(before);
     movedAfter_ = std::make_unique<RayTracer>(after);
   }
+  movedObjects_.assign(objects.begin(), objects.end());
+  for (int k = 0; k < 2; ++k) movedLo_[k] = lo[k], movedHi_[k] = hi[k];
   movedSolids_.clear();
   for (uint32_t o : objects) {
     std::vector<Polygon> was;
@@ -461,6 +463,20 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
   }
 }
 
+bool CpuTransport::movedRaySettled(Vec3 a, Vec3 b) const {
+  // Closed convex movers settle most rays without tracing: a ray that misses the solid grown by
+  // the distance its corners moved misses it at both places, and one that passes deeper than
+  // that meets it at both. The rest, which graze it, are traced against the moved faces.
+  if (movedSolids_.empty()) return false;
+  bool clear = true;
+  for (const auto& [solid, margin] : movedSolids_) {
+    const ConvexSolid::Segment s = solid.classify(a, b, margin);
+    if (s == ConvexSolid::Segment::Crosses) return true;
+    clear &= s == ConvexSolid::Segment::Clear;
+  }
+  return clear;
+}
+
 void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) {
   if (!movedBefore_) {
     std::fill(changed.begin(), changed.end(), uint8_t(1));
@@ -472,19 +488,6 @@ void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, 
   // no ray's verdict in the scene does, and the factor is the same number as before. The moved
   // faces alone cost a fraction of the scene's two-level BVH to test. (Testing a closed convex
   // mover against its planes instead, without a BVH, measured no faster.)
-  // Closed convex movers settle most rays without tracing: a ray that misses the solid grown by
-  // the distance its corners moved misses it at both places, and one that passes deeper than
-  // that meets it at both. The rest, which graze it, are traced against the moved faces.
-  auto settled = [&](Vec3 a, Vec3 b) {
-    if (movedSolids_.empty()) return false;
-    bool clear = true;
-    for (const auto& [solid, margin] : movedSolids_) {
-      const ConvexSolid::Segment s = solid.classify(a, b, margin);
-      if (s == ConvexSolid::Segment::Crosses) return true;
-      clear &= s == ConvexSolid::Segment::Clear;
-    }
-    return clear;
-  };
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), kPairsPerBatch), [&](const tbb::blocked_range<size_t>& r) {
     Workspace& ws = workspace();
     std::vector<RTCRay>& before = ws.rays;
@@ -496,7 +499,7 @@ void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, 
       for (size_t i = 0; i < count; ++i) {
         first[i] = uint32_t(before.size());
         forEachPairRay(pairs[begin + i].element, pairs[begin + i].patch, [&](Vec3 a, Vec3 b, float) {
-          if (!settled(a, b)) before.push_back(makeRay(a, b - a, 0.0f, 1.0f));
+          if (!movedRaySettled(a, b)) before.push_back(makeRay(a, b - a, 0.0f, 1.0f));
         });
       }
       first[count] = uint32_t(before.size());
@@ -565,46 +568,52 @@ void CpuTransport::analyticIrradiance(std::span<Rgb> out) {
   lightIrradiance(all, out);
 }
 
+void CpuTransport::appendLightSamples(uint32_t element, std::span<const uint32_t> lights, std::vector<RTCRay>& rays,
+                                      std::vector<LightSample>& samples) const {
+  const Vec3 up = glm::normalize(scene_.up);
+  const int k = squareCount(options_.lightSamples);
+  const int m = k * k;
+  const Element& e = surfaces_.elements[element];
+  for (const uint32_t li : lights) {
+    // Seeded by the light's index in the scene, so that a light's samples do not depend on
+    // which other lights are asked for.
+    Rng rng(hashCombine(hashCombine(options_.seed ^ 0xA5A5A5A5u, element), li));
+    int permutation[256];
+    shuffledStrata(rng, m, permutation);
+    for (int i = 0; i < m; ++i) {
+      float s = (float(i % k) + rng.next()) / float(k), t = (float(i / k) + rng.next()) / float(k);
+      Vec3 x = polygonPoint(e.polygon, s, t);
+      // Light samples are stratified independently of the point strata (shuffled index).
+      float u1 = (float(permutation[i]) + rng.next()) / float(m), u2 = rng.next();
+      LightSample ls = sampleLight(scene_.lights[li], x, e.normal, Sides::Front, up, u1, u2);
+      if (!ls.valid()) continue;
+      Vec3 xo = x + e.normal * (glm::dot(e.normal, ls.direction) >= 0.0f ? rayOffset_ : -rayOffset_);
+      rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
+      ls.irradiance /= float(m);
+      samples.push_back(ls);
+    }
+  }
+}
+
 template <typename Visit>
-void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& visit) {
+void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& visit, std::span<const uint32_t> elements) {
   for (uint32_t li : lights)
     if (li >= scene_.lights.size())
       throw Error(fmt::format("light {} does not exist: the scene has {} lights", li, scene_.lights.size()));
   if (lights.empty()) return;
-  const Vec3 up = glm::normalize(scene_.up);
-  const int k = squareCount(options_.lightSamples);
-  const int m = k * k;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, surfaces_.elements.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+  const size_t count = elements.empty() ? surfaces_.elements.size() : elements.size();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RTCRay> rays;
     std::vector<LightSample> samples, reached;
-    for (size_t ei = r.begin(); ei < r.end(); ++ei) {
-      const Element& e = surfaces_.elements[ei];
-      const Sides sides = Sides::Front;
+    for (size_t i = r.begin(); i < r.end(); ++i) {
+      const uint32_t ei = elements.empty() ? uint32_t(i) : elements[i];
       rays.clear();
       samples.clear();
-      for (const uint32_t li : lights) {
-        // Seeded by the light's index in the scene, so that a light's samples do not depend on
-        // which other lights are asked for.
-        Rng rng(hashCombine(hashCombine(options_.seed ^ 0xA5A5A5A5u, uint32_t(ei)), li));
-        int permutation[256];
-        shuffledStrata(rng, m, permutation);
-        for (int i = 0; i < m; ++i) {
-          float s = (float(i % k) + rng.next()) / float(k), t = (float(i / k) + rng.next()) / float(k);
-          Vec3 x = polygonPoint(e.polygon, s, t);
-          // Light samples are stratified independently of the point strata (shuffled index).
-          float u1 = (float(permutation[i]) + rng.next()) / float(m), u2 = rng.next();
-          LightSample ls = sampleLight(scene_.lights[li], x, e.normal, sides, up, u1, u2);
-          if (!ls.valid()) continue;
-          Vec3 xo = x + e.normal * (glm::dot(e.normal, ls.direction) >= 0.0f ? rayOffset_ : -rayOffset_);
-          rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
-          ls.irradiance /= float(m);
-          samples.push_back(ls);
-        }
-      }
+      appendLightSamples(ei, lights, rays, samples);
       tracer_.occluded(rays);
       reached.clear();
-      for (size_t i = 0; i < rays.size(); ++i)
-        if (!isOccluded(rays[i])) reached.push_back(samples[i]);
+      for (size_t j = 0; j < rays.size(); ++j)
+        if (!isOccluded(rays[j])) reached.push_back(samples[j]);
       visit(ei, std::span<const LightSample>(reached));
     }
   });
@@ -617,6 +626,59 @@ void CpuTransport::lightIrradiance(std::span<const uint32_t> lights, std::span<R
     for (const LightSample& ls : reached) sum += ls.irradiance;
     out[e] = sum;
   });
+}
+
+size_t CpuTransport::updateLightIrradianceAfterMove(std::span<const uint32_t> lights, std::span<Rgb> irradiance) {
+  if (!movedBefore_) {
+    lightIrradiance(lights, irradiance);
+    return surfaces_.elements.size();
+  }
+  // An element keeps its sum when it did not move and none of its sample rays meets the moved
+  // faces at one of their places and not the other: the same samples, the same verdicts.
+  const size_t ne = surfaces_.elements.size();
+  std::vector<uint8_t> again(ne, 0);
+  const float reach = 2.0f * surfaces_.sceneExtent;  // no ray meets anything farther than this
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 64), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<RTCRay> rays, before, after;
+    std::vector<LightSample> samples;
+    for (size_t ei = r.begin(); ei < r.end(); ++ei) {
+      const Element& e = surfaces_.elements[ei];
+      const uint32_t object = scene_.meshes[surfaces_.faces[e.face].mesh].object;
+      if (object != kNoObject && std::find(movedObjects_.begin(), movedObjects_.end(), object) != movedObjects_.end()) {
+        again[ei] = 1;
+        continue;
+      }
+      // Samples leave the element's front: a mover wholly behind its plane, before and after,
+      // cannot shade it.
+      bool behind = true;
+      for (int k = 0; k < 2 && behind; ++k) {
+        const Vec3 centre = 0.5f * (movedLo_[k] + movedHi_[k]), half = 0.5f * (movedHi_[k] - movedLo_[k]);
+        behind = glm::dot(e.normal, centre - e.centroid) + glm::dot(glm::abs(e.normal), half) < -10.0f * rayOffset_;
+      }
+      if (behind) continue;
+      rays.clear(), samples.clear(), before.clear();
+      appendLightSamples(uint32_t(ei), lights, rays, samples);
+      for (const RTCRay& ray : rays) {
+        const Vec3 a(ray.org_x, ray.org_y, ray.org_z), d(ray.dir_x, ray.dir_y, ray.dir_z);
+        const float length = glm::length(d) * ray.tfar;
+        const Vec3 b = a + d * (std::min(length, reach) / glm::length(d));
+        if (!movedRaySettled(a, b)) before.push_back(ray);
+      }
+      after = before;
+      movedBefore_->occluded(before);
+      movedAfter_->occluded(after);
+      for (size_t j = 0; j < before.size() && !again[ei]; ++j) again[ei] = isOccluded(before[j]) != isOccluded(after[j]);
+    }
+  });
+  std::vector<uint32_t> redo;
+  for (uint32_t e = 0; e < ne; ++e)
+    if (again[e]) redo.push_back(e);
+  visitLightSamples(lights, [&](size_t e, std::span<const LightSample> reached) {
+    Rgb sum(0.0f);
+    for (const LightSample& ls : reached) sum += ls.irradiance;
+    irradiance[e] = sum;
+  }, redo);
+  return redo.size();
 }
 
 void CpuTransport::lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) {

@@ -13,6 +13,7 @@
 
 #include "luxel/solve.h"
 #include "transport/form_factor_options.h"
+#include "transport/light_sampling.h"
 #include "trace/convex_solid.h"
 #include "trace/ray_tracer.h"
 #include "transport/transport.h"
@@ -41,6 +42,8 @@ class CpuTransport final : public Transport {
   // Exact per ray: each pair's rays are tested against the moved faces alone, where they were
   // and where they are.
   void visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) override;
+  // Exact: the same samples as lightIrradiance, tested against the moved faces alone.
+  size_t updateLightIrradianceAfterMove(std::span<const uint32_t> lights, std::span<Rgb> irradiance) override;
 
   RayTracer& tracer() { return tracer_; }
   RayTracer* rayTracer() override { return &tracer_; }
@@ -68,7 +71,13 @@ class CpuTransport final : public Transport {
   // Traces the samples of `lights` at every element and calls visit(element, samples) with the
   // ones that reach it: lightIrradiance and lightSh read the same samples.
   template <typename Visit>
-  void visitLightSamples(std::span<const uint32_t> lights, Visit&& visit);
+  void visitLightSamples(std::span<const uint32_t> lights, Visit&& visit, std::span<const uint32_t> elements = {});
+  // The shadow rays and samples of `lights` at one element, deterministic per element and light.
+  void appendLightSamples(uint32_t element, std::span<const uint32_t> lights, std::vector<RTCRay>& rays,
+                          std::vector<LightSample>& samples) const;
+  // Whether the segment's verdict against the last move's objects is the same at both places,
+  // proved against their solids without tracing.
+  bool movedRaySettled(Vec3 a, Vec3 b) const;
   PairVisibility classify(uint32_t receiverPatch, uint32_t sourcePatch);
   // The unoccluded factor A of each pair, by each receiver element's midpoint rule.
   void computeAnalytic(std::span<const Pair> pairs, float* out) const;
@@ -96,6 +105,8 @@ class CpuTransport final : public Transport {
   // When every object the last move moved is a closed convex solid: each one where it was, and
   // the margin within which it moved (the farthest corner's distance, and rounding).
   std::vector<std::pair<ConvexSolid, float>> movedSolids_;
+  std::vector<uint32_t> movedObjects_;  // the objects the last move moved
+  Vec3 movedLo_[2], movedHi_[2];         // the bounds of their faces before and after it
   uint64_t movedRays_ = 0;                                // rays earlier moves' tracers traced
   // Calls visit(from, to, kernel) for each visibility ray of one pair, deterministic per pair
   // (computePairs and visibilityChangedByMove cast the same ones), with its point-to-point kernel.

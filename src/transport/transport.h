@@ -86,6 +86,15 @@ class Transport {
     (void)pairs;
     std::fill(changed.begin(), changed.end(), uint8_t(1));
   }
+
+  // After objectsMoved: brings `irradiance`, the part of analytic irradiance that the lights
+  // `lights` gave each element before the move (lightIrradiance), up to the new places: what
+  // lightIrradiance would now return. Backends that can tell which elements the move cannot have
+  // changed keep theirs. Returns how many elements were computed again.
+  virtual size_t updateLightIrradianceAfterMove(std::span<const uint32_t> lights, std::span<Rgb> irradiance) {
+    lightIrradiance(lights, irradiance);
+    return irradiance.size();
+  }
 };
 
 }  // namespace luxel

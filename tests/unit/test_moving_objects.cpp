@@ -12,6 +12,7 @@
 #include "luxel/error.h"
 #include "luxel/session.h"
 #include "scene/builtin/builtin_scenes.h"
+#include "scene/builtin/seed_geometry.h"
 #include "trace/ray_tracer.h"
 #include "transport/cpu_transport.h"
 
@@ -217,6 +218,64 @@ TEST(MovingObjects, FactorsCalledUnchangedByAMoveAreUnchanged) {
     EXPECT_GT(differ, 0u);                  // the move mattered
     EXPECT_LT(called, pairs.size() / 2);    // and the test culls
     before = after;
+  }
+}
+
+// After a move the analytic lights' irradiance is brought up to date only where the move can
+// have changed it (Transport::updateLightIrradianceAfterMove): the result must be what tracing
+// every element again gives, to the bit, for a sun (rays to infinity) and a point lamp (finite).
+TEST(MovingObjects, LightIrradianceFollowsAMoveWhereItCanHaveChanged) {
+  // A 6 x 6 m ground under a 1 m box standing 0.5 m above it, lit by a low sun (rays to
+  // infinity) and a lamp (finite rays).
+  Scene scene;
+  scene.materials.push_back(Material{});
+  Mesh& ground = scene.meshes.emplace_back();
+  builtin::addGridQuad(ground, Vec3(-3.0f, 0.0f, 3.0f), Vec3(6.0f, 0.0f, 0.0f), Vec3(0.0f, 0.0f, -6.0f), 40, 40);
+  Mesh& cube = scene.meshes.emplace_back();
+  builtin::addOutwardBox(cube, Vec3(0.0f, 1.0f, 0.0f), Vec3(1.0f), 0.0f, 4, 4, 4);
+  builtin::makeDynamicObject(scene, cube, "box", Vec3(0.0f, 1.0f, 0.0f));
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.intensity = 1000.0f;
+  sun.direction = glm::normalize(Vec3(0.6f, -0.5f, 0.2f));
+  sun.angularRadius = 0.00465f;
+  scene.lights.push_back(sun);
+  Light lamp;
+  lamp.type = Light::Type::Point;
+  lamp.intensity = 50.0f;
+  lamp.position = Vec3(-0.5f, 3.0f, 0.8f);
+  scene.lights.push_back(lamp);
+  const uint32_t box = theBox(scene);
+  SurfaceSet surfaces = discretise(scene, DiscretiseOptions{});
+  CpuTransport transport(scene, surfaces, FormFactorOptions{});
+  const size_t ne = surfaces.elements.size();
+  std::vector<std::vector<Rgb>> parts(scene.lights.size(), std::vector<Rgb>(ne));
+  for (uint32_t i = 0; i < scene.lights.size(); ++i) transport.lightIrradiance(std::vector<uint32_t>{i}, parts[i]);
+
+  const Vec3 centre(scene.objects[box].transform[3]);
+  const glm::mat4 rest = scene.objects[box].transform;
+  const glm::mat4 poses[] = {turnedAbout(centre, 1.0f) * glm::translate(glm::mat4(1.0f), -centre) * rest,
+                             glm::translate(glm::mat4(1.0f), Vec3(0.5f, 0.0f, 0.3f)) * rest};
+  for (const glm::mat4& pose : poses) {
+    scene.placeObject(box, pose);
+    surfaces.placeObject(scene, box);
+    transport.objectsMoved(std::vector<uint32_t>{box});
+    for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+      const std::vector<uint32_t> one{i};
+      const std::vector<Rgb> was = parts[i];
+      const size_t redone = transport.updateLightIrradianceAfterMove(one, parts[i]);
+      std::vector<Rgb> fresh(ne);
+      transport.lightIrradiance(one, fresh);
+      size_t changed = 0;
+      for (size_t e = 0; e < ne; ++e) {
+        ASSERT_EQ(parts[i][e], fresh[e]) << "light " << i << ", element " << e;
+        changed += fresh[e] != was[e];
+      }
+      std::printf("light %u: %zu of %zu elements computed again, %zu changed\n", i, redone, ne, changed);
+      EXPECT_GE(redone, changed);
+      EXPECT_GT(changed, 20u);     // the shadow moved
+      EXPECT_LT(redone, ne / 3);  // where the shadows were and are, and the box, not the ground
+    }
   }
 }
 
