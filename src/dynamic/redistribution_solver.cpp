@@ -130,22 +130,7 @@ class RedistributionSolver final : public ProgressiveSolver {
     // Whole columns: the moved patches' always, every patch's for the incremental method.
     std::vector<uint32_t> whole = movedPatches;
     if (changed_ == ChangedFactors::All) whole.insert(whole.end(), staticPatches.begin(), staticPatches.end());
-    if (!whole.empty()) {
-      std::vector<float> fresh(whole.size() * ne);
-      transport_.columns(whole, fresh);
-      recomputed += fresh.size();
-      for (size_t k = 0; k < whole.size(); ++k) {
-        std::vector<float>& f = cache_[whole[k]];
-        const float* g = fresh.data() + k * ne;
-        const Rgb s = shot[whole[k]];
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 4096), [&](const tbb::blocked_range<size_t>& r) {
-          for (size_t e = r.begin(); e < r.end(); ++e) {
-            deltaH[e] += (g[e] - f[e]) * s;
-            f[e] = g[e];
-          }
-        });
-      }
-    }
+    if (!whole.empty()) recomputed += recomputeColumns(whole, shot, deltaH);
     // Single factors of the static patches, for cross-redistribution.
     if (changed_ == ChangedFactors::ThroughMovers && !staticPatches.empty()) {
       std::vector<Region> regions;
@@ -217,7 +202,18 @@ class RedistributionSolver final : public ProgressiveSolver {
 
   bool sourcesChanged() override {
     const Stopwatch watch;
-    apply(std::vector<Rgb>(sys_.elementCount(), Rgb(0.0f)));
+    const size_t ne = sys_.elementCount();
+    std::vector<Rgb> deltaH(ne, Rgb(0.0f));
+    // Patches that started or stopped emitting take other rays in the transport: their columns
+    // are computed again, as a move's are.
+    std::vector<uint32_t> redone;
+    for (uint32_t p : transport_.patchesRedoneBySources())
+      if (!cache_[p].empty()) redone.push_back(p);
+    if (!redone.empty()) {
+      const std::vector<Rgb> shot = patchShot();
+      factorsRecomputed_ += recomputeColumns(redone, shot, deltaH);
+    }
+    apply(deltaH);
     redistributions_ += 1;
     secondsRedistributing_ += watch.seconds();
     seconds_ += watch.seconds();
@@ -239,6 +235,26 @@ class RedistributionSolver final : public ProgressiveSolver {
   }
 
  private:
+  // Computes the cached columns of `patches` again, adding what the change of each factor does
+  // to the irradiance its patch has shot (deltaH); returns the factors computed.
+  size_t recomputeColumns(const std::vector<uint32_t>& patches, const std::vector<Rgb>& shot, std::vector<Rgb>& deltaH) {
+    const size_t ne = sys_.elementCount();
+    std::vector<float> fresh(patches.size() * ne);
+    transport_.columns(patches, fresh);
+    for (size_t k = 0; k < patches.size(); ++k) {
+      std::vector<float>& f = cache_[patches[k]];
+      const float* g = fresh.data() + k * ne;
+      const Rgb s = shot[patches[k]];
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t e = r.begin(); e < r.end(); ++e) {
+          deltaH[e] += (g[e] - f[e]) * s;
+          f[e] = g[e];
+        }
+      });
+    }
+    return fresh.size();
+  }
+
   // Each patch's shot radiosity S_p: the area mean of B - B_unshot over its elements.
   std::vector<Rgb> patchShot() const {
     std::vector<Rgb> shot(sys_.elementCount());

@@ -219,6 +219,7 @@ void SolverHost::objectsMoved(std::span<const uint32_t> objects) {
 
 void SolverHost::sourcesChanged() {
   useContext();
+  transport_->sourcesChanged();
   computeAnalytic();
   system_->refresh(analytic_);
   checkpointKey_.reset(), finalCheckpointWritten_ = false;

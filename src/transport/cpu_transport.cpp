@@ -121,17 +121,9 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
   rayOffset_ = rayOffsetFor(surfaces.sceneExtent);
   for (uint32_t o : scene.dynamicObjects()) builtAt_.emplace_back(o, scene.objects[o].transform);
   patchRadius_.resize(surfaces.patches.size());
-  patchEmits_.resize(surfaces.patches.size());
-  for (size_t p = 0; p < surfaces.patches.size(); ++p) {
-    const Patch& patch = surfaces.patches[p];
-    patchRadius_[p] = polygonRadius(patch.polygon, patch.centroid);
-    bool emits = false;
-    for (uint32_t e : patch.elements) {
-      const Rgb& x = surfaces.elements[e].exitance;
-      emits |= (x.r + x.g + x.b) > 0.0f;
-    }
-    patchEmits_[p] = emits;
-  }
+  for (size_t p = 0; p < surfaces.patches.size(); ++p)
+    patchRadius_[p] = polygonRadius(surfaces.patches[p].polygon, surfaces.patches[p].centroid);
+  findEmitters(patchEmits_);
 
   const size_t np = surfaces.patches.size();
   if (options.classifyVisibility && np <= kMaxClassifiedPatches) {
@@ -236,6 +228,24 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
     if (affected) near.push_back(e);
   }
   updateQuadrature(near);
+}
+
+void CpuTransport::findEmitters(std::vector<uint8_t>& emits) const {
+  emits.assign(surfaces_.patches.size(), 0);
+  for (size_t p = 0; p < surfaces_.patches.size(); ++p)
+    for (uint32_t e : surfaces_.patches[p].elements) {
+      const Rgb& x = surfaces_.elements[e].exitance;
+      emits[p] |= (x.r + x.g + x.b) > 0.0f;
+    }
+}
+
+void CpuTransport::sourcesChanged() {
+  std::vector<uint8_t> emits;
+  findEmitters(emits);
+  redoneBySources_.clear();
+  for (uint32_t p = 0; p < emits.size(); ++p)
+    if (emits[p] != patchEmits_[p]) redoneBySources_.push_back(p);
+  patchEmits_ = std::move(emits);
 }
 
 void CpuTransport::elementsChanged() {

@@ -39,6 +39,8 @@ class CpuTransport final : public Transport {
   // where they were: pair classifications and receiver quadratures.
   void objectsMoved(std::span<const uint32_t> objects) override;
   std::vector<uint32_t> receiversRedoneByMove() const override { return redoneByMove_; }
+  void sourcesChanged() override;
+  std::vector<uint32_t> patchesRedoneBySources() const override { return redoneBySources_; }
   // Exact per ray: each pair's rays are tested against the moved faces alone, where they were
   // and where they are.
   void visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) override;
@@ -101,6 +103,9 @@ class CpuTransport final : public Transport {
   std::vector<uint8_t> elementQuadrature_;  // receiver midpoint rule: k x k points
   std::vector<uint8_t> patchEmits_;
   std::vector<uint32_t> redoneByMove_;  // the receivers whose quadrature the last move made again
+  std::vector<uint32_t> redoneBySources_;  // the patches the last emission change made emitters or not
+  // Whether any of each patch's elements emits (such pairs take emitterRaysPerPair rays).
+  void findEmitters(std::vector<uint8_t>& emits) const;
   std::unique_ptr<RayTracer> movedBefore_, movedAfter_;  // the last move's faces, before and after it
   // When every object the last move moved is a closed convex solid: each one where it was, and
   // the margin within which it moved (the farthest corner's distance, and rounding).

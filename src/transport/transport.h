@@ -72,6 +72,13 @@ class Transport {
   // backend cannot follow moves.
   virtual void objectsMoved(std::span<const uint32_t> objects) = 0;
 
+  // The surfaces' emission changed (SurfaceSet::refreshMaterials after a material edit).
+  // Backends update what they derived from it; patchesRedoneBySources() then lists the patches
+  // whose factors it changed (CpuTransport: patches that started or stopped emitting, whose pairs
+  // take a different number of rays). Solvers that keep factors recompute those columns.
+  virtual void sourcesChanged() {}
+  virtual std::vector<uint32_t> patchesRedoneBySources() const { return {}; }
+
   // After objectsMoved: elements whose factors from every patch the last move changed for reasons
   // of the backend's own besides visibility (CpuTransport: receiver quadratures made denser or
   // coarser near the moved faces). Solvers that keep factors across moves recompute these.

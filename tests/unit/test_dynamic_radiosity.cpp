@@ -249,6 +249,21 @@ TEST(DynamicRadiosity, LightEditsEndWhereASolveFromScratchEnds) {
     EXPECT_GT(nrmse(s, before, expected), 0.3);
   }
   {
+    // A wall that starts to glow: its patches become emitters, which the transport gives more
+    // rays (emitter-rays-per-pair), so their cached columns are computed again.
+    Scene scene = builtin::cornellLow();
+    const int red = scene.findMaterial("red");
+    ASSERT_GE(red, 0);
+    Session s(scene, DiscretiseOptions{}, solverOptions("cross-redistribution"));
+    s.solve();
+    const Rgb glow(2.0f, 0.2f, 0.1f);
+    s.setMaterial(uint32_t(red), scene.materials[size_t(red)].reflectance, glow);
+    const Solution after = s.solve();
+    scene.materials[size_t(red)].emission = glow;
+    Session fresh(scene, DiscretiseOptions{}, solverOptions("progressive"));
+    EXPECT_LT(nrmse(s, after, fresh.solve()), kConvergedAgreement);
+  }
+  {
     Scene scene = builtin::indirectLight();
     ASSERT_FALSE(scene.lights.empty());
     Session s(scene, DiscretiseOptions{}, solverOptions("incremental", 1e-6));
