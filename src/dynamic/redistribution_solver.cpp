@@ -41,6 +41,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <limits>
 
 #include <tbb/blocked_range.h>
@@ -59,6 +60,12 @@ std::vector<SolverOption> progressiveStopOptions();  // solve/progressive_solver
 SolverOption settleOption();
 
 namespace {
+
+// Certificates are asked for moves of at most this share of the object's size, and kept for this
+// many places. They take 4 bytes a cached factor, so only while the factor cache is this small.
+constexpr float kCertifiedMoveShare = 0.05f;
+constexpr size_t kCertifiedPoses = 64;
+constexpr size_t kCertificateBytes = size_t(256) << 20;
 
 enum class ChangedFactors {
   All,             // incremental: every column again
@@ -135,29 +142,54 @@ class RedistributionSolver final : public ProgressiveSolver {
     if (changed_ == ChangedFactors::ThroughMovers && !staticPatches.empty()) {
       std::vector<Region> regions;
       std::vector<Blocker> blockers;
+      std::vector<std::vector<Polygon>> was;  // the moved objects' patches before the move
+      float movedMost = 0.0f, sizeLeast = std::numeric_limits<float>::max();
       for (uint32_t o : objects) {
         regions.push_back(bounds_[o]);  // where it was
         bounds_[o] = boundsOf(o);
         regions.push_back(bounds_[o]);  // where it is
         std::vector<Polygon> now = shapeOf(o);
+        // No point of the object moved farther than its farthest corner (an affine move's
+        // displacement is affine, its length convex).
+        const float moved = farthestCorner(shapes_[o], now);
+        movedMost = std::max(movedMost, moved);
+        sizeLeast = std::min(sizeLeast, 2.0f * glm::length(bounds_[o].half));
         if (convex_[o]) {
-          // No point of the solid moved farther than the farthest corner (an affine move's
-          // displacement is affine, its length convex), so the solid where it was, inset by
-          // that distance, lies inside the solid where it is too.
-          float moved = 0.0f;
-          for (size_t i = 0; i < now.size(); ++i)
-            for (int c = 0; c < now[i].count; ++c)
-              moved = std::max(moved, glm::length(now[i].v[size_t(c)] - shapes_[o][i].v[size_t(c)]));
-          // The faces lie within the solid's tolerance of its planes.
+          // So the solid where it was, inset by that distance, lies inside the solid where it
+          // is too. The faces lie within the solid's tolerance of its planes.
           blockers.push_back({ConvexSolid::fromPolygons(shapes_[o], 0.1f * slack()), moved + 1.1f * slack()});
         }
+        was.push_back(std::move(shapes_[o]));
         shapes_[o] = std::move(now);
+      }
+      // Certificates from earlier moves that still hold: the objects have stayed, before this
+      // move and after it, within the reach of the place the certificate was made for.
+      const std::vector<uint32_t> movedNow(objects.begin(), objects.end());
+      if (movedNow != certifiedObjects_) forgetCertificates(), certifiedObjects_ = movedNow;
+      // Per pose, the widest certificate level that still holds (0: none).
+      std::vector<uint8_t> poseHolds(nextPose_, 0);
+      for (const Pose& pose : poses_) {
+        float far = 0.0f;
+        for (size_t k = 0; k < objects.size(); ++k)
+          far = std::max({far, farthestCorner(pose.shapes[k], was[k]), farthestCorner(pose.shapes[k], shapes_[objects[k]])});
+        uint8_t narrowest = 0;
+        for (int level = kCertificateLevels; level >= 1 && std::ldexp(pose.reach, level - 1) >= far; --level)
+          narrowest = uint8_t(level);
+        poseHolds[pose.id] = narrowest;
       }
       const std::vector<uint32_t> redone = transport_.receiversRedoneByMove();
       std::vector<uint8_t> always(ne, 0);
       for (uint32_t e : movedElements) always[e] = 1;
       for (uint32_t e : redone) always[e] = 1;
-      std::vector<Transport::ElementPatch> pairs = pairsThrough(staticPatches, regions, blockers, always, isMoved);
+      // A certificate (pose << 4 | level) holds when its level is at least the narrowest that
+      // still covers how far the objects have gone from its pose.
+      auto certified = [&](uint32_t patch, uint32_t element) {
+        const std::vector<uint32_t>& c = certificate_[patch];
+        if (c.empty() || c[element] == 0) return false;
+        const uint8_t narrowest = poseHolds[c[element] >> 4];
+        return narrowest != 0 && (c[element] & 15u) >= narrowest;
+      };
+      std::vector<Transport::ElementPatch> pairs = pairsThrough(staticPatches, regions, blockers, always, isMoved, certified);
       // Of the pairs whose rays can pass where the movers were or are, the transport tells which
       // rays' verdicts the move changed (a box that turns a degree changes only the rays that
       // graze it); the rest keep their factors.
@@ -165,7 +197,14 @@ class RedistributionSolver final : public ProgressiveSolver {
                                                      [&](const Transport::ElementPatch& x) { return always[x.element] != 0; });
       const std::span<const Transport::ElementPatch> tested(firstTested, pairs.end());
       std::vector<uint8_t> changed(tested.size());
-      transport_.visibilityChangedByMove(tested, changed);
+      // A small move asks for certificates good for 2, 4, 8 or 16 times its distance, so that the
+      // next moves can skip the pairs whose rays pass well clear of the objects or well inside
+      // them; the pairs nearest the silhouette get the narrowest, so re-tests spread over frames.
+      const bool certify = movedMost > 0.0f && movedMost <= kCertifiedMoveShare * sizeLeast &&
+                           cachedBytes_ <= kCertificateBytes;
+      std::vector<uint8_t> newlyCertified(certify ? tested.size() : 0);
+      transport_.visibilityChangedByMove(tested, changed, 2.0f * movedMost, newlyCertified);
+      if (certify) remember(tested, newlyCertified, std::move(was), 2.0f * movedMost);
       size_t kept = size_t(firstTested - pairs.begin());
       for (size_t i = 0; i < tested.size(); ++i)
         if (changed[i]) pairs[kept++] = tested[i];
@@ -202,6 +241,7 @@ class RedistributionSolver final : public ProgressiveSolver {
 
   bool sourcesChanged() override {
     const Stopwatch watch;
+    forgetCertificates();  // emitters may have changed, and with them the rays of their pairs
     const size_t ne = sys_.elementCount();
     std::vector<Rgb> deltaH(ne, Rgb(0.0f));
     // Patches that started or stopped emitting take other rays in the transport: their columns
@@ -286,6 +326,36 @@ class RedistributionSolver final : public ProgressiveSolver {
     return box;
   }
 
+  // How far the farthest corner of the same patches lies between two places.
+  static float farthestCorner(const std::vector<Polygon>& a, const std::vector<Polygon>& b) {
+    float far = 0.0f;
+    for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+      for (int c = 0; c < a[i].count; ++c) far = std::max(far, glm::length(b[i].v[size_t(c)] - a[i].v[size_t(c)]));
+    return far;
+  }
+
+  // Keeps the certificates the transport gave `pairs` (certified[i], a level) for the moved
+  // objects' place before this move (`shapes`, per moved object) and `reach` * 2^(level - 1)
+  // round it.
+  void remember(std::span<const Transport::ElementPatch> pairs, const std::vector<uint8_t>& certified,
+                std::vector<std::vector<Polygon>> shapes, float reach) {
+    const uint32_t id = nextPose_++;
+    poses_.push_back({id, std::move(shapes), reach});
+    if (poses_.size() > kCertifiedPoses) poses_.pop_front();
+    const size_t ne = sys_.elementCount();
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      if (!certified[i]) continue;
+      std::vector<uint32_t>& c = certificate_[pairs[i].patch];
+      if (c.empty()) c.assign(ne, 0);
+      c[pairs[i].element] = id << 4 | certified[i];
+    }
+  }
+
+  void forgetCertificates() {
+    for (std::vector<uint32_t>& c : certificate_) std::vector<uint32_t>().swap(c);
+    poses_.clear();
+  }
+
   // A dynamic object's patches where they are now, in patch order.
   std::vector<Polygon> shapeOf(uint32_t object) const {
     const SurfaceSet& set = sys_.surfaces;
@@ -313,11 +383,13 @@ class RedistributionSolver final : public ProgressiveSolver {
   // then their elements. Receiver patches in the umbra of one of `blockers` both before and after
   // the move are left out too (for single elements the test costs more than the rays it saves,
   // which the transport settles against the solid one by one).
-  template <typename IsMoved>
+  // Pairs with a certificate that holds (`certified`) are left out as well.
+  template <typename IsMoved, typename Certified>
   std::vector<Transport::ElementPatch> pairsThrough(const std::vector<uint32_t>& sources,
                                                     const std::vector<Region>& regions,
                                                     const std::vector<Blocker>& blockers,
-                                                    const std::vector<uint8_t>& always, const IsMoved& isMoved) const {
+                                                    const std::vector<uint8_t>& always, const IsMoved& isMoved,
+                                                    const Certified& certified) const {
     const SurfaceSet& set = sys_.surfaces;
     const size_t np = sys_.patchCount();
     std::vector<std::vector<Transport::ElementPatch>> perSource(sources.size());
@@ -354,7 +426,7 @@ class RedistributionSolver final : public ProgressiveSolver {
         const bool unchanged = clear(rec.polygon, rec.normal) || blocked(rec.polygon, src.polygon);
         for (uint32_t e : rec.elements) {
           const Element& el = set.elements[e];
-          if (always[e] || (!unchanged && !clear(el.polygon, el.normal)))
+          if (always[e] || (!unchanged && !certified(p, e) && !clear(el.polygon, el.normal)))
             out.push_back({e, p});
         }
       }
@@ -405,6 +477,19 @@ class RedistributionSolver final : public ProgressiveSolver {
   std::vector<Region> bounds_;  // each dynamic object's patches, where the solution last saw them
   std::vector<std::vector<Polygon>> shapes_;  // the same patches' polygons
   std::vector<uint8_t> convex_;               // per object: its patches close a convex solid
+  // Certificates (Transport::visibilityChangedByMove with `certify`): per cached static column,
+  // per element, the pose whose neighbourhood the pair's rays keep their verdicts in, and how
+  // wide (pose << 4 | level; 0: none).
+  // Only for one list of moving objects at a time; forgotten when another list moves.
+  struct Pose {
+    uint32_t id;
+    std::vector<std::vector<Polygon>> shapes;  // per certified object, its patches there
+    float reach;  // of level 1
+  };
+  std::vector<std::vector<uint32_t>> certificate_ = std::vector<std::vector<uint32_t>>(sys_.patchCount());
+  std::deque<Pose> poses_;
+  uint32_t nextPose_ = 1;
+  std::vector<uint32_t> certifiedObjects_;
   uint64_t redistributions_ = 0, factorsRecomputed_ = 0;
   double secondsRedistributing_ = 0.0;
 };

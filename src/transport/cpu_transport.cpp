@@ -198,7 +198,7 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
       movedSolids_.clear();
       break;
     }
-    movedSolids_.emplace_back(std::move(solid), moved + tolerance + 10.0f * rayOffset_);
+    movedSolids_.push_back({std::move(solid), moved, tolerance + 10.0f * rayOffset_});
   }
   for (uint32_t p = 0; p < surfaces_.patches.size(); ++p)
     if (movedFace(surfaces_.patches[p].face))
@@ -473,25 +473,31 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
   }
 }
 
-bool CpuTransport::movedRaySettled(Vec3 a, Vec3 b) const {
+bool CpuTransport::movedRaySettled(Vec3 a, Vec3 b, float reach) const {
   // Closed convex movers settle most rays without tracing: a ray that misses the solid grown by
   // the distance its corners moved misses it at both places, and one that passes deeper than
   // that meets it at both. The rest, which graze it, are traced against the moved faces.
   if (movedSolids_.empty()) return false;
   bool clear = true;
-  for (const auto& [solid, margin] : movedSolids_) {
-    const ConvexSolid::Segment s = solid.classify(a, b, margin);
+  for (const MovedSolid& m : movedSolids_) {
+    const ConvexSolid::Segment s = m.was.classify(a, b, (reach < 0.0f ? m.moved : reach) + m.pad);
     if (s == ConvexSolid::Segment::Crosses) return true;
     clear &= s == ConvexSolid::Segment::Clear;
   }
   return clear;
 }
 
-void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) {
+void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed, float certify,
+                                           std::span<uint8_t> certified) {
+  std::fill(certified.begin(), certified.end(), uint8_t(0));
   if (!movedBefore_) {
     std::fill(changed.begin(), changed.end(), uint8_t(1));
     return;
   }
+  // Certificates need every ray settled against the solids for a wider reach; a ray settled so
+  // is settled for this move too (the solids grown and shrunk by less).
+  bool certifying = !certified.empty() && !movedSolids_.empty();
+  for (const MovedSolid& m : movedSolids_) certifying &= certify >= m.moved;
   ensureQuadrature();
   // A pair's rays are blocked in the scene where they are blocked by the static faces or by the
   // moved ones; where no ray's verdict against the moved faces differs between their two places,
@@ -508,9 +514,14 @@ void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, 
       before.clear();
       for (size_t i = 0; i < count; ++i) {
         first[i] = uint32_t(before.size());
+        // The widest reach every ray so far is settled for: certified levels are tried from the
+        // widest down, and a ray settled for none of them is settled (or traced) for this move.
+        int level = certifying ? kCertificateLevels : 0;
         forEachPairRay(pairs[begin + i].element, pairs[begin + i].patch, [&](Vec3 a, Vec3 b, float) {
-          if (!movedRaySettled(a, b)) before.push_back(makeRay(a, b - a, 0.0f, 1.0f));
+          while (level > 0 && !movedRaySettled(a, b, std::ldexp(certify, level - 1))) --level;
+          if (level == 0 && !movedRaySettled(a, b)) before.push_back(makeRay(a, b - a, 0.0f, 1.0f));
         });
+        if (certifying) certified[begin + i] = uint8_t(level);
       }
       first[count] = uint32_t(before.size());
       after = before;

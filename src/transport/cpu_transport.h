@@ -43,7 +43,8 @@ class CpuTransport final : public Transport {
   std::vector<uint32_t> patchesRedoneBySources() const override { return redoneBySources_; }
   // Exact per ray: each pair's rays are tested against the moved faces alone, where they were
   // and where they are.
-  void visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) override;
+  void visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed, float certify = 0.0f,
+                               std::span<uint8_t> certified = {}) override;
   // Exact: the same samples as lightIrradiance, tested against the moved faces alone.
   size_t updateLightIrradianceAfterMove(std::span<const uint32_t> lights, std::span<Rgb> irradiance) override;
 
@@ -77,9 +78,10 @@ class CpuTransport final : public Transport {
   // The shadow rays and samples of `lights` at one element, deterministic per element and light.
   void appendLightSamples(uint32_t element, std::span<const uint32_t> lights, std::vector<RTCRay>& rays,
                           std::vector<LightSample>& samples) const;
-  // Whether the segment's verdict against the last move's objects is the same at both places,
-  // proved against their solids without tracing.
-  bool movedRaySettled(Vec3 a, Vec3 b) const;
+  // Whether the segment's verdict against the last move's objects is the same wherever they stand
+  // within `reach` of where they were (< 0: within how far each moved in the last move), proved
+  // against their solids without tracing.
+  bool movedRaySettled(Vec3 a, Vec3 b, float reach = -1.0f) const;
   PairVisibility classify(uint32_t receiverPatch, uint32_t sourcePatch);
   // The unoccluded factor A of each pair, by each receiver element's midpoint rule.
   void computeAnalytic(std::span<const Pair> pairs, float* out) const;
@@ -107,9 +109,13 @@ class CpuTransport final : public Transport {
   // Whether any of each patch's elements emits (such pairs take emitterRaysPerPair rays).
   void findEmitters(std::vector<uint8_t>& emits) const;
   std::unique_ptr<RayTracer> movedBefore_, movedAfter_;  // the last move's faces, before and after it
-  // When every object the last move moved is a closed convex solid: each one where it was, and
-  // the margin within which it moved (the farthest corner's distance, and rounding).
-  std::vector<std::pair<ConvexSolid, float>> movedSolids_;
+  // When every object the last move moved is a closed convex solid: each one where it was, how
+  // far its farthest corner moved, and the padding for rounding its verdicts need.
+  struct MovedSolid {
+    ConvexSolid was;
+    float moved, pad;
+  };
+  std::vector<MovedSolid> movedSolids_;
   std::vector<uint32_t> movedObjects_;  // the objects the last move moved
   Vec3 movedLo_[2], movedHi_[2];         // the bounds of their faces before and after it
   uint64_t movedRays_ = 0;                                // rays earlier moves' tracers traced

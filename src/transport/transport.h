@@ -21,6 +21,9 @@ class RayTracer;
 // angle (Transport::lightSh).
 inline constexpr float kShMinimumCosine = 0.05f;
 
+// The reaches a move's certificates are given at (Transport::visibilityChangedByMove).
+inline constexpr int kCertificateLevels = 4;
+
 class Transport {
  public:
   virtual ~Transport() = default;
@@ -84,14 +87,21 @@ class Transport {
   // coarser near the moved faces). Solvers that keep factors across moves recompute these.
   virtual std::vector<uint32_t> receiversRedoneByMove() const { return {}; }
 
-  // After objectsMoved: for each (element, patch) pair, whether the move can have changed its
-  // factor's visibility, that is whether one of its visibility rays meets the moved objects in
-  // one of their two places (before and after the move) and not in the other. 0 promises the
-  // factor is the same number as before the move (for receivers not in receiversRedoneByMove);
-  // backends that cannot tell say 1.
-  virtual void visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed) {
-    (void)pairs;
+  // After objectsMoved: for each (element, patch) pair of static surfaces, whether the move can
+  // have changed its factor's visibility, that is whether one of its visibility rays meets the
+  // moved objects in one of their two places (before and after the move) and not in the other.
+  // 0 promises the factor is the same number as before the move, for receivers not in
+  // receiversRedoneByMove. Backends that cannot tell say 1.
+  // With `certify` > 0 and a `certified` span, also sets certified[i] to k > 0 when pair i's rays
+  // keep their verdicts for the moved objects anywhere within `certify` * 2^(k - 1) of where
+  // they were before this move (every corner moved less), for the largest such k up to
+  // kCertificateLevels: a solver may skip the pair while the objects stay that near. 0: no such
+  // promise (backends that cannot tell say 0).
+  virtual void visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed,
+                                       float certify = 0.0f, std::span<uint8_t> certified = {}) {
+    (void)pairs, (void)certify;
     std::fill(changed.begin(), changed.end(), uint8_t(1));
+    std::fill(certified.begin(), certified.end(), uint8_t(0));
   }
 
   // After objectsMoved: brings `irradiance`, the part of analytic irradiance that the lights
