@@ -29,7 +29,7 @@ class RayTracer {
   // fastest, serves until the first move; the two-level form serves from then on. Scenes of at
   // most `rebuiltFlatLimit` polygons keep the one-level BVH instead: a commit writes the moved
   // polygons' corners into it and rebuilds it, which costs little at that size and keeps rays
-  // 1.5-1.7x faster than through instances.
+  // as fast as before the move (docs/performance.md, "What the two-level ray tracer costs").
   explicit RayTracer(std::span<const Polygon> polygons, std::span<const int32_t> instanceOf = {},
                      size_t rebuiltFlatLimit = kRebuiltFlatLimit);
   static constexpr size_t kRebuiltFlatLimit = 8192;

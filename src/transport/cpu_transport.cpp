@@ -501,9 +501,9 @@ void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, 
   ensureQuadrature();
   // A pair's rays are blocked in the scene where they are blocked by the static faces or by the
   // moved ones; where no ray's verdict against the moved faces differs between their two places,
-  // no ray's verdict in the scene does, and the factor is the same number as before. The moved
-  // faces alone cost a fraction of the scene's two-level BVH to test. (Testing a closed convex
-  // mover against its planes instead, without a BVH, measured no faster.)
+  // no ray's verdict in the scene does, and the factor is the same number as before. Most rays
+  // are settled against closed convex movers' solids (movedRaySettled); the rest are traced
+  // against the moved faces alone, a fraction of the scene's BVH.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), kPairsPerBatch), [&](const tbb::blocked_range<size_t>& r) {
     Workspace& ws = workspace();
     std::vector<RTCRay>& before = ws.rays;
