@@ -519,15 +519,21 @@ void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas,
     if (lightmapped(m))
       for (const auto& uv : atlas.faces[m])
         if (uv.page < imageOf.size()) imageOf[uv.page] = 0;
+  // The images are named and placed first, then encoded in parallel: zlib's deflate is a single
+  // thread each, and a directional bake has four to ten of them a page.
+  std::vector<std::function<void(GlbImage&)>> encode;
+  const size_t firstImage = o.images.size();
   for (int p = 0; p < int(bake.pages.size()); ++p) {
     if (imageOf[size_t(p)] < 0) continue;
     imageOf[size_t(p)] = int32_t(o.images.size());
-    const Image image = lightmapPageImage(bake, p);
     GlbImage g;
     g.name = fmt::format("lightmap{}", p);
-    g.rgbmRange = rgbmRange(image);
-    g.png = encodeRgbmPng(image, g.rgbmRange);
     o.images.push_back(std::move(g));
+    encode.push_back([&bake, p](GlbImage& g) {
+      const Image image = lightmapPageImage(bake, p);
+      g.rgbmRange = rgbmRange(image);
+      g.png = encodeRgbmPng(image, g.rgbmRange);
+    });
   }
   if (bake.directional != DirectionalMode::None) {
     o.directionalMode = directionalModeName(bake.directional);
@@ -539,12 +545,13 @@ void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas,
         GlbImage g;
         g.name = fmt::format("lightmap{}_direction{}", p, k);
         g.clamped = true;
-        g.png = encodeDirectionalPng(bake, p, k);
         o.images.push_back(std::move(g));
+        encode.push_back([&bake, p, k](GlbImage& g) { g.png = encodeDirectionalPng(bake, p, k); });
       }
     }
     o.directionalImages.resize(o.images.size());
   }
+  tbb::parallel_for(size_t(0), encode.size(), [&](size_t i) { encode[i](o.images[firstImage + i]); });
   o.secondUvs.assign(scene.meshes.size(), {});
   o.faceLightmap.assign(scene.meshes.size(), {});
   for (size_t m = 0; m < scene.meshes.size(); ++m) {

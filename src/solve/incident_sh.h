@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <vector>
 
 #include "core/spherical_harmonics.h"
 #include "luxel/surface.h"
@@ -39,5 +41,19 @@ inline bool addFarPatchSh(const Element& el, const Patch& patch, float f, Rgb b,
   c[3] += (kShY1 * w.x) * weight;
   return true;
 }
+
+// Element centroids and normals as separate arrays, for addShooterBlockL1's loops over elements.
+struct ElementFrames {
+  std::vector<float> cx, cy, cz, nx, ny, nz;
+  explicit ElementFrames(const SurfaceSet& surfaces);
+};
+
+// L1 (count 4) for the elements [begin, end) from a block of shooting patches: shooter k of
+// `shooters` has exitance exitance[k] and form factors columns[k][e]. Far pairs (addFarPatchSh's
+// test and formula) are summed in one branch-free pass across elements, which the compiler
+// vectorises; near pairs go to addPatchSh. Adds to out[e * 4 + i].
+void addShooterBlockL1(const SurfaceSet& surfaces, const ElementFrames& frames, std::span<const uint32_t> shooters,
+                       std::span<const float* const> columns, std::span<const Rgb> exitance, size_t begin, size_t end,
+                       Rgb* out);
 
 }  // namespace luxel

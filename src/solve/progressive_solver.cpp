@@ -61,6 +61,7 @@ bool ProgressiveSolver::incidentSh(int count, std::span<Rgb> out) {
   // A block of columns at a time: those the cache lost are computed again, block by block.
   constexpr size_t kBlock = 32;
   std::vector<std::vector<float>> computed(kBlock);
+  const ElementFrames frames(sys_.surfaces);
   for (size_t first = 0; first < shooters.size(); first += kBlock) {
     const size_t n = std::min(kBlock, shooters.size() - first);
     const float* cols[kBlock];
@@ -73,6 +74,15 @@ bool ProgressiveSolver::incidentSh(int count, std::span<Rgb> out) {
       } else {
         cols[k] = cache_[p].data();
       }
+    }
+    if (count == kShL1Coefficients) {
+      Rgb exitance[kBlock];
+      for (size_t k = 0; k < n; ++k) exitance[k] = shot[shooters[first + k]];
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 256), [&](const tbb::blocked_range<size_t>& r) {
+        addShooterBlockL1(sys_.surfaces, frames, std::span(shooters).subspan(first, n), std::span(cols, n),
+                          std::span(exitance, n), r.begin(), r.end(), out.data());
+      });
+      continue;
     }
     const auto& elements = sys_.surfaces.elements;
     const auto& patches = sys_.surfaces.patches;

@@ -146,6 +146,55 @@ void pointToPolygonFormFactors4(const Vec3 p[4], const Vec3 n[4], const Polygon&
   }
 }
 
+int polygonMoments4(const Vec3 p[4], const Vec3 n[4], const Polygon& poly, Vec3 polyNormal, Vec3 vector[4],
+                    float solidAngle[4]) {
+  const Float4 px{p[0].x, p[1].x, p[2].x, p[3].x}, py{p[0].y, p[1].y, p[2].y, p[3].y},
+      pz{p[0].z, p[1].z, p[2].z, p[3].z};
+  const Float4 nx{n[0].x, n[1].x, n[2].x, n[3].x}, ny{n[0].y, n[1].y, n[2].y, n[3].y},
+      nz{n[0].z, n[1].z, n[2].z, n[3].z};
+  Float4 rx[4], ry[4], rz[4], length[4];
+  Mask4 above = Mask4{-1, -1, -1, -1};
+  for (int k = 0; k < poly.count; ++k) {
+    rx[k] = poly.v[k].x - px, ry[k] = poly.v[k].y - py, rz[k] = poly.v[k].z - pz;
+    above &= nx * rx[k] + ny * ry[k] + nz * rz[k] >= 0.0f;
+    length[k] = sqrt4(rx[k] * rx[k] + ry[k] * ry[k] + rz[k] * rz[k]);
+  }
+  const Mask4 facing = (polyNormal.x * rx[0] + polyNormal.y * ry[0] + polyNormal.z * rz[0]) < 0.0f;
+  // Arvo's contour sum, as polygonIrradianceVector.
+  Float4 vx = splat(0.0f), vy = splat(0.0f), vz = splat(0.0f);
+  for (int k = 0; k < poly.count; ++k) {
+    const int j = k + 1 == poly.count ? 0 : k + 1;
+    const Float4 cx = ry[k] * rz[j] - rz[k] * ry[j], cy = rz[k] * rx[j] - rx[k] * rz[j],
+                 cz = rx[k] * ry[j] - ry[k] * rx[j];
+    const Float4 cl = sqrt4(cx * cx + cy * cy + cz * cz);
+    const Mask4 edge = cl > 0.0f;
+    const Float4 w = edge ? atan2Upper(cl, rx[k] * rx[j] + ry[k] * ry[j] + rz[k] * rz[j]) / (edge ? cl : splat(1.0f))
+                          : splat(0.0f);
+    vx += w * cx, vy += w * cy, vz += w * cz;
+  }
+  // Van Oosterom and Strackee's triangles of a fan, as polygonSolidAngle; a convex polygon's
+  // triangles turn one way, so each contributes 2 atan2(|num|, den).
+  Float4 omega = splat(0.0f);
+  for (int k = 1; k + 1 < poly.count; ++k) {
+    const Float4 num = rx[0] * (ry[k] * rz[k + 1] - rz[k] * ry[k + 1]) + ry[0] * (rz[k] * rx[k + 1] - rx[k] * rz[k + 1]) +
+                       rz[0] * (rx[k] * ry[k + 1] - ry[k] * rx[k + 1]);
+    const Float4 den = length[0] * length[k] * length[k + 1] +
+                       (rx[0] * rx[k] + ry[0] * ry[k] + rz[0] * rz[k]) * length[k + 1] +
+                       (rx[0] * rx[k + 1] + ry[0] * ry[k + 1] + rz[0] * rz[k + 1]) * length[k] +
+                       (rx[k] * rx[k + 1] + ry[k] * ry[k + 1] + rz[k] * rz[k + 1]) * length[0];
+    omega += 2.0f * atan2Upper(num < 0.0f ? -num : num, den);
+  }
+  int done = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (!facing[i] || !above[i]) continue;
+    const Vec3 v(vx[i], vy[i], vz[i]);
+    vector[i] = (glm::dot(v, n[i]) < 0.0f ? -v : v) * kInv2Pi;
+    solidAngle[i] = omega[i];
+    done |= 1 << i;
+  }
+  return done;
+}
+
 float pointToPolygonFormFactor(Vec3 p, Vec3 n, const Polygon& poly, Sides receiverSides,
                                Sides sourceSides) {
   return pointToPolygonFormFactor(p, n, poly, poly.normal(), receiverSides, sourceSides);

@@ -38,6 +38,14 @@ void pointToPolygonFormFactors4(const Vec3 p[4], const Vec3 n[4], const Polygon&
 // "The Irradiance Jacobian for Partially Occluded Polyhedral Sources", SIGGRAPH 1994).
 Vec3 polygonIrradianceVector(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNormal);
 
+// polygonIrradianceVector and polygonSolidAngle at four points at once, for lanes where the
+// polygon lies wholly in front of the point's plane (n[i]) and of its own (polyNormal): the
+// numbers of those functions to float rounding (atan2 by a polynomial within 2e-8 rad). Returns
+// a bit per lane that was computed; the others (the plane cuts the polygon, a point behind it)
+// are left for the one-point functions.
+int polygonMoments4(const Vec3 p[4], const Vec3 n[4], const Polygon& poly, Vec3 polyNormal, Vec3 vector[4],
+                    float solidAngle[4]);
+
 // Area-to-area form factor F(receiver -> source), the point form factor integrated over the
 // receiver with a regular k x k (quads) or k^2 (triangles) midpoint rule.
 double polygonToPolygonFormFactor(const Polygon& receiver, const Polygon& source, int k,

@@ -140,5 +140,40 @@ TEST(FormFactor, SolidAngleOfCubeFaceFromCentreIsFourPiOverSix) {
   EXPECT_NEAR(polygonSolidAngle(Vec3(0), face), 4 * kPi / 6, 1e-5);
 }
 
+// The four-lane moments agree with the one-point functions lane by lane, on random points seeing
+// random quads and triangles; lanes the plane cuts, or behind the source, are left undone.
+TEST(FormFactor, FourLaneMomentsMatchTheOnePointFunctions) {
+  uint32_t state = 7u;
+  auto uniform = [&] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1u << 24); };
+  auto point = [&] { return Vec3(uniform(), uniform(), uniform()) * 2.0f - 1.0f; };
+  int computed = 0, left = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const Vec3 a = point(), b = point(), c = point();
+    // A planar convex quad: a parallelogram on a, b, c; or their triangle.
+    const Polygon poly = trial % 2 ? Polygon{{a, b, c, c}, 3} : Polygon{{a, b, b + c - a, c}, 4};
+    const Vec3 polyNormal = poly.normal();
+    Vec3 p[4], n[4], v[4];
+    float omega[4];
+    for (int i = 0; i < 4; ++i) p[i] = point() * 2.0f, n[i] = glm::normalize(point());
+    const int done = polygonMoments4(p, n, poly, polyNormal, v, omega);
+    for (int i = 0; i < 4; ++i) {
+      bool above = glm::dot(polyNormal, p[i] - poly.v[0]) > 0.0f;
+      for (int k = 0; k < poly.count; ++k) above &= glm::dot(n[i], poly.v[k] - p[i]) >= 0.0f;
+      ASSERT_EQ(bool(done >> i & 1), above) << "trial " << trial << " lane " << i;
+      if (!above) {
+        ++left;
+        continue;
+      }
+      ++computed;
+      const Vec3 exact = polygonIrradianceVector(p[i], n[i], poly, polyNormal);
+      const float exactOmega = polygonSolidAngle(p[i], poly);
+      EXPECT_LT(glm::length(v[i] - exact), 1e-5f * std::max(1.0f, glm::length(exact))) << trial;
+      EXPECT_NEAR(omega[i], exactOmega, 1e-5f * std::max(1.0f, exactOmega)) << trial;
+    }
+  }
+  EXPECT_GT(computed, 200);
+  EXPECT_GT(left, 200);
+}
+
 }  // namespace
 }  // namespace luxel
