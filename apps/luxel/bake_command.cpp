@@ -63,8 +63,9 @@ void checkBakeArgs(const BakeArgs& a) {
   if (!a.vertexColorsFor.empty() && !a.lightmaps)
     throw Error("--vertex-colors-for needs --lightmaps (the other meshes get lightmaps); --vertex-colors alone "
                 "colours every mesh");
-  if (parseDirectionalMode(a.directional) != DirectionalMode::None && !a.lightmaps)
-    throw Error("--directional bakes directional lightmaps: it needs --lightmaps");
+  if (parseDirectionalMode(a.directional) != DirectionalMode::None && !a.lightmaps && !a.vertexColors)
+    throw Error("--directional records where the light comes from per lightmap texel or per vertex: it needs "
+                "--lightmaps or --vertex-colors");
   if (a.transferBands > 0 && !a.lightmaps) throw Error("--transfer bakes transfer lightmaps: it needs --lightmaps");
   if (a.transferBands > 0 && (parseDirectionalMode(a.directional) != DirectionalMode::None || !a.vertexColorsFor.empty()))
     throw Error("--transfer excludes --directional and --vertex-colors-for");
@@ -193,9 +194,17 @@ int runBake(const BakeArgs& a) {
 
   GlbOptions go;
   go.flippedFaces = flippedFaceFlags(solved, surfaces);
+  double secondsDirectional = 0.0;
   if (a.vertexColors) {  // on the element tessellation: a one-quad floor has no vertex under the light
     go.elements = &surfaces;
     go.elementColors = elementRadiance(surfaces, solution);
+    const DirectionalMode mode = parseDirectionalMode(a.directional);
+    if (mode != DirectionalMode::None) {
+      const auto shStart = std::chrono::steady_clock::now();
+      go.elementDirectionalMode = directionalModeName(mode);
+      go.elementDirections = elementDirections(surfaces, mode, session.incidentSh(directionalCoefficients(mode)));
+      secondsDirectional = std::chrono::duration<double>(std::chrono::steady_clock::now() - shStart).count();
+    }
   }
   writeGlb(solved, out, go);
   if (a.html) writeHtmlPage(out, htmlPagePath(out), {solved.name, out.filename().string(), "vertex colours (radiance)"});
@@ -209,8 +218,13 @@ int runBake(const BakeArgs& a) {
                              solved.name, s.elements, s.patches, s.method, s.shots, s.iterations,
                              100.0 * s.unshotFraction);
     if (a.vertexColors)
-      std::cout << fmt::format("luxel: bake {} elements with vertex colours (radiance); total {:.3f} s\n",
-                               surfaces.elements.size(), total);
+      std::cout << fmt::format("luxel: bake {} elements with vertex colours (radiance){}; total {:.3f} s\n",
+                               surfaces.elements.size(),
+                               go.elementDirectionalMode.empty()
+                                   ? std::string()
+                                   : fmt::format(" and directions ({}, {:.3f} s)", go.elementDirectionalMode,
+                                                 secondsDirectional),
+                               total);
     else
       std::cout << fmt::format("luxel: bake {} triangles; total {:.3f} s\n", solved.triangleCount(), total);
     std::cout << "luxel: wrote " << a.output << "\n";
@@ -229,8 +243,9 @@ void addLightmapOptions(CLI::App& bake, BakeArgs& a) {
                   "Lightmap page size in texels (default: each bake's pages sized to their content, up to 1024)")
       ->check(CLI::Range(16, 16384));
   bake.add_option("--directional", a.directional,
-                  "With --lightmaps: none, sh-l1 (L1 spherical harmonics), sh-l2 or dominant (one direction): where "
-                  "each texel's light comes from, for normal maps (the LUXEL_lightmap_directional extension)")
+                  "With --lightmaps or --vertex-colors: none, sh-l1 (L1 spherical harmonics), sh-l2 or dominant (one "
+                  "direction): where each texel's or vertex's light comes from, for normal maps (the "
+                  "LUXEL_lightmap_directional or LUXEL_vertex_directional extension)")
       ->check(CLI::IsMember({"none", "sh-l1", "sh-l2", "dominant"}))
       ->capture_default_str();
   bake.add_option("--transfer", a.transferBands,

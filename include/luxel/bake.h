@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "luxel/directional_lightmap.h"
 #include "luxel/lightmap.h"
 #include "luxel/scene.h"
 #include "luxel/solve.h"
@@ -31,6 +32,15 @@ FaceCornerValues faceCornerValues(const Scene& scene, const SurfaceSet& surfaces
 FaceCornerValues bakedRadiance(const Scene& scene, const SurfaceSet& surfaces, const Solution& solution);
 // The same at every element corner (elementCornerValues' layout, 4 per element).
 std::vector<Rgb> elementRadiance(const SurfaceSet& surfaces, const Solution& solution);
+
+// Directions per vertex (issue 17): the values of the direction textures of a directional
+// lightmap (directional_lightmap.h's encoding, before 8-bit quantising) at every element corner:
+// directionalTextureCount(mode) lists, 4 per element in elementCornerValues' layout. `sh` holds
+// directionalCoefficients(mode) coefficients per element (Session::incidentSh); each coefficient is
+// carried to the corners as the colours are (elementCornerValues), and L2 windowed at each corner
+// so that no normal reads negative light. Throws Error when the sizes do not match.
+std::vector<std::vector<Rgb>> elementDirections(const SurfaceSet& surfaces, DirectionalMode mode,
+                                                const std::vector<Rgb>& sh);
 
 // An image embedded in the glb as PNG (e.g. a lightmap page): encoded bytes.
 struct GlbImage {
@@ -59,6 +69,12 @@ struct GlbOptions {
   // scaled as above. Excludes vertexColors and secondUvs.
   const SurfaceSet* elements = nullptr;
   std::vector<Rgb> elementColors;
+  // With `elements`: directions per vertex, elementDirections' lists for `elementDirectionalMode`
+  // ("" for none), written as float VEC3 attributes _LUXEL_DIRECTION0, 1, ... that each
+  // primitive's LUXEL_vertex_directional extension names (docs/baking.md,
+  // docs/schema/LUXEL_vertex_directional.schema.json), in extensionsUsed, not required.
+  std::string elementDirectionalMode;
+  std::vector<std::vector<Rgb>> elementDirections;
   // TEXCOORD_1 (the lightmap UV set): empty for none, else per mesh, per face corner
   // ([mesh][face * 4 + corner]; empty for a mesh without), v up as in Mesh::uvs (written
   // flipped, as glTF wants).

@@ -75,6 +75,11 @@ class Session {
   // Error naming a light that does not exist.
   std::vector<Rgb> lightIrradiance(std::span<const uint32_t> lights);
 
+  // Where each element's light comes from: count (4 or 9) real SH coefficients per channel of the
+  // incident radiance, per element (docs/baking.md, "Directional lightmaps"; what a directional
+  // lightmap bake records per texel). Throws Error for another count.
+  std::vector<Rgb> incidentSh(int count);
+
   // The camera a render of this session's scene uses: the one called `name` (Error listing the
   // scene's cameras when there is none), else the one called "default", else the first, else one
   // framing the scene's bounding box from +z with `fovY` degrees (45 when 0).

@@ -180,6 +180,17 @@ void checkOptions(const Scene& scene, const GlbOptions& o) {
     for (const SurfaceFace& f : o.elements->faces)
       if (f.mesh >= scene.meshes.size()) throw Error("glb: the elements come from another scene");
   }
+  if (!o.elementDirections.empty() || !o.elementDirectionalMode.empty()) {
+    if (!o.elements) throw Error("glb: directions per vertex need the element tessellation");
+    const int textures = directionalTextureCount(parseDirectionalMode(o.elementDirectionalMode));
+    if (textures == 0 || int(o.elementDirections.size()) != textures)
+      throw Error(fmt::format("glb: {} direction lists for mode '{}', expected {}", o.elementDirections.size(),
+                              o.elementDirectionalMode, textures));
+    for (const auto& list : o.elementDirections)
+      if (list.size() != o.elements->elements.size() * 4)
+        throw Error(fmt::format("glb: {} element directions for {} elements, expected 4 each", list.size(),
+                                o.elements->elements.size()));
+  }
 }
 
 void addMaterials(const Scene& scene, tinygltf::Model& model) {
@@ -263,10 +274,15 @@ struct MeshBuilder {
   std::vector<std::array<float, 3>> positions, normals, colors;
   std::vector<std::array<float, 2>> uv0, uv1;
   std::vector<std::array<float, 4>> tangents;
+  // Per direction attribute (_LUXEL_DIRECTIONk), per vertex. Not in the key: element corners with
+  // the same position, normal and colour come from one smooth corner value (elementCornerValues),
+  // whose directions are the same too.
+  std::vector<std::vector<std::array<float, 3>>> directions;
   std::vector<uint32_t> indices;
   std::unordered_map<std::array<float, kVertexKey>, uint32_t, VertexKeyHash> seen;
 
-  uint32_t vertex(Vec3 p, Vec3 n, Vec2 t0, Vec2 t1, Rgb c, glm::vec4 tangent = glm::vec4(0.0f)) {
+  uint32_t vertex(Vec3 p, Vec3 n, Vec2 t0, Vec2 t1, Rgb c, glm::vec4 tangent = glm::vec4(0.0f),
+                  const Rgb* direction = nullptr) {
     // glTF's v runs down the image; luxel's (like OpenGL's) runs up.
     const std::array<float, kVertexKey> key{p.x, p.y, p.z, n.x, n.y, n.z, t0.x, 1.0f - t0.y, t1.x, 1.0f - t1.y,
                                             c.r, c.g, c.b, tangent.x, tangent.y, tangent.z, tangent.w};
@@ -278,6 +294,7 @@ struct MeshBuilder {
       if (hasUv1) uv1.push_back({key[8], key[9]});
       if (hasColor) colors.push_back({c.r, c.g, c.b});
       if (hasTangent) tangents.push_back({tangent.x, tangent.y, tangent.z, tangent.w});
+      for (size_t k = 0; k < directions.size(); ++k) directions[k].push_back({direction[k].r, direction[k].g, direction[k].b});
     }
     return it->second;
   }
@@ -314,9 +331,11 @@ ElementIndex indexElements(const Scene& scene, const SurfaceSet& set) {
 template <class Keep>
 void addFaces(const Mesh& mesh, size_t mi, const GlbOptions& o, float colorScale, MeshBuilder& b, Keep keep);
 tinygltf::Primitive makePrimitive(tinygltf::Model& model, MeshBuilder& b, int material);
+void addVertexDirections(tinygltf::Model& model, const MeshBuilder& b, const std::string& mode, tinygltf::Primitive& prim);
 
 // Lightmap pages: image index -> texture index and RGBM range; (material, page) -> material copy.
 constexpr const char* kDirectionalExtension = "LUXEL_lightmap_directional";
+constexpr const char* kVertexDirectionalExtension = "LUXEL_vertex_directional";
 constexpr const char* kTransferExtension = "LUXEL_lightmap_transfer";
 
 struct LightmapTextures {
@@ -403,15 +422,20 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
 
   if (o.elements) {
     const SurfaceSet& set = *o.elements;
+    b.directions.resize(o.elementDirections.size());
     for (uint32_t fi : index.facesOfMesh[mi]) {
       const SurfaceFace& f = set.faces[fi];
       const glm::vec4 tangent = b.hasTangent ? gltfTangent(mesh, f.meshFace, f.normal) : glm::vec4(0.0f);
       for (uint32_t e : index.elementsOfFace[fi]) {
         const Element& el = set.elements[e];
         uint32_t corner[4];
-        for (int c = 0; c < el.polygon.count; ++c)
+        for (int c = 0; c < el.polygon.count; ++c) {
+          Rgb direction[kMaxDirectionalCoefficients];
+          for (size_t k = 0; k < o.elementDirections.size(); ++k)
+            direction[k] = o.elementDirections[k][size_t(e) * 4 + size_t(c)];
           corner[c] = b.vertex(el.polygon.v[size_t(c)], f.normal, b.hasUv ? f.uv(el.param[size_t(c)]) : Vec2(0.0f),
-                               Vec2(0.0f), o.elementColors[size_t(e) * 4 + size_t(c)] / colorScale, tangent);
+                               Vec2(0.0f), o.elementColors[size_t(e) * 4 + size_t(c)] / colorScale, tangent, direction);
+        }
         b.polygon(corner, el.polygon.count, false);
       }
     }
@@ -431,7 +455,10 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
   } else {
     addFaces(mesh, mi, o, colorScale, b, [](size_t) { return true; });
   }
-  if (!b.indices.empty()) gm.primitives.push_back(makePrimitive(model, b, int(mesh.material)));
+  if (!b.indices.empty()) {
+    gm.primitives.push_back(makePrimitive(model, b, int(mesh.material)));
+    if (!b.directions.empty()) addVertexDirections(model, b, o.elementDirectionalMode, gm.primitives.back());
+  }
   if (gm.primitives.empty()) return;  // a mesh without faces: glTF meshes need a primitive
   model.meshes.push_back(gm);
   tinygltf::Node node;
@@ -466,6 +493,21 @@ void addFaces(const Mesh& mesh, size_t mi, const GlbOptions& o, float colorScale
       b.polygon(corner, n, flipped);
     }
   }
+}
+
+// The per-vertex directions as attributes _LUXEL_DIRECTIONk, named by the primitive's
+// LUXEL_vertex_directional extension (docs/schema/LUXEL_vertex_directional.schema.json).
+void addVertexDirections(tinygltf::Model& model, const MeshBuilder& b, const std::string& mode, tinygltf::Primitive& prim) {
+  tinygltf::Value::Array names;
+  for (size_t k = 0; k < b.directions.size(); ++k) {
+    const std::string name = fmt::format("_LUXEL_DIRECTION{}", k);
+    prim.attributes[name] = addFloatAccessor<3>(model, b.directions[k], TINYGLTF_TYPE_VEC3, false);
+    names.push_back(tinygltf::Value(name));
+  }
+  tinygltf::Value::Object ext;
+  ext["mode"] = tinygltf::Value(mode);
+  ext["attributes"] = tinygltf::Value(names);
+  prim.extensions[kVertexDirectionalExtension] = tinygltf::Value(ext);
 }
 
 tinygltf::Primitive makePrimitive(tinygltf::Model& model, MeshBuilder& b, int material) {
@@ -549,6 +591,7 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
   lightmaps.options = &options;
   if (options.transferBands > 0) model.extensionsUsed.push_back(kTransferExtension);
   if (!options.directionalMode.empty()) model.extensionsUsed.push_back(kDirectionalExtension);
+  if (!options.elementDirectionalMode.empty()) model.extensionsUsed.push_back(kVertexDirectionalExtension);
   const float colorScale = vertexColorScale(options);
   const ElementIndex index = options.elements ? indexElements(scene, *options.elements) : ElementIndex{};
   for (size_t m = 0; m < scene.meshes.size(); ++m) addMesh(scene, m, options, colorScale, index, lightmaps, model);

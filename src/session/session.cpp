@@ -7,6 +7,7 @@
 
 #include "gl/gl_context.h"
 #include "luxel/error.h"
+#include "core/spherical_harmonics.h"
 #include "session/solver_host.h"
 
 namespace luxel {
@@ -97,6 +98,12 @@ void Session::setMaterial(uint32_t material, const Rgb& reflectance, const Rgb& 
   }
   state_->surfaces.refreshMaterials(scene);
   state_->host->sourcesChanged();
+}
+
+std::vector<Rgb> Session::incidentSh(int count) {
+  if (count != kShL1Coefficients && count != kShCoefficients)
+    throw Error(fmt::format("incident SH: {} coefficients per channel; 4 (L1) or 9 (L2) expected", count));
+  return state_->host->incidentSh(count);
 }
 
 Camera Session::camera(const std::string& name, float fovY) const { return chooseCamera(state_->scene, name, fovY); }
