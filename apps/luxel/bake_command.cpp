@@ -158,10 +158,11 @@ int runBake(const BakeArgs& a) {
                                bake.surfaces.surfaces.patches.size(), bake.invalidTexels, bake.dilatedTexels,
                                bake.seamMaxBefore, bake.seamMaxAfter, bake.seamEdges, bake.secondsSeams, total);
       if (bake.directional != DirectionalMode::None)
-        std::cout << fmt::format("luxel: directions ({}) — {:.3f} s after a solve of {:.3f} s; filling, stitching "
-                                 "and dilating every plane {:.3f} s\n",
-                                 directionalModeName(bake.directional), bake.secondsDirectional, bake.secondsSolve,
-                                 bake.secondsPost);
+        std::cout << fmt::format("luxel: directions ({}, {}) — {:.3f} s after a solve of {:.3f} s; filling, "
+                                 "stitching and dilating every plane {:.3f} s\n",
+                                 directionalModeName(bake.directional),
+                                 bake.directionsFrom == "solver" ? "from the solver" : "gathered by rays",
+                                 bake.secondsDirectional, bake.secondsSolve, bake.secondsPost);
       if (!a.vertexColorsFor.empty()) {  // the names once each, with how many meshes carry them
         std::vector<std::pair<std::string, size_t>> names;
         size_t count = 0;
@@ -186,6 +187,8 @@ int runBake(const BakeArgs& a) {
     return 0;
   }
   Session session(std::move(scene), discretiseOptions(a.solve), {so});
+  const DirectionalMode vertexDirections = a.vertexColors ? parseDirectionalMode(a.directional) : DirectionalMode::None;
+  if (vertexDirections != DirectionalMode::None) session.recordIncidentSh(directionalCoefficients(vertexDirections));
   const Solution solution = session.solve(bar.callback());
   const SurfaceSet& surfaces = session.surfaces();
   const Scene& solved = session.scene();
@@ -198,11 +201,11 @@ int runBake(const BakeArgs& a) {
   if (a.vertexColors) {  // on the element tessellation: a one-quad floor has no vertex under the light
     go.elements = &surfaces;
     go.elementColors = elementRadiance(surfaces, solution);
-    const DirectionalMode mode = parseDirectionalMode(a.directional);
-    if (mode != DirectionalMode::None) {
+    if (vertexDirections != DirectionalMode::None) {
       const auto shStart = std::chrono::steady_clock::now();
-      go.elementDirectionalMode = directionalModeName(mode);
-      go.elementDirections = elementDirections(surfaces, mode, session.incidentSh(directionalCoefficients(mode)));
+      go.elementDirectionalMode = directionalModeName(vertexDirections);
+      go.elementDirections =
+          elementDirections(surfaces, vertexDirections, session.incidentSh(directionalCoefficients(vertexDirections)));
       secondsDirectional = std::chrono::duration<double>(std::chrono::steady_clock::now() - shStart).count();
     }
   }

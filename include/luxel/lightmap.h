@@ -126,6 +126,10 @@ struct LightmapBake {
   double secondsSurfaces = 0, secondsValidity = 0, secondsSolve = 0, secondsPost = 0;
   double secondsSeams = 0;     // the part of secondsPost spent finding and stitching seams
   double secondsDirectional = 0;  // the directions of the light, after the solve
+  // How the interreflected light's directions were found: "solver" (each patch's shot along its
+  // exact directions, Solver::incidentSh) or "gathered" (rays from every texel, for solvers that
+  // keep no record); empty for DirectionalMode::None.
+  std::string directionsFrom;
   // Directional bakes: the incident radiance's SH, directionalCoefficients(directional) planes
   // laid out as `pages` ([coefficient][page][texel]), filled, stitched and dilated as the pages
   // are (and windowed for ShL2); empty for DirectionalMode::None.

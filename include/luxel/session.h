@@ -79,6 +79,9 @@ class Session {
   // incident radiance, per element (docs/baking.md, "Directional lightmaps"; what a directional
   // lightmap bake records per texel). Throws Error for another count.
   std::vector<Rgb> incidentSh(int count);
+  // Before solve(), when incidentSh(count) will be asked: the GPU's solvers then record directions
+  // as they shoot (exact per shot) instead of gathering them by rays afterwards.
+  void recordIncidentSh(int count);
 
   // The camera a render of this session's scene uses: the one called `name` (Error listing the
   // scene's cameras when there is none), else the one called "default", else the first, else one

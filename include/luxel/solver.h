@@ -123,6 +123,9 @@ class Solver {
     (void)count, (void)out;
     return false;
   }
+  // Asked before the first step, by owners that will want incidentSh(count): a solver that can
+  // only record directions as it shoots (the GPU's) starts doing so. Others ignore it.
+  virtual void recordIncidentSh(int count) { (void)count; }
 
   // Checkpoints (luxel/checkpoint.h). A solver that can be checkpointed says so, writes
   // everything step() needs to go on from where it is, and reads it back into a solver made

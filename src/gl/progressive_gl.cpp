@@ -16,6 +16,7 @@
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
 #include "gl/layered_hemicubes.h"
+#include "core/spherical_harmonics.h"
 #include "core/stopwatch.h"
 #include "solve/step_control.h"
 #include "luxel/error.h"
@@ -176,6 +177,65 @@ uniform uint elementCount, samples;
 uniform int resolution, visibility;  // visibility 0: item ids, 1: distances
 uniform bool redistributing;         // shots that move light already shot: no shooter's unshot is spent
 uniform float nearPlane, farPlane;
+// Directional bakes (Solver::recordIncidentSh): L1 SH of what each shot brings, 4 per element.
+layout(std430, binding = ELEMENT_SH_BINDING) buffer ElementSh { vec4 elementSh[]; };
+uniform bool recordSh;
+
+// Bands 0 and 1 of the light a patch of exitance b brings point x (normal n) through the
+// visibility-weighted factor F: solve/incident_sh.cpp's addPatchSh for L1, so that the GPU's
+// directions are the CPU's. Far patches (under a fifth of their distance across) as one
+// direction; near ones by the polygon's irradiance vector (Arvo 1994) and solid angle (Van
+// Oosterom and Strackee 1983) at x, scaled by the visible share F / (unoccluded factor).
+void addPatchL1(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, inout vec3 c[4]) {
+  const int count = int(P.corners[0].w);
+  vec3 middle = vec3(0.0);  // the corners' mean
+  for (int i = 0; i < count; ++i) middle += P.corners[i].xyz;
+  middle /= float(count);
+  const vec3 toPatch = middle - x;
+  const float r2 = dot(toPatch, toPatch);
+  vec3 v = vec3(0.0);
+  if (!(P.normalArea.w < 0.04 * r2) && dot(P.normalArea.xyz, P.corners[0].xyz - x) < 0.0) {
+    // Arvo's contour sum over the polygon clipped to x's upper half-space.
+    float d[4];
+    bool above = true;
+    for (int i = 0; i < count; ++i) {
+      d[i] = dot(n, P.corners[i].xyz - x);
+      above = above && d[i] >= 0.0;
+    }
+    vec3 r[5];
+    int m = 0;
+    for (int i = 0; i < count; ++i) {
+      int j = i + 1 == count ? 0 : i + 1;
+      if (above || d[i] > 0.0) r[m++] = P.corners[i].xyz - x;
+      if (!above && (d[i] > 0.0) != (d[j] > 0.0)) r[m++] = mix(P.corners[i].xyz, P.corners[j].xyz, d[i] / (d[i] - d[j])) - x;
+    }
+    for (int i = 0; m >= 3 && i < m; ++i) {
+      const vec3 e = cross(r[i], r[i + 1 == m ? 0 : i + 1]);
+      const float el = length(e);
+      if (el > 0.0) v += atan(el, dot(r[i], r[i + 1 == m ? 0 : i + 1])) / el * e;
+    }
+    v *= (dot(v, n) < 0.0 ? -1.0 : 1.0) * 0.15915494309189535;
+  }
+  const float unoccluded = dot(v, n), len = length(v);
+  if (!(unoccluded > 1e-7) || !(len > 0.0)) {  // far, or the centroid sees none of it: one direction
+    if (!(r2 > 0.0)) return;
+    const vec3 w = toPatch * inversesqrt(r2);
+    const vec3 weight = F / max(dot(n, w), 0.05) * b;
+    c[0] += 0.282095 * weight;
+    c[1] += 0.488603 * w.y * weight, c[2] += 0.488603 * w.z * weight, c[3] += 0.488603 * w.x * weight;
+    return;
+  }
+  float omega = 0.0;  // the whole polygon's solid angle, a fan of triangles
+  for (int i = 1; i + 1 < count; ++i) {
+    const vec3 a = P.corners[0].xyz - x, q = P.corners[i].xyz - x, t = P.corners[i + 1].xyz - x;
+    const float la = length(a), lq = length(q), lt = length(t);
+    omega += 2.0 * atan(abs(dot(a, cross(q, t))), la * lq * lt + dot(a, q) * lt + dot(a, t) * lq + dot(q, t) * la);
+  }
+  omega = max(omega, 3.14159265 * len);
+  const float visible = F / unoccluded;
+  c[0] += 0.282095 * (visible * omega / 3.14159265) * b;
+  c[1] += 0.488603 * v.y * visible * b, c[2] += 0.488603 * v.z * visible * b, c[3] += 0.488603 * v.x * visible * b;
+}
 
 bool isNeighbour(uint face, uint item) {
   for (uint i = faceNeighbours[face]; i < faceNeighbours[face + 1u]; ++i)
@@ -234,6 +294,9 @@ void main() {
   vec3 x[4];
   for (int q = 0; q < 4; ++q) x[q] = polygonPoint(el.corners, corners, 0.25 + 0.5 * float(q & 1), 0.25 + 0.5 * float(q >> 1));
   vec3 dh = vec3(0.0), dd = vec3(0.0);
+  vec3 sh[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+  vec3 centre = vec3(0.0);  // the corners' mean: the centroid of a triangle or parallelogram
+  for (int i = 0; i < corners; ++i) centre += el.corners[i].xyz / float(corners);
   bool shooter = false;
   for (uint k = 0u; k < state.chosen; ++k) {
     GpuShooter s = shooters[k * samples];
@@ -264,7 +327,10 @@ void main() {
     F *= 0.25;
     dh += F * s.unshot.rgb;
     dd += F * s.emission.rgb;
+    if (recordSh && F != 0.0) addPatchL1(centre, n, P, F, s.unshot.rgb, sh);
   }
+  if (recordSh && dh != vec3(0.0))
+    for (int i = 0; i < 4; ++i) elementSh[4u * e + uint(i)].rgb += sh[i];
   if (redistributing) shooter = false;
   if (!shooter && dh == vec3(0.0) && dd == vec3(0.0)) return;
   GpuElementState st = states[e];
@@ -361,9 +427,10 @@ struct Buffers {
   GLuint elements = 0, patches = 0, patchElements = 0, patchStates = 0, shooters = 0, state = 0, elementStates = 0;
   GLuint faceNeighbours = 0;
   GLuint amounts = 0, list = 0, rebase = 0;  // redistribution only
+  GLuint elementSh = 0;                      // recordIncidentSh only
   ~Buffers() {
     const GLuint all[] = {elements,      patches,        patchElements, patchStates, shooters, state,
-                          elementStates, faceNeighbours, amounts,       list,        rebase};
+                          elementStates, faceNeighbours, amounts,       list,        rebase,   elementSh};
     glDeleteBuffers(GLsizei(std::size(all)), all);
   }
   void bind() const {
@@ -375,6 +442,7 @@ struct Buffers {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSolverStateBinding, state);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kFaceNeighbourBinding, faceNeighbours);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, elementStates);
+    if (elementSh) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementShBinding, elementSh);
   }
 };
 
@@ -471,6 +539,7 @@ class GlProgressiveSolver final : public Solver {
     reconstructSamples_ = uniform(*reconstruct_, "samples");
     reconstructRedistributing_ = uniform(*reconstruct_, "redistributing");
     glUniform1i(reconstructRedistributing_, 0);
+    glUniform1i(uniform(*reconstruct_, "recordSh"), 0);
     if (o.followChanges) {
       amounts_ = std::make_unique<ShaderProgram>("redistribution amounts", preamble + kAmountsCompute);
       redistribute_ = std::make_unique<ShaderProgram>("redistribution shooters", preamble + kRedistributeCompute);
@@ -551,8 +620,44 @@ class GlProgressiveSolver final : public Solver {
     return sol;
   }
 
+  // L1 only, and only from the first shot on: each shot adds what it brings along its exact
+  // directions (addPatchL1 above), so the sum is the CPU's pass over what every patch has shot.
+  void recordIncidentSh(int count) override {
+    if (count != kShL1Coefficients || buf_.elementSh || shots_ > 0 || emittersShot_) return;
+    const std::vector<glm::vec4> zero(kShL1Coefficients * sys_.elementCount(), glm::vec4(0.0f));
+    buf_.elementSh = storageBuffer(zero.data(), zero.size() * sizeof(glm::vec4));
+    shRecorded_ = true;
+    reconstruct_->use();
+    glUniform1i(glGetUniformLocation(reconstruct_->id(), "recordSh"), 1);
+    Context::check("recording directions on the GPU");
+  }
+
+  bool incidentSh(int count, std::span<Rgb> out) override {
+    if (count != kShL1Coefficients || !shRecorded_) return false;  // the owner gathers them
+    const size_t ne = sys_.elementCount();
+    std::vector<glm::vec4> sh(kShL1Coefficients * ne);
+    glGetNamedBufferSubData(buf_.elementSh, 0, GLsizeiptr(sh.size() * sizeof(glm::vec4)), sh.data());
+    Context::check("reading back the GPU's directions");
+    for (size_t i = 0; i < sh.size(); ++i) out[i] = Rgb(sh[i]);
+    // The ambient term, where it is on, arrives evenly over the hemisphere (as on the CPU).
+    if (o_.ambient) {
+      std::vector<GpuElementState> states(ne);
+      glGetNamedBufferSubData(buf_.elementStates, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
+      std::vector<Rgb> unshot(ne), radiosity(ne), irradiance(ne), before(ne);
+      for (size_t e = 0; e < ne; ++e)
+        unshot[e] = Rgb(states[e].unshot), radiosity[e] = Rgb(states[e].radiosity),
+        irradiance[e] = before[e] = Rgb(states[e].irradiance);
+      addAmbientTerm(sys_, unshot, radiosity, irradiance);
+      for (size_t e = 0; e < ne; ++e)
+        shAddUniformHemisphere(out.data() + e * kShL1Coefficients, kShL1Coefficients, sys_.surfaces.elements[e].normal,
+                               irradiance[e] - before[e]);
+    }
+    return true;
+  }
+
   // The element and patch states and the solver's counters, read back from the GPU; the
-  // hemicubes and the shooters' buffer are scratch, drawn anew each pass.
+  // hemicubes and the shooters' buffer are scratch, drawn anew each pass. Recorded directions are
+  // not kept: a solve resumed from a checkpoint gathers them instead.
   bool checkpoints() const override { return true; }
   void saveState(StateWriter& out) const override {
     for (GLuint b : {buf_.elementStates, buf_.patchStates, buf_.state}) saveBuffer(b, out);
@@ -561,6 +666,7 @@ class GlProgressiveSolver final : public Solver {
   }
   void restoreState(StateReader& in) override {
     for (GLuint b : {buf_.elementStates, buf_.patchStates, buf_.state}) restoreBuffer(b, in);
+    shRecorded_ = false;
     in.value(emittersShot_), in.value(emitterShots_), in.value(shots_), in.value(unshotFraction_);
     in.value(seconds_), in.value(done_);
   }
@@ -792,6 +898,7 @@ class GlProgressiveSolver final : public Solver {
   int samples_ = 0, batch_ = 0, emitterSide_ = 0, emitterSamples_ = 0, emitterBatch_ = 0;
   size_t emitters_ = 0;
   bool emittersApart_ = false, emittersShot_ = false, done_ = false;
+  bool shRecorded_ = false;  // every shot so far added its directions to buf_.elementSh
   double sourcePower_ = 0.0, unshotFraction_ = 1.0;
   ProgressThrottle throttle_;
   double setupSeconds_ = 0.0, seconds_ = 0.0;

@@ -45,6 +45,9 @@ constexpr int kFaceNeighbourBinding = 8;
 // list of patches a redistribution pass shoots again.
 constexpr int kRedistributionAmountBinding = 9;
 constexpr int kRedistributionListBinding = 10;
+// vec4[4 per element]: the L1 SH of what the shots brought each element (rgb), when a directional
+// bake asked for it (Solver::recordIncidentSh).
+constexpr int kElementShBinding = 11;
 constexpr int kDistanceTextureUnit = 1;    // R32F distances (or RGBA32F radiosity) of layered hemicubes
 constexpr int kGatherGroup = 256;          // one work group integrates one element's hemicubes
 // GPU gathering (gather_gl.cpp) reuses the numbers its passes leave free: deltas, per-element
@@ -123,6 +126,7 @@ inline std::string glslPreamble() {
       "#define FACE_NEIGHBOUR_BINDING {}\n"
       "#define REDISTRIBUTION_AMOUNT_BINDING {}\n"
       "#define REDISTRIBUTION_LIST_BINDING {}\n"
+      "#define ELEMENT_SH_BINDING {}\n"
       "#define GATHER_GROUP {}\n"
       "#define GATHER_DELTA_BINDING {}\n"
       "#define GATHER_ELEMENT_BINDING {}\n"
@@ -140,7 +144,7 @@ inline std::string glslPreamble() {
       "struct GpuGatherElement {{ vec4 emissionArea; vec4 reflectance; vec4 analytic; }};\n",
       kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup,
       kElementBinding, kPatchBinding, kPatchElementBinding, kPatchStateBinding, kShooterBinding,
-      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kGatherGroup, kGatherDeltaBinding,
+      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kElementShBinding, kGatherGroup, kGatherDeltaBinding,
       kGatherElementBinding, kGatherResidualBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
       kReconstructGroup, kMaxShootersPerPass);
 }

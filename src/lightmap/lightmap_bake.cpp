@@ -306,13 +306,16 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
   std::vector<Rgb> incident;  // per element, shCount coefficients
   {
     SolverHost host(scene, set, options.solve);
+    if (shCount > 0) host.recordIncidentSh(shCount);
     while (host.step({}, progress)) {
     }
     bake.solution = host.solution();
     bake.secondsSolve = since(t0);
     if (shCount > 0) {
       const auto shStart = Clock::now();
-      incident = host.incidentSh(shCount);
+      bool gathered = false;
+      incident = host.incidentSh(shCount, &gathered);
+      bake.directionsFrom = gathered ? "gathered" : "solver";
       bake.secondsDirectional = since(shStart);
     }
   }

@@ -106,6 +106,12 @@ std::vector<Rgb> Session::incidentSh(int count) {
   return state_->host->incidentSh(count);
 }
 
+void Session::recordIncidentSh(int count) {
+  if (count != kShL1Coefficients && count != kShCoefficients)
+    throw Error(fmt::format("incident SH: {} coefficients per channel; 4 (L1) or 9 (L2) expected", count));
+  state_->host->recordIncidentSh(count);
+}
+
 Camera Session::camera(const std::string& name, float fovY) const { return chooseCamera(state_->scene, name, fovY); }
 
 std::vector<Rgb> Session::lightIrradiance(std::span<const uint32_t> lights) {

@@ -237,6 +237,13 @@ void SolverHost::makeSolver(bool analyticIsCurrent) {
   if (!analyticIsCurrent) computeAnalytic();
   system_ = std::make_unique<RadiositySystem>(surfaces_, analytic_);
   solver_ = entry_->make(SolverResources{scene_, *system_, *transport_, glContext_}, *values_);
+  if (recordSh_) solver_->recordIncidentSh(recordSh_);
+}
+
+void SolverHost::recordIncidentSh(int count) {
+  useContext();
+  recordSh_ = count;
+  solver_->recordIncidentSh(count);
 }
 
 bool SolverHost::refine(const ProgressCallback& progress) {
@@ -371,12 +378,14 @@ Solution SolverHost::solution() {
   return sol;
 }
 
-std::vector<Rgb> SolverHost::incidentSh(int count) {
+std::vector<Rgb> SolverHost::incidentSh(int count, bool* gathered) {
   useContext();
   const size_t ne = surfaces_.elements.size();
   std::vector<Rgb> sh(ne * size_t(count)), lights(ne * size_t(count));
   // Progressive and gather know each patch's share exactly; others are gathered by rays.
-  if (!solver_->incidentSh(count, sh)) sh = gatherIncidentSh(surfaces_, solver_->solution().radiosity, count, kGatherShRays);
+  const bool known = solver_->incidentSh(count, sh);
+  if (!known) sh = gatherIncidentSh(surfaces_, solver_->solution().radiosity, count, kGatherShRays);
+  if (gathered) *gathered = !known;
   std::vector<uint32_t> all(scene_.lights.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   transport_->lightSh(all, count, lights);

@@ -60,8 +60,12 @@ class SolverHost {
   // radiance at each element in spherical harmonics, `count` (4 or 9) per element (Solver::
   // incidentSh for the interreflected light, or a final gather of kGatherShRays rays an element
   // where the solver keeps no record of directions; Transport::lightSh for the analytic lights).
-  std::vector<Rgb> incidentSh(int count);
+  // `gathered`, when given, says whether the rays gathered them.
+  std::vector<Rgb> incidentSh(int count, bool* gathered = nullptr);
   static constexpr int kGatherShRays = 256;
+  // Before the solve, by owners that will ask incidentSh(count): solvers that record directions
+  // only as they shoot (the GPU's) start recording, this one and any made after a change.
+  void recordIncidentSh(int count);
   // The solution so far, with every statistic filled in (energy balance included).
   Solution solution();
   SolveStats stats() const;
@@ -120,6 +124,7 @@ class SolverHost {
   size_t refined_ = 0;
   int refinePasses_ = 0;
   bool refinementOver_ = false;
+  int recordSh_ = 0;  // recordIncidentSh's count, 0 for none
   double setupSeconds_ = 0.0, analyticSeconds_ = 0.0;
   Stopwatch sinceCheckpoint_;
   std::optional<uint64_t> checkpointKey_;  // reset by makeSolver and objectsMoved

@@ -1,0 +1,131 @@
+// Directional lightmaps on the GPU (issue 17): the GL progressive solver records where each shot's
+// light comes from as it shoots (the CPU's exact moments per patch, in its reconstruction pass),
+// instead of a final gather of rays. Closed forms and the CPU's bake of the same atlas. Skips,
+// saying why, without an OpenGL 4.5 context.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "core/spherical_harmonics.h"
+#include "gl/gl_test_context.h"
+#include "luxel/directional_lightmap.h"
+#include "luxel/import.h"
+#include "luxel/lightmap.h"
+
+namespace {
+
+using luxel::Rgb;
+using luxel::Vec3;
+
+void addQuad(luxel::Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  luxel::Mesh m;
+  m.name = "wall" + std::to_string(s.meshes.size());
+  m.positions = {a, b, c, d};
+  m.faces = {luxel::Face{{0, 1, 2, 3}}};
+  m.material = 0;
+  s.meshes.push_back(m);
+}
+
+// A closed 1 m box, every inward wall glowing evenly and reflecting half: each texel sees a
+// uniform hemisphere about its normal, c0 = 2 H Y00 and band 1 = H n Y1.
+luxel::Scene furnace() {
+  luxel::Scene s;
+  s.name = "furnace";
+  luxel::Material glow;
+  glow.name = "glow";
+  glow.reflectance = Rgb(0.5f);
+  glow.emission = Rgb(1.0f);
+  s.materials.push_back(glow);
+  const Vec3 p[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  addQuad(s, p[0], p[1], p[2], p[3]);
+  addQuad(s, p[4], p[7], p[6], p[5]);
+  addQuad(s, p[0], p[3], p[7], p[4]);
+  addQuad(s, p[1], p[5], p[6], p[2]);
+  addQuad(s, p[0], p[4], p[5], p[1]);
+  addQuad(s, p[3], p[2], p[6], p[7]);
+  return s;
+}
+
+luxel::BakedLightmaps bake(const luxel::Scene& s, const std::string& backend, luxel::DirectionalMode mode,
+                           float texelsPerMetre) {
+  luxel::LightmapRecipe r;
+  r.texelsPerMetre = texelsPerMetre;
+  r.directional = mode;
+  r.solve.method = "progressive";
+  r.solve.backend = backend;
+  r.solve.settings.set("unshot", 1e-4);
+  return luxel::bakeLightmaps(s, r);
+}
+
+TEST(GlDirectionalLightmap, FurnaceDirectionsAreRecordedAsTheGpuShoots) {
+  std::string why;
+  if (!luxel::test::glContextOr(why)) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  const auto b = bake(furnace(), "gl", luxel::DirectionalMode::ShL1, 24.0f);
+  EXPECT_EQ(b.bake.solution.stats.backend, "gl");
+  EXPECT_EQ(b.bake.directionsFrom, "solver");
+  const auto& set = b.bake.surfaces.surfaces;
+  double worst0 = 0.0, worst1 = 0.0, mean1 = 0.0;
+  for (size_t e = 0; e < set.elements.size(); ++e) {
+    const auto& t = b.bake.surfaces.texels[e];
+    const size_t i = size_t(t.y) * size_t(b.bake.pageSize) + t.x;
+    Rgb c[4];
+    for (int k = 0; k < 4; ++k) c[k] = b.bake.sh[size_t(k)][t.page][i];
+    const float h = b.bake.pages[t.page][i].r;
+    worst0 = std::max(worst0, double(std::abs(c[0].r - 2.0f * h * luxel::kShY0) / (2.0f * h * luxel::kShY0)));
+    const double off = glm::length(luxel::shBand1Vector(c[1].r, c[2].r, c[3].r) - h * set.elements[e].normal) / h;
+    worst1 = std::max(worst1, off);
+    mean1 += off / double(set.elements.size());
+  }
+  std::printf("GL furnace, directions recorded per shot: band 0 worst %.4f, band 1 worst %.4f mean %.4f\n", worst0,
+              worst1, mean1);
+  // The CPU's bounds for L1 (DirectionalLightmap.FurnaceTexelsSeeAUniformHemisphereInL1); the
+  // GPU's radiosity differs from the exact one by its hemicubes, which the texel's H absorbs.
+  EXPECT_LT(worst0, 0.025);
+  EXPECT_LT(worst1, 0.05);
+  EXPECT_LT(mean1, 0.015);
+}
+
+// The Cornell box, GPU and CPU bakes of the same atlas: each texel's direction of light (the
+// band-1 vector over band 0, green) agrees, and the GPU's came from its shots.
+TEST(GlDirectionalLightmap, CornellDirectionsAgreeWithTheCpuBake) {
+  std::string why;
+  if (!luxel::test::glContextOr(why)) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  const luxel::Scene scene = luxel::loadScene("cornell");
+  const float density = 16.0f / 0.55f;  // 16 texels per wall side
+  const auto gpu = bake(scene, "gl", luxel::DirectionalMode::ShL1, density);
+  const auto cpu = bake(scene, "cpu", luxel::DirectionalMode::ShL1, density);
+  EXPECT_EQ(gpu.bake.directionsFrom, "solver");
+  EXPECT_EQ(cpu.bake.directionsFrom, "solver");
+  ASSERT_EQ(gpu.bake.texels, cpu.bake.texels);
+  double sum = 0.0, worst = 0.0;
+  size_t n = 0;
+  std::vector<double> all;
+  for (size_t p = 0; p < gpu.bake.pages.size(); ++p)
+    for (size_t i = 0; i < gpu.bake.pages[p].size(); ++i) {
+      if (gpu.bake.state[p][i] != luxel::LightmapBake::Solved || cpu.bake.state[p][i] != luxel::LightmapBake::Solved)
+        continue;
+      auto ratio = [&](const luxel::LightmapBake& b) {
+        const Rgb c0 = b.sh[0][p][i];
+        return luxel::shBand1Vector(b.sh[1][p][i].g, b.sh[2][p][i].g, b.sh[3][p][i].g) /
+               std::max(c0.g / luxel::kShY0, 1e-12f);
+      };
+      const double d = glm::length(ratio(gpu.bake) - ratio(cpu.bake));
+      sum += d, worst = std::max(worst, d), ++n;
+      all.push_back(d);
+    }
+  ASSERT_GT(n, 1000u);
+  std::sort(all.begin(), all.end());
+  const double p90 = all[n * 9 / 10], p99 = all[n * 99 / 100];
+  std::printf("GL vs CPU directions (|m1/m0| differences, green): mean %.4f, p90 %.4f, p99 %.4f, worst %.4f over %zu "
+              "texels\n", sum / double(n), p90, p99, worst, n);
+  // Measured on llvmpipe: mean 0.018, p90 0.038, p99 0.20, worst 0.46. The worst are on the short
+  // block's side at its base, where the GPU's band 0 is about half the CPU's with the same H: the
+  // floor patches there reach under the block, behind the texels' plane (docs/baking.md).
+  EXPECT_LT(sum / double(n), 0.025);
+  EXPECT_LT(p90, 0.06);
+}
+
+}  // namespace
