@@ -2,8 +2,12 @@
 // LUXEL_lightmap_directional extension) as luxel shows them itself (`luxel render --mode lightmap
 // --directional MODE`), with the directional recipe of docs/baking.md run as written.
 //
-//   node directional_check.mjs --luxel PATH/TO/luxel --out DIR [--mode sh-l1|sh-l2|dominant]
+//   node directional_check.mjs --luxel PATH/TO/luxel --out DIR [--mode sh-l1|sh-l2|dominant] [--vertex 1]
 //                              [--elements N] [--size N] [--tolerance F] [--chromium PATH] [--docs FILE]
+//
+// With --vertex 1, the same for directions per vertex (`luxel bake --vertex-colors --directional
+// MODE`, the LUXEL_vertex_directional extension, docs/baking.md's vertex recipe), against the same
+// lightmap render, with the plain vertex-colour recipe (no directions) for contrast.
 //
 // 1. writes a scene into DIR: a 4 x 4 m floor (OBJ, uvs along x and z) whose normal map (MTL `norm`,
 //    a 16 x 1 PNG) has stripes 1 m wide tilted 12 degrees towards +x and -x in turn, a lamp 4 m off
@@ -32,7 +36,7 @@ const report = reporter('directional-check');
 const { log, fail } = report;
 
 const opts = {
-  luxel: '', out: '', mode: 'sh-l1', elements: 1600, size: 256, tolerance: 0.02,
+  luxel: '', out: '', mode: 'sh-l1', vertex: 0, elements: 1600, size: 256, tolerance: 0.02,
   chromium: process.env.LUXEL_CHROMIUM || '/usr/bin/chromium',
   docs: path.resolve(here, '../../docs/baking.md'),
 };
@@ -43,9 +47,14 @@ const THREE = await import('three');
 
 // The recipes: docs/baking.md's ```js blocks, the directional one and the plain one.
 const blocks = [...readFileSync(opts.docs, 'utf8').matchAll(/```js\n([\s\S]*?)```/g)].map((m) => m[1]);
-const directional = blocks.find((b) => b.includes('LUXEL_lightmap_directional'));
-const plain = blocks.find((b) => b.includes('material.userData.luxel') && !b.includes('LUXEL_lightmap_directional'));
-if (!directional || !plain) fail(`${opts.docs}: no directional or no plain lightmap recipe (\`\`\`js blocks)`);
+// Per vertex: the vertex recipe, and the plain vertex-colour one (the complete example's lines from
+// `const S` to the traverse's end, as html_check.mjs takes them).
+const vertexPlain = blocks.find((b) => b.includes('import ') && b.includes('const S'));
+const directional = blocks.find((b) => b.includes(opts.vertex ? 'LUXEL_vertex_directional' : 'LUXEL_lightmap_directional'));
+const plain = opts.vertex
+  ? vertexPlain?.slice(vertexPlain.indexOf('const S'), vertexPlain.indexOf('\n});\n', vertexPlain.indexOf('const S')) + 5)
+  : blocks.find((b) => b.includes('material.userData.luxel') && !b.includes('LUXEL_lightmap_directional'));
+if (!directional || !plain) fail(`${opts.docs}: no directional or no plain ${opts.vertex ? 'vertex-colour' : 'lightmap'} recipe (\`\`\`js blocks)`);
 
 // ---- 1. the scene ---------------------------------------------------------------------------------
 mkdirSync(opts.out, { recursive: true });
@@ -72,7 +81,7 @@ rmSync(glb, { force: true });
 rmSync(exr, { force: true });
 const luxel = luxelRunner(opts.luxel, report);
 const elements = String(opts.elements), size = opts.size;
-luxel(['bake', scene, '-o', glb, '--lightmaps', '--directional', opts.mode, '--elements', elements]);
+luxel(['bake', scene, '-o', glb, opts.vertex ? '--vertex-colors' : '--lightmaps', '--directional', opts.mode, '--elements', elements]);
 luxel(['render', scene, '--mode', 'lightmap', '--directional', opts.mode, '--elements', elements,
        '--size', `${size}x${size}`, '--spp', '16', '-o', exr]);
 const exrBytes = readFileSync(exr);
@@ -84,7 +93,8 @@ let renders;
 try {
   const r = await renderInChromium({
     chromium: opts.chromium, roots: [['/out/', path.resolve(opts.out)], ['/', here]],
-    jobs: [directional, plain].map((recipe) => ({ glb: '/out/floor.glb', recipe, variant: 'recipe', size })),
+    jobs: [directional, plain].map((recipe) => ({ glb: '/out/floor.glb', recipe, variant: 'recipe', size,
+                                                   kind: opts.vertex ? 'vertex' : 'lightmap' })),
   });
   renders = r.renders;
   if (r.messages.length) log(`browser messages:\n  ${r.messages.join('\n  ')}`);

@@ -65,6 +65,9 @@ function readExr(file) {
 const cases = [
   { name: 'lightmaps', bake: ['--lightmaps'], mode: 'lightmap', shows: 'lightmaps' },
   { name: 'vertex-colors', bake: ['--vertex-colors'], mode: 'radiosity', shows: 'vertex colours (radiance)' },
+  // Directions per vertex, through the vertex recipe: with no normal map, the same picture.
+  { name: 'vertex-directions', bake: ['--vertex-colors', '--directional', 'sh-l1'], mode: 'radiosity',
+    shows: 'vertex colours (radiance, with directions)' },
 ];
 for (const c of cases) {
   c.glb = path.join(opts.out, `${c.name}.glb`);

@@ -24,7 +24,9 @@ window.addEventListener('error', (e) => { asyncError ??= e.error ?? e.message; }
 // with an image loaded flipped); or, for information, 'standard': the recipe's decoded lightmap on
 // the MeshStandardMaterial GLTFLoader made.
 // suns: for a transfer bake, turn its suns before rendering (the recipe's gltf.userData.luxelRelight).
-window.luxelThree = async ({ glb, recipe, variant = 'recipe', size = 256, suns = null }) => {
+// kind: 'lightmap' (meshes whose material has extras.luxel: the recipe must give each a lightMap),
+// or 'vertex' (meshes with COLOR_0: the recipe replaces their materials as it runs).
+window.luxelThree = async ({ glb, recipe, variant = 'recipe', size = 256, suns = null, kind = 'lightmap' }) => {
   const renderer = new THREE.WebGLRenderer({ antialias: false });
   try {
     asyncError = null;
@@ -36,15 +38,18 @@ window.luxelThree = async ({ glb, recipe, variant = 'recipe', size = 256, suns =
 
     const gltf = await new GLTFLoader().loadAsync(glb);
     const lightmapped = [];
-    gltf.scene.traverse((o) => o.isMesh && o.material.userData.luxel && lightmapped.push(o));
-    if (lightmapped.length === 0) throw new Error(`${glb}: no material has extras.luxel (was it baked with --lightmaps?)`);
+    const baked = kind === 'vertex' ? (o) => o.geometry.attributes.color : (o) => o.material.userData.luxel;
+    gltf.scene.traverse((o) => o.isMesh && baked(o) && lightmapped.push(o));
+    if (lightmapped.length === 0)
+      throw new Error(kind === 'vertex' ? `${glb}: no mesh has COLOR_0 (was it baked with --vertex-colors?)`
+                                        : `${glb}: no material has extras.luxel (was it baked with --lightmaps?)`);
     const loaded = new Map(lightmapped.map((o) => [o, o.material]));
 
     // The recipe, as docs/baking.md writes it, with the names it assumes: THREE, gltf (what
     // GLTFLoader returned) and renderer (the WebGLRenderer that will draw the scene).
     new Function('THREE', 'gltf', 'renderer', recipe)(THREE, gltf, renderer);
     // It finishes in promise callbacks: wait until every mesh with a lightmap has one.
-    for (let t = 0; lightmapped.some((o) => !o.material.lightMap); t += 20) {
+    for (let t = 0; kind === 'lightmap' && lightmapped.some((o) => !o.material.lightMap); t += 20) {
       if (asyncError) throw new Error(`the recipe failed: ${asyncError?.stack ?? asyncError}`);
       if (t > 20000) throw new Error('the recipe set no material.lightMap within 20 s');
       await sleep(20);

@@ -30,6 +30,85 @@ gltf.scene.traverse((o) => {
 });
 }
 
+// "Directions per vertex": --vertex-colors --directional, COLOR_0 holds radiance / S, shaded at the
+// normal map's normal on MeshLambertMaterials.
+function showDirectionalRadiance(gltf) {
+// Directions per vertex: each primitive's LUXEL_vertex_directional (docs/baking.md). COLOR_0 × S is
+// radiance; its reflected part follows the normal map as the light arrives.
+const LUXEL_VERTEX_GLSL = `
+float luxelL1(vec3 q, vec3 n) {  // one light along q plus a constant (Sloan 2008), in units of m0
+  float len = length(q), r = min(len, 1.0);
+  return 0.25 * (1.0 - r) + max(dot(n, q), 0.0) * (len > 0.0 ? r / len : 0.0);
+}
+vec3 luxelVertexDirectional(vec3 n, vec3 n0) {
+  vec3 f, f0;
+#if LUXEL_MODE == 1  // sh-l1: the x, y, z of m1 / m0 per channel
+  vec3 qx = 2.0 * vLuxelDir0 - 1.0, qy = 2.0 * vLuxelDir1 - 1.0, qz = 2.0 * vLuxelDir2 - 1.0;
+  for (int c = 0; c < 3; ++c) {
+    vec3 q = vec3(qx[c], qy[c], qz[c]);
+    f[c] = luxelL1(q, n);
+    f0[c] = luxelL1(q, n0);
+  }
+#elif LUXEL_MODE == 2  // dominant: the luminance's m1 / m0
+  vec3 q = 2.0 * vLuxelDir0 - 1.0;
+  f = vec3(luxelL1(q, n));
+  f0 = vec3(luxelL1(q, n0));
+#else  // sh-l2: c_i / c_0 = (2v - 1) * bound, read linearly (Ramamoorthi and Hanrahan 2001)
+  vec3 q[9];
+  q[0] = vec3(1.0);
+  q[1] = (2.0 * vLuxelDir0 - 1.0) * 1.7320508;
+  q[2] = (2.0 * vLuxelDir1 - 1.0) * 1.7320508;
+  q[3] = (2.0 * vLuxelDir2 - 1.0) * 1.7320508;
+  q[4] = (2.0 * vLuxelDir3 - 1.0) * 2.2360680;
+  q[5] = (2.0 * vLuxelDir4 - 1.0) * 2.2360680;
+  q[6] = (2.0 * vLuxelDir5 - 1.0) * 2.2360680;
+  q[7] = (2.0 * vLuxelDir6 - 1.0) * 2.2360680;
+  q[8] = (2.0 * vLuxelDir7 - 1.0) * 2.2360680;
+  for (int k = 0; k < 2; ++k) {
+    vec3 d = k == 0 ? n : n0;
+    vec3 e = 3.1415927 * 0.282095 * q[0]
+           + 2.0943951 * 0.488603 * (q[1] * d.y + q[2] * d.z + q[3] * d.x)
+           + 0.7853982 * (1.092548 * (q[4] * d.x * d.y + q[5] * d.y * d.z + q[7] * d.x * d.z)
+                          + 0.315392 * q[6] * (3.0 * d.z * d.z - 1.0) + 0.546274 * q[8] * (d.x * d.x - d.y * d.y));
+    if (k == 0) f = e; else f0 = e;
+  }
+#endif
+  return vec3(f0.r > 0.0 ? max(f.r, 0.0) / f0.r : 1.0, f0.g > 0.0 ? max(f.g, 0.0) / f0.g : 1.0,
+              f0.b > 0.0 ? max(f.b, 0.0) / f0.b : 1.0);
+}`;
+const S = gltf.scene.userData.luxel?.vertexColorScale ?? 1;
+const modes = { 'sh-l1': 1, 'dominant': 2, 'sh-l2': 3 };
+gltf.scene.traverse((o) => {
+  const dir = o.isMesh && o.geometry.attributes.color && o.userData.gltfExtensions?.LUXEL_vertex_directional;
+  if (!dir) return;
+  const m = o.material;
+  const l = new THREE.MeshLambertMaterial({
+    name: m.name, vertexColors: true, side: m.side,
+    emissive: m.emissive, emissiveMap: m.emissiveMap, emissiveIntensity: m.emissiveIntensity,
+    normalMap: m.normalMap, normalScale: m.normalScale,  // GLTFLoader's, y already as three.js wants it
+  });
+  const varyings = dir.attributes.map((a, i) => `varying vec3 vLuxelDir${i};`).join('\n');
+  l.onBeforeCompile = (shader) => {
+    shader.uniforms.luxelScale = { value: S };
+    shader.vertexShader = shader.vertexShader
+      .replace('#include <common>', '#include <common>\n' + varyings + '\n' +
+        dir.attributes.map((a) => `attribute vec3 ${a.toLowerCase()};`).join('\n'))
+      .replace('#include <color_vertex>', '#include <color_vertex>\n' +
+        dir.attributes.map((a, i) => `vLuxelDir${i} = ${a.toLowerCase()};`).join('\n'));
+    shader.fragmentShader = shader.fragmentShader
+      .replace('#include <common>', `#include <common>\n#define LUXEL_MODE ${modes[dir.mode]}\nuniform float luxelScale;\n` + varyings)
+      .replace('void main() {', LUXEL_VERTEX_GLSL + '\nvoid main() {')
+      .replace('#include <opaque_fragment>',
+        'vec3 luxelN = normalize(inverseTransformDirection(normal, viewMatrix));\n' +
+        'vec3 luxelN0 = normalize(inverseTransformDirection(nonPerturbedNormal, viewMatrix));\n' +
+        'outgoingLight = totalEmissiveRadiance + (vColor.rgb * luxelScale - totalEmissiveRadiance) *\n' +
+        '                luxelVertexDirectional(luxelN, luxelN0);\n#include <opaque_fragment>');
+  };
+  l.customProgramCacheKey = () => `luxel-vertex-directional-${dir.mode}`;
+  o.material = l;
+});
+}
+
 // "Vertex colours for some meshes, lightmaps for the rest": --vertex-colors-for, COLOR_0 holds
 // irradiance / S; times the base colour / pi.
 function showIrradiance(gltf) {
@@ -362,7 +441,10 @@ async function main() {
   const gltf = await new GLTFLoader().parseAsync(glbBytes(), '');
   const scene = gltf.scene;
   const baked = scene.userData.luxel ?? {};
+  let directions = false;  // per vertex: LUXEL_vertex_directional
+  scene.traverse((o) => { directions ||= Boolean(o.isMesh && o.userData.gltfExtensions?.LUXEL_vertex_directional); });
   if (baked.vertexColors === 'irradiance') showIrradiance(gltf);
+  else if (baked.vertexColors && directions) showDirectionalRadiance(gltf);
   else if (baked.vertexColors) showRadiance(gltf);
   const lightmapped = [];
   scene.traverse((o) => o.isMesh && o.material.userData.luxel && lightmapped.push(o));
@@ -373,7 +455,8 @@ async function main() {
     else showLightmaps(gltf, renderer);
     await waitForLightmaps(lightmapped);
   }
-  viewer.shows = [lightmapped.length && 'lightmaps', baked.vertexColors && `vertex colours (${baked.vertexColors})`]
+  viewer.shows = [lightmapped.length && 'lightmaps',
+                  baked.vertexColors && `vertex colours (${baked.vertexColors}${directions ? ', with directions' : ''})`]
     .filter(Boolean).join(' and ') || 'no baked light';
 
   // The starting view, as `luxel render` chooses it (src/session/session.cpp, chooseCamera): the
