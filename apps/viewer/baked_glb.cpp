@@ -1,5 +1,6 @@
 #include "baked_glb.h"
 
+#include <cmath>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -92,6 +93,107 @@ glm::mat4 nodeMatrix(const tinygltf::Node& n) {
 
 double number(const tinygltf::Value& v) { return v.IsNumber() ? v.GetNumberAsDouble() : 0.0; }
 
+// Reads one material's LUXEL_lightmap_transfer into `out` and `light`, checking it against the
+// schema (docs/schema/LUXEL_lightmap_transfer.schema.json) and what the viewer can draw: every
+// mistake names the file, the material and what is wrong.
+struct TransferReader {
+  const tinygltf::Model& model;
+  const BakedGlb& glb;
+  std::string at;  // "FILE: material N ('NAME'): LUXEL_lightmap_transfer"
+
+  [[noreturn]] void fail(const std::string& what) const { throw Error(fmt::format("{}: {}", at, what)); }
+
+  double finite(const tinygltf::Value& v, const std::string& what) const {
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) fail(what + " is not a finite number");
+    return v.GetNumberAsDouble();
+  }
+  Vec3 triple(const tinygltf::Value& v, const std::string& what) const {
+    if (!v.IsArray() || v.ArrayLen() != 3) fail(what + " is not an array of 3 numbers");
+    return Vec3(float(finite(v.Get(0), what + "[0]")), float(finite(v.Get(1), what + "[1]")), float(finite(v.Get(2), what + "[2]")));
+  }
+  // A texture read on TEXCOORD_1 (the lightmap's), decoded, as an image index.
+  int image(const tinygltf::Value& info, const std::string& what) const {
+    if (!info.IsObject() || !info.Has("index")) fail(what + " is not a texture reference with an index");
+    const double index = finite(info.Get("index"), what + ".index");
+    if (index < 0 || index != std::floor(index) || size_t(index) >= model.textures.size())
+      fail(fmt::format("{}.index {} is not one of the file's {} textures", what, index, model.textures.size()));
+    const int source = model.textures[size_t(index)].source;
+    if (source < 0 || size_t(source) >= glb.images.size() || glb.images[size_t(source)].width <= 0)
+      fail(fmt::format("{}: texture {} has no 8-bit image the viewer could decode", what, index));
+    if (info.Has("texCoord") && finite(info.Get("texCoord"), what + ".texCoord") != 1.0)
+      fail(fmt::format("{}.texCoord is {}: transfer pages are read on the lightmap's TEXCOORD_1", what,
+                       number(info.Get("texCoord"))));
+    return source;
+  }
+
+  void read(const tinygltf::Value& ext, BakedGlb::Material& out, BakedGlb::TransferLight& light) const {
+    if (!ext.IsObject()) fail("is not an object");
+    for (const char* key : {"bands", "band0", "ratios", "ratioScale", "sky", "suns"})
+      if (!ext.Has(key)) fail(fmt::format("has no '{}'", key));
+    const double bands = finite(ext.Get("bands"), "bands");
+    if (bands != std::floor(bands) || bands < 2 || bands > 4) fail(fmt::format("bands is {}, not 2, 3 or 4", bands));
+    out.transferBands = light.bands = int(bands);
+    const size_t n = size_t(bands * bands);
+
+    const tinygltf::Value& band0 = ext.Get("band0");
+    out.transferBand0 = image(band0, "band0");
+    const double range = band0.Has("rgbmRange") ? finite(band0.Get("rgbmRange"), "band0.rgbmRange") : 0.0;
+    if (!(range > 0.0)) fail("band0.rgbmRange is missing or not above 0");
+    out.transferBand0Range = float(range);
+    const BakedGlb::Image& page = glb.images[size_t(out.transferBand0)];
+
+    const tinygltf::Value& ratios = ext.Get("ratios");
+    const size_t textures = (3 * (n - 1) + 3) / 4;
+    if (!ratios.IsArray() || ratios.ArrayLen() != textures)
+      fail(fmt::format("ratios is not an array of {} textures ({} bands: {} numbers a texel, four a texture)", textures,
+                       int(bands), 3 * (n - 1)));
+    for (size_t k = 0; k < textures; ++k) {
+      const int i = image(ratios.Get(int(k)), fmt::format("ratios[{}]", k));
+      const BakedGlb::Image& r = glb.images[size_t(i)];
+      if (r.width != page.width || r.height != page.height)
+        fail(fmt::format("ratios[{}] is {}x{}, band0 {}x{}: a texel's numbers must lie at the same place", k, r.width,
+                         r.height, page.width, page.height));
+      out.transferRatios.push_back(i);
+    }
+
+    const tinygltf::Value& scale = ext.Get("ratioScale");
+    if (!scale.IsArray() || scale.ArrayLen() != n - 1) fail(fmt::format("ratioScale is not an array of {} numbers", n - 1));
+    for (size_t i = 0; i + 1 < n; ++i) {
+      const double s = finite(scale.Get(int(i)), fmt::format("ratioScale[{}]", i));
+      if (!(s > 0.0)) fail(fmt::format("ratioScale[{}] is {}, not above 0", i, s));
+      out.ratioScale.push_back(float(s));
+    }
+
+    const tinygltf::Value& sky = ext.Get("sky");
+    if (!sky.IsArray() || sky.ArrayLen() != n) fail(fmt::format("sky is not an array of {} RGB coefficients", n));
+    light.sky.clear();
+    for (size_t i = 0; i < n; ++i) light.sky.push_back(triple(sky.Get(int(i)), fmt::format("sky[{}]", i)));
+
+    const tinygltf::Value& suns = ext.Get("suns");
+    if (!suns.IsArray()) fail("suns is not an array");
+    light.suns.clear();
+    for (size_t i = 0; i < suns.ArrayLen(); ++i) {
+      const tinygltf::Value& sun = suns.Get(int(i));
+      const std::string what = fmt::format("suns[{}]", i);
+      if (!sun.IsObject() || !sun.Has("direction") || !sun.Has("irradiance")) fail(what + " has no direction and irradiance");
+      BakedGlb::TransferSun s;
+      s.direction = triple(sun.Get("direction"), what + ".direction");
+      if (!(glm::length(s.direction) > 0.0f)) fail(what + ".direction is zero");
+      s.direction = glm::normalize(s.direction);
+      s.irradiance = triple(sun.Get("irradiance"), what + ".irradiance");
+      if (glm::any(glm::lessThan(s.irradiance, Rgb(0.0f)))) fail(what + ".irradiance is negative");
+      light.suns.push_back(s);
+    }
+  }
+};
+
+bool sameLight(const BakedGlb::TransferLight& a, const BakedGlb::TransferLight& b) {
+  if (a.bands != b.bands || a.sky != b.sky || a.suns.size() != b.suns.size()) return false;
+  for (size_t i = 0; i < a.suns.size(); ++i)
+    if (a.suns[i].direction != b.suns[i].direction || a.suns[i].irradiance != b.suns[i].irradiance) return false;
+  return true;
+}
+
 }  // namespace
 
 BakedGlb readBakedGlb(const std::filesystem::path& path) {
@@ -128,8 +230,10 @@ BakedGlb readBakedGlb(const std::filesystem::path& path) {
   auto imageOf = [&](int texture) {
     return texture >= 0 && size_t(texture) < model.textures.size() ? model.textures[size_t(texture)].source : -1;
   };
+  int firstTransfer = -1;  // the material whose light glb.transfer holds
   for (const tinygltf::Material& m : model.materials) {
     BakedGlb::Material out;
+    const int index = int(glb.materials.size());
     const auto& f = m.pbrMetallicRoughness.baseColorFactor;
     if (f.size() == 4) out.baseColor = glm::vec4(float(f[0]), float(f[1]), float(f[2]), float(f[3]));
     out.baseTexture = imageOf(m.pbrMetallicRoughness.baseColorTexture.index);
@@ -151,6 +255,20 @@ BakedGlb readBakedGlb(const std::filesystem::path& path) {
       const tinygltf::Value& textures = ext.Get("textures");
       if (textures.IsArray())
         for (size_t k = 0; k < textures.ArrayLen(); ++k) out.directionImages.push_back(imageOf(int(number(textures.Get(int(k)).Get("index")))));
+    }
+    if (auto it = m.extensions.find("LUXEL_lightmap_transfer"); it != m.extensions.end()) {
+      const TransferReader reader{model, glb, fmt::format("{}: material {} ('{}'): LUXEL_lightmap_transfer", file, index, m.name)};
+      BakedGlb::TransferLight light;
+      reader.read(it->second, out, light);
+      // One light relights every material: a file whose materials disagree cannot be shown as one.
+      if (firstTransfer < 0) {
+        glb.transfer = std::move(light);
+        firstTransfer = index;
+      } else if (!sameLight(light, glb.transfer)) {
+        reader.fail(fmt::format("its bands, sky or suns differ from material {}'s (every transfer material holds the same light)",
+                                firstTransfer));
+      }
+      glb.hasLightmaps = true;
     }
     glb.materials.push_back(out);
   }

@@ -2,8 +2,9 @@
 // their materials, and the baked light (docs/baking.md): per-vertex radiance or irradiance
 // (COLOR_0 times the scene's vertexColorScale) or lightmaps (RGBM PNG pages on TEXCOORD_1, named in
 // each material copy's extras), with the directions of LUXEL_lightmap_directional read at the
-// normal map's normal. The viewer's "baked" view draws it, so a bake can be checked in the same
-// window as the live solve.
+// normal map's normal, and the SH transfer of LUXEL_lightmap_transfer relit by a light the viewer
+// can turn. The viewer's "baked" view draws it, so a bake can be checked in the same window as the
+// live solve.
 #pragma once
 
 #include <cstdint>
@@ -39,6 +40,23 @@ struct BakedGlb {
     // LUXEL_lightmap_directional (docs/baking.md): the mode ("" for none) and its textures' images.
     std::string directionalMode;
     std::vector<int> directionImages;
+    // LUXEL_lightmap_transfer (docs/baking.md, "Transfer lightmaps in the glb"): bands 0 for none.
+    int transferBands = 0;
+    int transferBand0 = -1;            // image index: T_0 per channel as RGBM
+    float transferBand0Range = 1.0f;
+    std::vector<int> transferRatios;   // image indices: q_i = T_i / T_0, four numbers a texel
+    std::vector<float> ratioScale;     // per coefficient i >= 1: q_i = (2 texel - 1) * ratioScale[i - 1]
+  };
+  // The distant light a transfer bake was relit with, as stored (every transfer material holds the
+  // same): the skies' radiance SH and each sun's direction of travel and irradiance.
+  struct TransferSun {
+    Vec3 direction{0.0f, -1.0f, 0.0f};
+    Rgb irradiance{0.0f};
+  };
+  struct TransferLight {
+    int bands = 0;  // 0: the glb has no transfer
+    std::vector<Rgb> sky;  // bands^2 coefficients
+    std::vector<TransferSun> suns;
   };
   struct Image {
     int width = 0, height = 0;
@@ -49,12 +67,14 @@ struct BakedGlb {
   std::vector<Image> images;
   std::string vertexColors;  // "radiance", "irradiance", or empty (no vertex colours)
   bool hasLightmaps = false;
+  TransferLight transfer;
 
   bool baked() const { return !vertexColors.empty() || hasLightmaps; }
 };
 
-// Reads `path` (.glb or .gltf). Throws luxel::Error naming the file when tinygltf cannot read it
-// or an accessor is not what glTF allows.
+// Reads `path` (.glb or .gltf). Throws luxel::Error naming the file when tinygltf cannot read it,
+// an accessor is not what glTF allows, or a material's LUXEL_lightmap_transfer is not what its
+// schema says (docs/schema/LUXEL_lightmap_transfer.schema.json) or disagrees with another's.
 BakedGlb readBakedGlb(const std::filesystem::path& path);
 
 }  // namespace luxel::viewer

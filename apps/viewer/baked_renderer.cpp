@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "gl/gl_context.h"
 #include "gl/shader_program.h"
 #include "gl_texture.h"
+#include "luxel/error.h"
 #include "view_shaders.h"
 
 namespace luxel::viewer {
@@ -39,7 +41,10 @@ struct BakedRenderer::Gl {
     int material = -1;
     int kind = kNothing;
     bool directional = false;  // a directional lightmap under a normal map: read at the map's normal
+    bool transfer = false;     // a transfer lightmap (LUXEL_lightmap_transfer) with all its pages
   };
+  int transferBands = 0;
+  std::vector<Rgb> transferLight;  // radiance SH, transferBands^2 coefficients
   std::vector<Draw> draws;
   std::vector<BakedGlb::Material> materials;
   std::vector<GLuint> srgb, linear;  // per image: as a base colour (sRGB) and as a lightmap (linear)
@@ -68,7 +73,7 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
     const BakedGlb::Material* m = p.material >= 0 ? &glb.materials[size_t(p.material)] : nullptr;
     if (!p.colors.empty())
       d.kind = glb.vertexColors == "irradiance" ? kVertexIrradiance : kVertexRadiance;
-    else if (m && m->lightmap >= 0 && !p.uv1.empty())
+    else if (m && (m->lightmap >= 0 || m->transferBands > 0) && !p.uv1.empty())
       d.kind = kLightmap;
     const uint32_t base = uint32_t(vertices.size());
     for (size_t i = 0; i < p.positions.size(); ++i)
@@ -77,6 +82,7 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
                           p.tangents.empty() ? glm::vec4(0.0f) : p.tangents[i]});
     d.directional = d.kind == kLightmap && m && !p.normals.empty() && !p.tangents.empty() && !p.uv0.empty() &&
                     m->normalTexture >= 0 && directionalCode(m->directionalMode) > 0;
+    d.transfer = d.kind == kLightmap && m && m->transferBands > 0;
     for (uint32_t i : p.indices) indices.push_back(base + i);
     d.count = GLsizei(indices.size()) - d.first;
     g.draws.push_back(d);
@@ -117,10 +123,18 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
     const BakedGlb::Image& im = glb.images[size_t(i)];
     g.normalMaps[size_t(i)] = makeTexture({GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, true, GL_REPEAT}, im.width, im.height, im.rgba.data());
   }
+  g.transferBands = glb.transfer.bands;
   gl::Context::check("viewer: the baked glb");
 }
 
 BakedRenderer::~BakedRenderer() = default;
+
+void BakedRenderer::setTransferLight(const std::vector<Rgb>& sh) {
+  if (sh.size() != size_t(gl_->transferBands * gl_->transferBands))
+    throw Error(fmt::format("the transfer light has {} coefficients; the glb's {}-band transfer needs {}", sh.size(),
+                            gl_->transferBands, gl_->transferBands * gl_->transferBands));
+  gl_->transferLight = sh;
+}
 
 void BakedRenderer::draw(const glm::mat4& viewProjection, float outputScale) {
   Gl& g = *gl_;
@@ -158,6 +172,17 @@ void BakedRenderer::draw(const glm::mat4& viewProjection, float outputScale) {
     if (d.kind == kLightmap && m.lightmap >= 0 && size_t(m.lightmap) < g.linear.size()) glBindTextureUnit(1, g.linear[size_t(m.lightmap)]);
     // Directional: the normal map (unit 2) and the direction textures (units 3..10), as data.
     auto linearImage = [&](int image) { return image >= 0 && size_t(image) < g.linear.size() ? g.linear[size_t(image)] : 0u; };
+    // Transfer: band 0 in the lightmap's place (unit 1, RGBM), the ratio textures on units 3..14.
+    const bool transfer = d.transfer && !g.transferLight.empty() && linearImage(m.transferBand0) != 0 &&
+                          std::all_of(m.transferRatios.begin(), m.transferRatios.end(), [&](int i) { return linearImage(i) != 0; });
+    glUniform1i(loc("uTransferBands"), transfer ? m.transferBands : 0);
+    if (transfer) {
+      glUniform1f(loc("uRgbmRange"), m.transferBand0Range);
+      glBindTextureUnit(1, linearImage(m.transferBand0));
+      for (size_t k = 0; k < m.transferRatios.size() && k < 12; ++k) glBindTextureUnit(GLuint(3 + k), linearImage(m.transferRatios[k]));
+      glUniform1fv(loc("uRatioScale"), GLsizei(m.ratioScale.size()), m.ratioScale.data());
+      glUniform3fv(loc("uLight"), GLsizei(g.transferLight.size()), glm::value_ptr(g.transferLight[0]));
+    }
     const GLuint normalMap = m.normalTexture >= 0 && size_t(m.normalTexture) < g.normalMaps.size() ? g.normalMaps[size_t(m.normalTexture)] : 0u;
     const bool directional = d.directional && normalMap &&
                              std::all_of(m.directionImages.begin(), m.directionImages.end(), [&](int i) { return linearImage(i) != 0; });

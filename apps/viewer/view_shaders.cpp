@@ -366,7 +366,8 @@ void main() {
 
 // A glb's baked light as an engine shows it (docs/baking.md): per-vertex radiance as it is;
 // per-vertex or lightmap irradiance H (RGBM: rgb * a * range) times base colour over pi, plus
-// emission. glTF texture coordinates have v = 0 at the image's top, as the images are stored.
+// emission; a transfer lightmap's H relit by the light's SH as the three.js recipe does.
+// glTF texture coordinates have v = 0 at the image's top, as the images are stored.
 const char* kBakedVertex = R"(#version 450 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec2 aUv0;
@@ -403,6 +404,14 @@ uniform int uDirectional;
 uniform float uNormalScale;
 layout(binding = 2) uniform sampler2D uNormalMap;
 layout(binding = 3) uniform sampler2D uDirection[8];
+// LUXEL_lightmap_transfer (docs/baking.md): bands (0 for none); the lightmap is T_0 and the ratio
+// textures hold q_i = T_i / T_0 as 0.5 + 0.5 q / uRatioScale[i - 1], four numbers a texel (channel
+// fastest); uLight is the light's radiance SH. They share units 3.. with uDirection: a material is
+// one or the other.
+uniform int uTransferBands;
+layout(binding = 3) uniform sampler2D uRatio[12];
+uniform float uRatioScale[15];
+uniform vec3 uLight[16];
 uniform vec4 uBaseColor;
 uniform bool uBaseTexture;
 uniform vec3 uEmission;
@@ -447,6 +456,23 @@ vec3 directionalFactor(vec3 n, vec3 n0) {
   return vec3(f0.r > 0.0 ? max(f.r, 0.0) / f0.r : 1.0, f0.g > 0.0 ? max(f.g, 0.0) / f0.g : 1.0,
               f0.b > 0.0 ? max(f.b, 0.0) / f0.b : 1.0);
 }
+// H = T_0 (L_0 + sum_{i>=1} q_i L_i) per channel, clamped at zero (band-limited light rings below
+// zero in deep shadow): one dot product of the texel's transfer and the light's SH.
+vec3 transferIrradiance(vec3 t0) {
+  int n = uTransferBands * uTransferBands;
+  float q[48];
+  for (int k = 0; k < (3 * (n - 1) + 3) / 4; ++k) {
+    vec4 r = texture(uRatio[k], vUv1);
+    q[4 * k] = r.r;
+    q[4 * k + 1] = r.g;
+    q[4 * k + 2] = r.b;
+    q[4 * k + 3] = r.a;
+  }
+  vec3 sum = uLight[0];
+  for (int i = 1; i < n; ++i)
+    sum += (2.0 * vec3(q[3 * i - 3], q[3 * i - 2], q[3 * i - 1]) - 1.0) * uRatioScale[i - 1] * uLight[i];
+  return max(t0 * sum, vec3(0.0));
+}
 void main() {
   vec3 base = uBaseColor.rgb;
   if (uBaseTexture) base *= texture(uBaseMap, vUv0).rgb;
@@ -456,6 +482,7 @@ void main() {
   else if (uKind == 3) {
     vec4 rgbm = texture(uLightMap, vUv1);
     vec3 h = rgbm.rgb * rgbm.a * uRgbmRange;
+    if (uTransferBands > 0) h = transferIrradiance(h);
     if (uDirectional > 0) {
       // glTF's tangent frame: bitangent = cross(normal, tangent) * w, both along the image's up.
       vec3 n0 = normalize(vNormal), t = normalize(vTangent.xyz), b = cross(n0, t) * vTangent.w;

@@ -14,6 +14,7 @@
 #include "luxel/render.h"
 #include "render/corner_values.h"
 #include "scene_json_writer.h"
+#include "transfer_light.h"
 #include "view_shaders.h"
 
 namespace luxel::viewer {
@@ -66,6 +67,14 @@ Viewer::Viewer(Scene scene, ViewerOptions options)
   tone_ = std::make_unique<ToneMapPass>(shaderSource("tone.vert", options_.shaderDir),
                                         shaderSource("tone.frag", options_.shaderDir));
   if (options_.baked) bakedRenderer_ = std::make_unique<BakedRenderer>(*options_.baked, options_.shaderDir);
+  if (options_.baked && options_.baked->transfer.bands > 0) {
+    transferLight_ = options_.baked->transfer;
+    relightTransfer();
+    if (!transferLight_.suns.empty()) {
+      const auto [az, el] = sunAngles(loaded_.up, transferLight_.suns[0].direction);
+      ui_.transferSun[0] = az, ui_.transferSun[1] = el;
+    }
+  }
   if (options_.mode == ViewMode::Baked && !bakedRenderer_)
     throw Error(fmt::format("the baked view needs a glb written by luxel bake; '{}' is not one", options_.sceneName));
   startSession();
@@ -253,6 +262,8 @@ void Viewer::setLights(std::vector<Light> lights) {
 
 void Viewer::screenshot(const std::filesystem::path& path) { pendingScreenshots_.push_back(path); }
 
+void Viewer::relightTransfer() { bakedRenderer_->setTransferLight(transferLightSh(transferLight_, skyScale_)); }
+
 void Viewer::perform(const Action& a) {
   const auto start = Clock::now();
   const size_t editsBefore = pendingEdits_.size();
@@ -390,13 +401,8 @@ void Viewer::performNow(const Action& a) {
     setLights(std::move(lights));
   } else if (n == "sun") {
     std::vector<Light> lights = scene.lights;
-    const float az = glm::radians(argFloat(a, 0)), el = glm::radians(argFloat(a, 1));
-    const ViewCamera frame(Camera{}, scene.up, 1.0f);
     // Azimuth from the scene's east towards its north, elevation above the horizon; light travels down.
-    const Vec3 up = frame.up();
-    const Vec3 east = glm::normalize(glm::cross(Vec3(0, 0, -1) - up * glm::dot(Vec3(0, 0, -1), up), up));
-    const Vec3 north = glm::cross(up, east);
-    const Vec3 towardsSun = (east * std::cos(az) + north * std::sin(az)) * std::cos(el) + up * std::sin(el);
+    const Vec3 travel = sunTravelDirection(scene.up, argFloat(a, 0), argFloat(a, 1));
     auto it = std::find_if(lights.begin(), lights.end(), [](const Light& l) { return l.type == Light::Type::Directional; });
     if (it == lights.end()) {
       Light sun;
@@ -407,7 +413,7 @@ void Viewer::performNow(const Action& a) {
       lights.push_back(sun);
       it = lights.end() - 1;
     }
-    it->direction = -towardsSun;
+    it->direction = travel;
     if (a.args.size() > 2) it->intensity = argFloat(a, 2);
     markEdit(n);
     setLights(std::move(lights));
@@ -425,6 +431,29 @@ void Viewer::performNow(const Action& a) {
     }
     markEdit(n);
     setLights(std::move(lights));
+  } else if (n == "sun-direction" || n == "sun-irradiance" || n == "sky-scale") {
+    // The transfer bake's light (the baked view), not the live scene's: relit at once, no solve.
+    const std::string what = fmt::format("{}{}{}", a.where, a.where.empty() ? "" : ": ", n);
+    if (transferLight_.bands == 0)
+      throw Error(fmt::format("{}: '{}' holds no transfer bake to relight (`luxel bake SCENE -o OUT.glb --lightmaps "
+                              "--transfer 4` writes one)",
+                              what, options_.sceneName));
+    if (n != "sky-scale" && transferLight_.suns.empty())
+      throw Error(fmt::format("{}: the transfer bake has no sun (bake a scene with one: --sun X,Y,Z)", what));
+    BakedGlb::TransferLight light = transferLight_;
+    Rgb skyScale = skyScale_;
+    if (n == "sun-direction") {
+      const Vec3 d = parseDirection(a.args[0], what);
+      for (BakedGlb::TransferSun& sun : light.suns) sun.direction = d;
+    } else if (n == "sun-irradiance") {
+      const Rgb e = parseColour(a.args[0], what);
+      for (BakedGlb::TransferSun& sun : light.suns) sun.irradiance = e;
+    } else {
+      skyScale = parseColour(a.args[0], what);
+    }
+    transferLight_ = std::move(light);
+    skyScale_ = skyScale;
+    relightTransfer();
   } else if (n == "object.move" || n == "selected.move") {
     const bool sel = n == "selected.move";
     if (sel && selected_ < 0) throw Error(fmt::format("{}: selected.move: nothing is picked (click an object first)", a.where));

@@ -120,6 +120,10 @@ class Viewer {
   std::unique_ptr<Session> session_;
   std::unique_ptr<SceneRenderer> renderer_;
   std::unique_ptr<BakedRenderer> bakedRenderer_;  // when options_.baked
+  // A transfer bake's light as edited (sun-direction, sun-irradiance, sky-scale), bands 0 without one.
+  BakedGlb::TransferLight transferLight_;
+  Rgb skyScale_{1.0f};
+  void relightTransfer();  // hands the edited light to the baked renderer
   void drawPicture(const SceneRenderer::Frame& frame);  // the scene, or the glb's bake
   std::unique_ptr<HdrTarget> target_;
   std::unique_ptr<ToneMapPass> tone_;
@@ -159,6 +163,7 @@ class Viewer {
     std::deque<float> unshot, frameMs;  // plotted histories
     int budget = 0;                     // the element budget being typed
     float sun[2] = {45.0f, 45.0f};      // azimuth, elevation
+    float transferSun[2] = {45.0f, 45.0f};  // the transfer bake's sun: azimuth, elevation
     char savePath[256] = "edited-scene.json";
   } ui_;
   bool unshotKnown_ = false;  // the solver gives unshot radiosity (the unshot view)

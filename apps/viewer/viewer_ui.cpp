@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "luxel/error.h"
+#include "transfer_light.h"
 #include "viewer.h"
 
 namespace luxel::viewer {
@@ -129,6 +130,27 @@ void Viewer::drawUi() {
       if (ImGui::SmallButton("delete")) act("light.delete", {std::to_string(i)});
       ImGui::PopID();
     }
+  }
+  // A transfer bake's light (the baked view): the same actions as a script's, relit at once.
+  if (transferLight_.bands > 0 && ImGui::CollapsingHeader("Baked light (transfer)", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Text("%d bands, %zu sun%s", transferLight_.bands, transferLight_.suns.size(), transferLight_.suns.size() == 1 ? "" : "s");
+    if (!transferLight_.suns.empty()) {
+      float* sun = ui_.transferSun;
+      if (ImGui::SliderFloat2("baked sun az/el", sun, -180.0f, 180.0f, "%.0f")) {
+        sun[1] = std::clamp(sun[1], -90.0f, 90.0f);
+        const Vec3 d = sunTravelDirection(session_->scene().up, sun[0], sun[1]);
+        act("sun-direction", {fmt::format("{},{},{}", d.x, d.y, d.z)});
+      }
+      const Vec3 d = transferLight_.suns[0].direction;
+      ImGui::Text("travelling along %.3f, %.3f, %.3f", d.x, d.y, d.z);
+      const Rgb e = transferLight_.suns[0].irradiance;
+      float c[3] = {e.x, e.y, e.z};
+      if (ImGui::ColorEdit3("sun irradiance", c, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR))
+        act("sun-irradiance", {fmt::format("{},{},{}", std::max(c[0], 0.0f), std::max(c[1], 0.0f), std::max(c[2], 0.0f))});
+    }
+    float k[3] = {skyScale_.x, skyScale_.y, skyScale_.z};
+    if (ImGui::ColorEdit3("sky scale", k, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR))
+      act("sky-scale", {fmt::format("{},{},{}", std::max(k[0], 0.0f), std::max(k[1], 0.0f), std::max(k[2], 0.0f))});
   }
   if (selected_ >= 0 && ImGui::CollapsingHeader("Object", ImGuiTreeNodeFlags_DefaultOpen)) {
     const Object& o = session_->scene().objects[size_t(selected_)];

@@ -2,6 +2,11 @@
 // missing), headless, and with bad scripts and options.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <functional>
+
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_runner.h"
@@ -126,6 +131,129 @@ TEST(GlViewerCli, DirectionalBakeShowsTheNormalMapAsLuxelRenderDoes) {
     const luxel::test::RegionDifference plain = luxel::test::compareRegions(shown, luxel::readExr(dir / "plain.exr"), 8, 0.1);
     EXPECT_GT(plain.worst, 0.3) << mode << ": the plain lightmap should miss the stripes";
   }
+}
+
+// An open corner (a floor and two walls) under a sun and a uniform sky, for transfer bakes.
+void writeCorner(const fs::path& dir) {
+  writeFile(dir / "corner.mtl", "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl back\nKd 0.7 0.35 0.3\nnewmtl left\nKd 0.3 0.6 0.35\n");
+  writeFile(dir / "corner.obj", "mtllib corner.mtl\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nv -2 0 -2\nv 2 2 -2\nv -2 2 -2\nv -2 2 2\n"
+                                "o floor\nusemtl floor\nf 1 2 3 4\no back\nusemtl back\nf 4 3 5 6\no left\nusemtl left\nf 1 4 6 7\n");
+  writeFile(dir / "corner.json", R"({"meshes": [{"file": "corner.obj"}],
+    "lights": [{"type": "directional", "name": "sun", "direction": [-0.4, -1, -0.6], "intensity": 1000},
+               {"type": "sky", "intensity": 30}]})");
+}
+
+// A transfer bake (LUXEL_lightmap_transfer) relit in the baked view: the open corner's sun turned
+// 30 degrees about the vertical by the `sun-direction` action, towards the left wall and away from
+// the back one. Before and after, the view agrees per region with `luxel render --mode lightmap
+// --transfer 4` (with `--sun-direction` at the turned sun): the same dot product of the light's SH
+// and each texel's transfer, the glb's 8-bit RGBM band 0 and ratios against luxel's floats. The
+// turn changes the picture by far more than that tolerance, so the test would see a view that
+// ignored it.
+TEST(GlViewerCli, TransferBakeIsRelitWhenTheSunTurnsAsLuxelRenderRelitsIt) {
+  const fs::path dir = scratchDir();
+  writeCorner(dir);
+  const float turn = 30.0f * 3.14159265f / 180.0f;
+  const float x = -0.4f, z = -0.6f;
+  const std::string turned = fmt::format("{},{},{}", x * std::cos(turn) + z * std::sin(turn), -1.0f, -x * std::sin(turn) + z * std::cos(turn));
+  const std::vector<std::string> camera = {"--eye", "2.2,3.2,2.2", "--target", "-1.2,0.2,-1.2", "--fov", "50", "--size", "128x128"};
+  const std::vector<std::string> bake = {"--transfer", "4", "--elements", "2000", "-q"};
+  ASSERT_EQ(luxel(dir, with({"bake", "corner.json", "-o", "corner.glb", "--lightmaps"}, bake)).code, 0);
+  // Then the sun back, recoloured, and the sky doubled: the light of recoloured.json.
+  writeFile(dir / "turn.txt", "0 screenshot before.exr\n1 sun-direction " + turned + "\n2 screenshot after.exr\n"
+                              "3 sun-direction -0.4,-1,-0.6\n3 sun-irradiance 500,250,100\n3 sky-scale 2\n4 screenshot recoloured.exr\n");
+  writeFile(dir / "recoloured.json", R"({"meshes": [{"file": "corner.obj"}],
+    "lights": [{"type": "directional", "direction": [-0.4, -1, -0.6], "intensity": 500, "color": [1, 0.5, 0.2]},
+               {"type": "sky", "intensity": 60}]})");
+  const CliRun view = luxel(dir, with({"view", "corner.glb", "--headless", "--paused", "--frames", "5", "--script", "turn.txt"}, camera));
+  if (view.code != 0 && view.err.find("OpenGL 4.5") != std::string::npos) GTEST_SKIP() << "no OpenGL 4.5 context: " << view.err;
+  ASSERT_EQ(view.code, 0) << view.err;
+  const std::vector<std::string> render = with(with({"render", "corner.json", "--mode", "lightmap"}, bake), camera);
+  ASSERT_EQ(luxel(dir, with(render, {"-o", "render-before.exr"})).code, 0);
+  ASSERT_EQ(luxel(dir, with(render, {"-o", "render-after.exr", "--sun-direction", turned})).code, 0);
+  ASSERT_EQ(luxel(dir, with(with({"render", "recoloured.json", "--mode", "lightmap"}, bake), with(camera, {"-o", "render-recoloured.exr"}))).code, 0);
+  const luxel::Image before = luxel::readExr(dir / "before.exr"), after = luxel::readExr(dir / "after.exr");
+  for (const auto& [shown, name] : {std::pair<luxel::Image, std::string>{before, "before"}, {after, "after"},
+                                    {luxel::readExr(dir / "recoloured.exr"), "recoloured"}}) {
+    const luxel::test::RegionDifference d = luxel::test::compareRegions(shown, luxel::readExr(dir / ("render-" + name + ".exr")), 8, 0.1);
+    EXPECT_LT(d.worst, 0.05) << name << ": region " << d.region << ": view " << d.a << ", render " << d.b;
+  }
+  const luxel::test::RegionDifference turnedMoved = luxel::test::compareRegions(after, before, 8, 0.1);
+  EXPECT_GT(turnedMoved.worst, 0.3) << "the turned sun should relight the walls: region " << turnedMoved.region;
+  const luxel::test::RegionDifference recolouredMoved = luxel::test::compareRegions(luxel::readExr(dir / "recoloured.exr"), before, 8, 0.1);
+  EXPECT_GT(recolouredMoved.worst, 0.3) << "the recoloured sun and sky should relight the corner: region " << recolouredMoved.region;
+}
+
+// Rewrites the JSON chunk of glb `from` into `to` (docs: the glTF 2.0 binary container).
+void editGlbJson(const fs::path& from, const fs::path& to, const std::function<void(nlohmann::json&)>& edit) {
+  const std::string glb = readFile(from);
+  auto u32 = [&](size_t at) { uint32_t v; std::memcpy(&v, glb.data() + at, 4); return v; };
+  const uint32_t jsonLength = u32(12);
+  nlohmann::json json = nlohmann::json::parse(glb.substr(20, jsonLength));
+  edit(json);
+  std::string text = json.dump();
+  text.resize((text.size() + 3) / 4 * 4, ' ');
+  const std::string rest = glb.substr(20 + jsonLength);
+  std::string out = glb.substr(0, 12);
+  auto put = [&](size_t at, uint32_t v) { std::memcpy(out.data() + at, &v, 4); };
+  put(8, uint32_t(12 + 8 + text.size() + rest.size()));
+  out += std::string(8, '\0');
+  put(12, uint32_t(text.size()));
+  put(16, u32(16));
+  writeFile(to, out + text + rest);
+}
+
+// readBakedGlb checks LUXEL_lightmap_transfer before anything is drawn: a broken extension is one
+// error naming the file, the material and what is wrong; the actions check their numbers.
+TEST(GlViewerCli, BrokenTransferBakeIsAnErrorNamingTheFileAndWhat) {
+  const fs::path dir = scratchDir();
+  writeCorner(dir);
+  ASSERT_EQ(luxel(dir, {"bake", "corner.json", "-o", "corner.glb", "--lightmaps", "--transfer", "2", "--elements", "300", "-q"}).code, 0);
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> cases = {
+      {[](nlohmann::json& e) { e["bands"] = 5; }, "bands is 5, not 2, 3 or 4"},
+      {[](nlohmann::json& e) { e["ratioScale"].erase(0); }, "ratioScale is not an array of 3 numbers"},
+      {[](nlohmann::json& e) { e["ratioScale"][1] = 0; }, "ratioScale[1] is 0, not above 0"},
+      {[](nlohmann::json& e) { e["ratios"][0]["index"] = 999; }, "ratios[0].index 999 is not one of the file's"},
+      {[](nlohmann::json& e) { e["ratios"].erase(0); }, "ratios is not an array of 3 textures"},
+      {[](nlohmann::json& e) { e["band0"]["texCoord"] = 0; }, "band0.texCoord is 0"},
+      {[](nlohmann::json& e) { e["sky"][2] = {1, 2}; }, "sky[2] is not an array of 3 numbers"},
+      {[](nlohmann::json& e) { e["suns"][0]["direction"] = {0, 0, 0}; }, "suns[0].direction is zero"},
+      {[](nlohmann::json& e) { e.erase("suns"); }, "has no 'suns'"},
+  };
+  for (const auto& [edit, message] : cases) {
+    editGlbJson(dir / "corner.glb", dir / "broken.glb", [&](nlohmann::json& json) {
+      for (nlohmann::json& m : json["materials"])
+        if (m.contains("extensions") && m["extensions"].contains("LUXEL_lightmap_transfer")) {
+          edit(m["extensions"]["LUXEL_lightmap_transfer"]);
+          break;  // the first only
+        }
+    });
+    const std::vector<std::string> before = listDir(dir);
+    expectFailure(luxel(dir, {"view", "broken.glb", "--headless", "--frames", "1"}), dir, before,
+                  {"broken.glb: material", "LUXEL_lightmap_transfer: " + message});
+  }
+  // The light of every material is one: the second material's suns edited alone disagree.
+  editGlbJson(dir / "corner.glb", dir / "broken.glb", [&](nlohmann::json& json) {
+    int seen = 0;
+    for (nlohmann::json& m : json["materials"])
+      if (m.contains("extensions") && m["extensions"].contains("LUXEL_lightmap_transfer") && seen++ == 1)
+        m["extensions"]["LUXEL_lightmap_transfer"]["suns"][0]["irradiance"] = {1, 1, 1};
+  });
+  std::vector<std::string> before = listDir(dir);
+  expectFailure(luxel(dir, {"view", "broken.glb", "--headless", "--frames", "1"}), dir, before,
+                {"broken.glb: material", "differ from material"});
+  // Actions: a direction that is not one, and a glb without a transfer.
+  writeFile(dir / "bad.txt", "0 sun-direction 0,0,0\n");
+  writeFile(dir / "short.txt", "0 sun-direction 1,2\n");
+  ASSERT_EQ(luxel(dir, {"bake", "corner.json", "-o", "plain.glb", "--lightmaps", "--elements", "300", "-q"}).code, 0);
+  before = listDir(dir);
+  const CliRun zero = luxel(dir, {"view", "corner.glb", "--headless", "--frames", "2", "--script", "bad.txt", "--size", "32x32"});
+  if (zero.code != 0 && zero.err.find("OpenGL 4.5") != std::string::npos) GTEST_SKIP() << "no OpenGL 4.5 context: " << zero.err;
+  expectFailure(zero, dir, before, {"bad.txt:1: sun-direction: the direction is zero"});
+  expectFailure(luxel(dir, {"view", "corner.glb", "--headless", "--frames", "2", "--script", "short.txt", "--size", "32x32"}), dir, before,
+                {"short.txt:1: sun-direction: '1,2' is not X,Y,Z"});
+  expectFailure(luxel(dir, {"view", "plain.glb", "--headless", "--frames", "2", "--script", "bad.txt", "--size", "32x32"}), dir, before,
+                {"bad.txt:1: sun-direction: '", "holds no transfer bake to relight"});
 }
 
 TEST(GlViewerCli, ScriptMistakesFailBeforeAnyWindowNamingTheLine) {
