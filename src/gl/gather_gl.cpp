@@ -12,9 +12,11 @@
 #include "gl/gl_context.h"
 #include "gl/gpu_system.h"
 #include "gl/hemicube.h"
+#include "gl/hemicube_glsl.h"
 #include "gl/layered_hemicubes.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
+#include "core/spherical_harmonics.h"
 #include "core/stopwatch.h"
 #include "solve/step_control.h"
 #include "luxel/error.h"
@@ -34,15 +36,21 @@ layout(std430, binding = GATHER_DELTA_BINDING) readonly buffer Deltas { float de
 layout(std430, binding = GATHER_ELEMENT_BINDING) readonly buffer GatherElements { GpuGatherElement gatherElements[]; };
 layout(std430, binding = GATHER_RESIDUAL_BINDING) buffer Residual { uint maxChange; uint maxRadiosity; };
 layout(std430, binding = ELEMENT_STATE_BINDING) buffer ElementStates { GpuElementState states[]; };
+layout(std430, binding = SHOOTER_BINDING) readonly buffer Eyes { GpuShooter eyes[]; };
+// Directional bakes (Solver::recordIncidentSh): the L1 SH of what this iteration gathered, 4 per
+// element, rgb: each pixel one direction, its centre's.
+layout(std430, binding = ELEMENT_SH_BINDING) writeonly buffer ElementSh { vec4 elementSh[]; };
+uniform bool recordSh;
 uniform uint firstElement, samples;
 uniform int resolution;
 uniform bool firstIteration;
 shared vec3 partial[GATHER_GROUP];
+shared vec3 partialSh[4][GATHER_GROUP];
 void main() {
   const uint local = gl_WorkGroupID.x, e = firstElement + local, tid = gl_LocalInvocationIndex;
   const int half_ = resolution / 2, top = resolution * resolution, side = resolution * half_;
   const int perHemicube = top + 4 * side;
-  vec3 sum = vec3(0.0);
+  vec3 sum = vec3(0.0), sh[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
   for (int i = int(tid); i < int(samples) * perHemicube; i += GATHER_GROUP) {
     const int h = i / perHemicube, k = i % perHemicube;
     int face, x, y, d;
@@ -52,15 +60,38 @@ void main() {
       const int j = k - top, r = j % side;
       face = 1 + j / side; x = r % resolution; y = half_ + r / resolution; d = top + r;
     }
-    sum += deltas[d] * texelFetch(radiosityLayers, ivec3(x, y, (int(local * samples) + h) * 5 + face), 0).rgb;
+    const vec3 b = texelFetch(radiosityLayers, ivec3(x, y, (int(local * samples) + h) * 5 + face), 0).rgb;
+    sum += deltas[d] * b;
+    if (recordSh) {
+      // The pixel centre's direction, by hemicubeClip's conventions inverted: d + x s + y u.
+      const GpuShooter eye = eyes[e * samples + uint(h)];
+      const HemicubeFrame f = hemicubeFrame(eye.normal.xyz, eye.normal.w);
+      vec3 fwd, up;
+      if (face == 0) { fwd = f.n; up = f.b; }
+      else { up = f.n; fwd = face == 1 ? f.t : face == 2 ? -f.t : face == 3 ? f.b : -f.b; }
+      const vec3 s = normalize(cross(fwd, up)), u = cross(s, fwd);
+      const vec2 ndc = (vec2(x, y) + 0.5) / float(resolution) * 2.0 - 1.0;
+      const vec3 w = normalize(fwd + ndc.x * s + ndc.y * u);
+      // Radiance b / pi over the pixel's solid angle, pi delta / cos: b delta / cos.
+      const vec3 weight = deltas[d] / max(dot(w, f.n), 1e-3) * b;
+      sh[0] += 0.282095 * weight;
+      sh[1] += 0.488603 * w.y * weight, sh[2] += 0.488603 * w.z * weight, sh[3] += 0.488603 * w.x * weight;
+    }
   }
   partial[tid] = sum;
+  for (int i = 0; i < 4; ++i) partialSh[i][tid] = sh[i];
   barrier();
   for (uint w = GATHER_GROUP / 2; w > 0u; w >>= 1) {
-    if (tid < w) partial[tid] += partial[tid + w];
+    if (tid < w) {
+      partial[tid] += partial[tid + w];
+      if (recordSh)
+        for (int i = 0; i < 4; ++i) partialSh[i][tid] += partialSh[i][tid + w];
+    }
     barrier();
   }
   if (tid != 0u) return;
+  if (recordSh)
+    for (int i = 0; i < 4; ++i) elementSh[4u * e + uint(i)] = vec4(partialSh[i][0] / float(samples), 0.0);
   GpuGatherElement g = gatherElements[e];
   const vec3 h = g.analytic.rgb + partial[0] / float(samples);
   const vec3 b = g.emissionArea.rgb + g.reflectance.rgb * h;
@@ -107,9 +138,9 @@ float hemicubeTurn(uint32_t a, uint32_t b, uint32_t c) {
 
 struct Buffers {
   GLuint deltas = 0, gatherElements = 0, residual = 0, states = 0, eyes = 0, patches = 0, patchElements = 0,
-         patchRadiosity = 0;
+         patchRadiosity = 0, elementSh = 0;
   ~Buffers() {
-    const GLuint all[] = {deltas, gatherElements, residual, states, eyes, patches, patchElements, patchRadiosity};
+    const GLuint all[] = {deltas, gatherElements, residual, states, eyes, patches, patchElements, patchRadiosity, elementSh};
     glDeleteBuffers(GLsizei(std::size(all)), all);
   }
   void bind() const {
@@ -121,6 +152,7 @@ struct Buffers {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchBinding, patches);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchElementBinding, patchElements);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchRadiosityBinding, patchRadiosity);
+    if (elementSh) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementShBinding, elementSh);
   }
 };
 
@@ -191,13 +223,15 @@ class GlGatherSolver final : public Solver {
     buf_.patchRadiosity = storageBuffer(patchRadiosity.data(), patchRadiosity.size() * sizeof(glm::vec4));
 
     const std::string preamble = glslPreamble();
-    integrate_ = std::make_unique<ShaderProgram>("radiosity hemicube integration", preamble + kIntegrateCompute);
+    integrate_ = std::make_unique<ShaderProgram>("radiosity hemicube integration",
+                                                 preamble + kHemicubeGlsl + kIntegrateCompute);
     patchMean_ = std::make_unique<ShaderProgram>("patch mean radiosity", preamble + kPatchMeanCompute);
     integrate_->use();
     glUniform1ui(glGetUniformLocation(integrate_->id(), "samples"), GLuint(samples_));
     glUniform1i(glGetUniformLocation(integrate_->id(), "resolution"), o.resolution);
     firstElement_ = glGetUniformLocation(integrate_->id(), "firstElement");
     firstIteration_ = glGetUniformLocation(integrate_->id(), "firstIteration");
+    glUniform1i(glGetUniformLocation(integrate_->id(), "recordSh"), 0);
     patchMean_->use();
     glUniform1ui(glGetUniformLocation(patchMean_->id(), "patchCount"), GLuint(np));
     Context::check("setting up GPU gathering");
@@ -231,7 +265,29 @@ class GlGatherSolver final : public Solver {
     return sol;
   }
 
+  // L1 only. Each iteration gathers everything again, so its directions replace the last's: they
+  // are the solution's once an iteration has run with them on.
+  void recordIncidentSh(int count) override {
+    if (count != kShL1Coefficients || buf_.elementSh) return;
+    const std::vector<glm::vec4> zero(kShL1Coefficients * sys_.elementCount(), glm::vec4(0.0f));
+    buf_.elementSh = storageBuffer(zero.data(), zero.size() * sizeof(glm::vec4));
+    buf_.bind();
+    integrate_->use();
+    glUniform1i(glGetUniformLocation(integrate_->id(), "recordSh"), 1);
+    Context::check("recording directions on the GPU");
+  }
+
+  bool incidentSh(int count, std::span<Rgb> out) override {
+    if (count != kShL1Coefficients || !shRecorded_) return false;  // the owner gathers them by rays
+    std::vector<glm::vec4> sh(kShL1Coefficients * sys_.elementCount());
+    glGetNamedBufferSubData(buf_.elementSh, 0, GLsizeiptr(sh.size() * sizeof(glm::vec4)), sh.data());
+    Context::check("reading back the GPU's directions");
+    for (size_t i = 0; i < sh.size(); ++i) out[i] = Rgb(sh[i]);
+    return true;
+  }
+
   // The element states and patch means, read back from the GPU, and the iteration's counters.
+  // Recorded directions are not kept: a resumed solve records them at its next iteration.
   bool checkpoints() const override { return true; }
   void saveState(StateWriter& out) const override {
     for (GLuint b : {buf_.states, buf_.patchRadiosity}) saveBuffer(b, out);
@@ -240,6 +296,7 @@ class GlGatherSolver final : public Solver {
   }
   void restoreState(StateReader& in) override {
     for (GLuint b : {buf_.states, buf_.patchRadiosity}) restoreBuffer(b, in);
+    shRecorded_ = false;
     in.value(iteration_), in.value(residual_);
     rendered_ = size_t(in.value<uint64_t>());
     in.value(seconds_), in.value(done_);
@@ -278,6 +335,7 @@ class GlGatherSolver final : public Solver {
     patchMean_->use();
     glDispatchCompute(GLuint((np + kPowerGroup - 1) / kPowerGroup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    shRecorded_ = buf_.elementSh != 0;
     uint32_t bits[2] = {0, 0};
     glGetNamedBufferSubData(buf_.residual, 0, sizeof bits, bits);
     Context::check("GPU gathering");
@@ -309,6 +367,7 @@ class GlGatherSolver final : public Solver {
   uint64_t rendered_ = 0;
   double setupSeconds_ = 0.0, seconds_ = 0.0;
   bool done_ = false;
+  bool shRecorded_ = false;  // the last iteration recorded its directions in buf_.elementSh
 };
 
 }  // namespace

@@ -184,8 +184,9 @@ uniform bool recordSh;
 // Bands 0 and 1 of the light a patch of exitance b brings point x (normal n) through the
 // visibility-weighted factor F: solve/incident_sh.cpp's addPatchSh for L1, so that the GPU's
 // directions are the CPU's. Far patches (under a fifth of their distance across) as one
-// direction; near ones by the polygon's irradiance vector (Arvo 1994) and solid angle (Van
-// Oosterom and Strackee 1983) at x, scaled by the visible share F / (unoccluded factor).
+// direction; near ones by the irradiance vector (Arvo 1994) and solid angle (Van Oosterom and
+// Strackee 1983) of the polygon's part in front of x, scaled by the visible share F / (unoccluded
+// factor).
 void addPatchL1(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, inout vec3 c[4]) {
   const int count = int(P.corners[0].w);
   vec3 middle = vec3(0.0);  // the corners' mean
@@ -194,6 +195,7 @@ void addPatchL1(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, inout vec3 c[4]) {
   const vec3 toPatch = middle - x;
   const float r2 = dot(toPatch, toPatch);
   vec3 v = vec3(0.0);
+  float omega = 0.0;  // the solid angle of the part in front of x's plane, a fan of triangles
   if (!(P.normalArea.w < 0.04 * r2) && dot(P.normalArea.xyz, P.corners[0].xyz - x) < 0.0) {
     // Arvo's contour sum over the polygon clipped to x's upper half-space.
     float d[4];
@@ -215,6 +217,11 @@ void addPatchL1(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, inout vec3 c[4]) {
       if (el > 0.0) v += atan(el, dot(r[i], r[i + 1 == m ? 0 : i + 1])) / el * e;
     }
     v *= (dot(v, n) < 0.0 ? -1.0 : 1.0) * 0.15915494309189535;
+    for (int i = 1; i + 1 < m; ++i) {
+      const float la = length(r[0]), lq = length(r[i]), lt = length(r[i + 1]);
+      omega += 2.0 * atan(abs(dot(r[0], cross(r[i], r[i + 1]))),
+                          la * lq * lt + dot(r[0], r[i]) * lt + dot(r[0], r[i + 1]) * lq + dot(r[i], r[i + 1]) * la);
+    }
   }
   const float unoccluded = dot(v, n), len = length(v);
   if (!(unoccluded > 1e-7) || !(len > 0.0)) {  // far, or the centroid sees none of it: one direction
@@ -224,12 +231,6 @@ void addPatchL1(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, inout vec3 c[4]) {
     c[0] += 0.282095 * weight;
     c[1] += 0.488603 * w.y * weight, c[2] += 0.488603 * w.z * weight, c[3] += 0.488603 * w.x * weight;
     return;
-  }
-  float omega = 0.0;  // the whole polygon's solid angle, a fan of triangles
-  for (int i = 1; i + 1 < count; ++i) {
-    const vec3 a = P.corners[0].xyz - x, q = P.corners[i].xyz - x, t = P.corners[i + 1].xyz - x;
-    const float la = length(a), lq = length(q), lt = length(t);
-    omega += 2.0 * atan(abs(dot(a, cross(q, t))), la * lq * lt + dot(a, q) * lt + dot(a, t) * lq + dot(q, t) * la);
   }
   omega = max(omega, 3.14159265 * len);
   const float visible = F / unoccluded;

@@ -63,9 +63,10 @@ void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb
   const Element& el = surfaces.elements[e];
   const Patch& patch = surfaces.patches[p];
   if (addFarPatchSh(el, patch, f, b, count, c)) return;
-  // v: the irradiance vector per unit exitance, the integral of w / pi over the visible polygon;
-  // v . n is the unoccluded factor.
-  const Vec3 v = polygonIrradianceVector(el.centroid, el.normal, patch.polygon, patch.normal);
+  // v: the irradiance vector per unit exitance, the integral of w / pi over the part of the
+  // polygon in front of the element; v . n is the unoccluded factor.
+  const PolygonMoments moments = clippedPolygonMoments(el.centroid, el.normal, patch.polygon, patch.normal);
+  const Vec3 v = moments.vector;
   const float unoccluded = glm::dot(v, el.normal);
   const float length = glm::length(v);
   if (!(unoccluded > 1e-7f) || !(length > 0.0f)) {
@@ -79,7 +80,7 @@ void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb
     return;
   }
   const float visible = f / unoccluded;
-  const Rgb m0 = addVisibleMoments(v, length, polygonSolidAngle(el.centroid, patch.polygon), visible, b, count, c);
+  const Rgb m0 = addVisibleMoments(v, length, moments.solidAngle, visible, b, count, c);
   if (count < kShCoefficients) return;
   // Band 2: the polygon cut into k x k pieces, each one direction (its irradiance vector's) with
   // its solid angle; k grows as the patch comes closer, where one direction would misplace the
@@ -93,10 +94,11 @@ void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb
   }
   const Polygon& poly = patch.polygon;
   auto addPiece = [&](const Polygon& piece) {
-    const Vec3 pv = polygonIrradianceVector(el.centroid, el.normal, piece, patch.normal);
+    const PolygonMoments pm = clippedPolygonMoments(el.centroid, el.normal, piece, patch.normal);
+    const Vec3 pv = pm.vector;
     const float pl = glm::length(pv);
     if (!(pl > 0.0f)) return;
-    const float pieceOmega = std::max(polygonSolidAngle(el.centroid, piece), std::numbers::pi_v<float> * pl);
+    const float pieceOmega = std::max(pm.solidAngle, std::numbers::pi_v<float> * pl);
     const auto y = shBasis(pv / pl);
     const Rgb w = (visible * pieceOmega / std::numbers::pi_v<float>) * b;
     for (int i = 4; i < kShCoefficients; ++i) c[i] += y[size_t(i)] * w;

@@ -20,8 +20,8 @@ namespace luxel {
 // Oosterom and Strackee, and its irradiance vector, Arvo 1994), scaled by the visible share
 // f / (unoccluded factor); band 2 from pieces of the polygon, each taken as one direction, more of
 // them the nearer the patch.
-// The solid angle is of the whole polygon where the element's plane cuts it: a small excess in
-// band 0, which the renormalisation to the texel's irradiance at display absorbs.
+// Where the element's plane cuts the polygon, both moments are of the part in front of it (a
+// light in the ceiling that reaches over a wall's plane lights it from the front part only).
 void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb b, int count, Rgb* c);
 
 // A patch under a fifth of its distance across, for L1 (count 4): one direction, its solid angle

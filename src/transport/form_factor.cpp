@@ -260,6 +260,25 @@ Vec3 polygonIrradianceVector(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNorma
   return sum * kInv2Pi;
 }
 
+PolygonMoments clippedPolygonMoments(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNormal) {
+  PolygonMoments m;
+  m.vector = polygonIrradianceVector(p, n, poly, polyNormal);
+  if (m.vector == Vec3(0.0f)) return m;
+  Vec3 r[8];
+  const int count = clipAbove(p, n, poly, r);
+  // Van Oosterom and Strackee over the clipped polygon's fan, as polygonSolidAngle.
+  double omega = 0.0;
+  for (int i = 1; i + 1 < count; ++i) {
+    const glm::dvec3 a(r[0]), b(r[i]), c(r[i + 1]);
+    const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+    const double num = glm::dot(a, glm::cross(b, c));
+    const double den = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+    omega += 2.0 * std::atan2(num, den);
+  }
+  m.solidAngle = float(std::abs(omega));
+  return m;
+}
+
 float pointPolygonDistance(Vec3 p, const Polygon& poly) {
   const Vec3 n = poly.normal();
   const float height = glm::dot(p - poly.v[0], n);

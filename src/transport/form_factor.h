@@ -38,6 +38,16 @@ void pointToPolygonFormFactors4(const Vec3 p[4], const Vec3 n[4], const Polygon&
 // "The Irradiance Jacobian for Partially Occluded Polyhedral Sources", SIGGRAPH 1994).
 Vec3 polygonIrradianceVector(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNormal);
 
+// The moments of the part of the one-sided polygon (unit normal polyNormal) in front of the plane
+// through `p` with normal `n`, seen from `p`: its irradiance vector (polygonIrradianceVector) and
+// its solid angle (Van Oosterom and Strackee's triangles, over the clipped polygon). Both zero for
+// a polygon seen from behind or wholly behind the plane.
+struct PolygonMoments {
+  Vec3 vector{0.0f};
+  float solidAngle = 0.0f;
+};
+PolygonMoments clippedPolygonMoments(Vec3 p, Vec3 n, const Polygon& poly, Vec3 polyNormal);
+
 // polygonIrradianceVector and polygonSolidAngle at four points at once, for lanes where the
 // polygon lies wholly in front of the point's plane (n[i]) and of its own (polyNormal): the
 // numbers of those functions to float rounding (atan2 by a polynomial within 2e-8 rad). Returns
