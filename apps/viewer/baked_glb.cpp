@@ -308,8 +308,35 @@ BakedGlb readBakedGlb(const std::filesystem::path& path) {
         out.indices.resize(out.positions.size());
         for (uint32_t i = 0; i < out.indices.size(); ++i) out.indices[i] = i;
       }
+      if (auto it = p.extensions.find("LUXEL_vertex_directional"); it != p.extensions.end()) {
+        // Directions per vertex: the mode and the attributes that hold them, checked as the schema says.
+        const tinygltf::Value& ext = it->second;
+        const auto bad = [&](const std::string& what) {
+          return Error(fmt::format("{}: mesh {}: LUXEL_vertex_directional {}", file, node.mesh, what));
+        };
+        if (!ext.IsObject() || !ext.Has("mode") || !ext.Get("mode").IsString() || !ext.Has("attributes") ||
+            !ext.Get("attributes").IsArray())
+          throw bad("needs a string 'mode' and an array 'attributes'");
+        const std::string mode = ext.Get("mode").Get<std::string>();
+        const size_t count = mode == "sh-l1" ? 3 : mode == "dominant" ? 1 : mode == "sh-l2" ? 8 : 0;
+        if (count == 0) throw bad(fmt::format("mode '{}' is not sh-l1, sh-l2 or dominant", mode));
+        const tinygltf::Value& names = ext.Get("attributes");
+        if (names.ArrayLen() != count) throw bad(fmt::format("has {} attributes where {} needs {}", names.ArrayLen(), mode, count));
+        out.directionalMode = mode;
+        for (size_t k = 0; k < count; ++k) {
+          const tinygltf::Value& name = names.Get(int(k));
+          if (!name.IsString() || !p.attributes.count(name.Get<std::string>()))
+            throw bad(fmt::format("attribute {} is not one of the primitive's", k));
+          const std::string attribute = name.Get<std::string>();
+          const std::vector<glm::vec3> values = read.floats<3>(p.attributes.at(attribute), attribute.c_str());
+          if (out.directions.empty()) out.directions.assign(values.size(), {});
+          if (values.size() != out.directions.size()) throw bad(fmt::format("attribute {} has another length", attribute));
+          for (size_t v = 0; v < values.size(); ++v) out.directions[v][k] = values[v];
+        }
+      }
       const size_t n = out.positions.size();
-      if ((!out.uv0.empty() && out.uv0.size() != n) || (!out.uv1.empty() && out.uv1.size() != n) ||
+      if ((!out.directions.empty() && out.directions.size() != n) ||
+          (!out.uv0.empty() && out.uv0.size() != n) || (!out.uv1.empty() && out.uv1.size() != n) ||
           (!out.colors.empty() && out.colors.size() != n) || (!out.normals.empty() && out.normals.size() != n) ||
           (!out.tangents.empty() && out.tangents.size() != n))
         throw Error(fmt::format("{}: a primitive of mesh {} has attributes of different lengths", file, node.mesh));

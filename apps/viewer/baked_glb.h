@@ -7,6 +7,7 @@
 // live solve.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -25,6 +26,10 @@ struct BakedGlb {
     std::vector<Rgb> colors;      // COLOR_0 times vertexColorScale; empty when absent
     std::vector<Vec3> normals;       // NORMAL in world space; empty when absent
     std::vector<glm::vec4> tangents; // TANGENT in world space (w: the bitangent's sign); empty when absent
+    // LUXEL_vertex_directional (docs/baking.md, "Directions per vertex"): the mode ("" for none)
+    // and, per vertex, its attributes' values in the mode's order (unused entries zero).
+    std::string directionalMode;
+    std::vector<std::array<Vec3, 8>> directions;
     std::vector<uint32_t> indices;
     int material = -1;
   };

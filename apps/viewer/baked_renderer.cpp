@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -23,6 +24,7 @@ struct Vertex {
   Rgb color;
   Vec3 normal;
   glm::vec4 tangent;
+  std::array<Vec3, 8> directions;  // LUXEL_vertex_directional's values, or zero
 };
 
 // baked.frag's uDirectional: the LUXEL_lightmap_directional modes.
@@ -41,6 +43,7 @@ struct BakedRenderer::Gl {
     int material = -1;
     int kind = kNothing;
     bool directional = false;  // a directional lightmap under a normal map: read at the map's normal
+    int vertexDirections = 0;  // directions per vertex under a normal map: the mode's code
     bool transfer = false;     // a transfer lightmap (LUXEL_lightmap_transfer) with all its pages
   };
   int transferBands = 0;
@@ -79,10 +82,14 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
     for (size_t i = 0; i < p.positions.size(); ++i)
       vertices.push_back({p.positions[i], p.uv0.empty() ? Vec2(0.0f) : p.uv0[i], p.uv1.empty() ? Vec2(0.0f) : p.uv1[i],
                           p.colors.empty() ? Rgb(0.0f) : p.colors[i], p.normals.empty() ? Vec3(0.0f) : p.normals[i],
-                          p.tangents.empty() ? glm::vec4(0.0f) : p.tangents[i]});
+                          p.tangents.empty() ? glm::vec4(0.0f) : p.tangents[i],
+                          p.directions.empty() ? std::array<Vec3, 8>{} : p.directions[i]});
     d.directional = d.kind == kLightmap && m && !p.normals.empty() && !p.tangents.empty() && !p.uv0.empty() &&
                     m->normalTexture >= 0 && directionalCode(m->directionalMode) > 0;
     d.transfer = d.kind == kLightmap && m && m->transferBands > 0;
+    if (d.kind == kVertexRadiance && m && !p.directions.empty() && !p.normals.empty() && !p.tangents.empty() &&
+        !p.uv0.empty() && m->normalTexture >= 0)
+      d.vertexDirections = directionalCode(p.directionalMode);
     for (uint32_t i : p.indices) indices.push_back(base + i);
     d.count = GLsizei(indices.size()) - d.first;
     g.draws.push_back(d);
@@ -105,6 +112,7 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
   attribute(3, 3, offsetof(Vertex, color));
   attribute(4, 3, offsetof(Vertex, normal));
   attribute(5, 4, offsetof(Vertex, tangent));
+  for (GLuint k = 0; k < 8; ++k) attribute(6 + k, 3, offsetof(Vertex, directions) + k * sizeof(Vec3));
   // Base colour images are sRGB with mipmaps and repeat, lightmaps linear, clamped, unfiltered
   // across levels (docs/baking.md: sampled clamp-to-edge without mipmaps).
   for (const BakedGlb::Image& im : glb.images) {
@@ -186,7 +194,13 @@ void BakedRenderer::draw(const glm::mat4& viewProjection, float outputScale) {
     const GLuint normalMap = m.normalTexture >= 0 && size_t(m.normalTexture) < g.normalMaps.size() ? g.normalMaps[size_t(m.normalTexture)] : 0u;
     const bool directional = d.directional && normalMap &&
                              std::all_of(m.directionImages.begin(), m.directionImages.end(), [&](int i) { return linearImage(i) != 0; });
-    glUniform1i(loc("uDirectional"), directional ? directionalCode(m.directionalMode) : 0);
+    const bool vertexDirections = d.vertexDirections > 0 && normalMap;
+    glUniform1i(loc("uDirectional"), directional ? directionalCode(m.directionalMode) : vertexDirections ? d.vertexDirections : 0);
+    glUniform1i(loc("uVertexDirections"), vertexDirections);
+    if (vertexDirections) {
+      glUniform1f(loc("uNormalScale"), m.normalScale);
+      glBindTextureUnit(2, normalMap);
+    }
     if (directional) {
       glUniform1f(loc("uNormalScale"), m.normalScale);
       glBindTextureUnit(2, normalMap);

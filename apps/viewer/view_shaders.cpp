@@ -375,18 +375,21 @@ layout(location = 2) in vec2 aUv1;
 layout(location = 3) in vec3 aColor;
 layout(location = 4) in vec3 aNormal;
 layout(location = 5) in vec4 aTangent;
+layout(location = 6) in vec3 aDirection[8];  // LUXEL_vertex_directional's values
 uniform mat4 uViewProjection;
 out vec2 vUv0;
 out vec2 vUv1;
 out vec3 vColor;
 out vec3 vNormal;
 out vec4 vTangent;
+out vec3 vDirection[8];
 void main() {
   vUv0 = aUv0;
   vUv1 = aUv1;
   vColor = aColor;
   vNormal = aNormal;
   vTangent = aTangent;
+  for (int k = 0; k < 8; ++k) vDirection[k] = aDirection[k];
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
 )";
@@ -397,10 +400,13 @@ in vec2 vUv1;
 in vec3 vColor;
 in vec3 vNormal;
 in vec4 vTangent;
+in vec3 vDirection[8];
 uniform int uKind;  // 0 nothing baked, 1 vertex radiance, 2 vertex irradiance, 3 lightmap
 // LUXEL_lightmap_directional (docs/baking.md): 0 none, 1 sh-l1, 2 dominant, 3 sh-l2. The lightmap is
 // the irradiance at the geometric normal; the directions say how it changes at the normal map's.
 uniform int uDirectional;
+// The direction values come from the vertices (LUXEL_vertex_directional), not the textures.
+uniform bool uVertexDirections;
 uniform float uNormalScale;
 layout(binding = 2) uniform sampler2D uNormalMap;
 layout(binding = 3) uniform sampler2D uDirection[8];
@@ -426,25 +432,27 @@ float luxelL1(vec3 q, vec3 n) {
   float len = length(q), r = min(len, 1.0);
   return 0.25 * (1.0 - r) + max(dot(n, q), 0.0) * (len > 0.0 ? r / len : 0.0);
 }
+// Direction texture k's value here, or the vertices' (interpolated as the texels are).
+vec3 directionValue(int k) { return uVertexDirections ? vDirection[k] : texture(uDirection[k], vUv1).rgb; }
 vec3 directionalFactor(vec3 n, vec3 n0) {
   vec3 f, f0;
   if (uDirectional == 1) {
-    vec3 qx = 2.0 * texture(uDirection[0], vUv1).rgb - 1.0;
-    vec3 qy = 2.0 * texture(uDirection[1], vUv1).rgb - 1.0;
-    vec3 qz = 2.0 * texture(uDirection[2], vUv1).rgb - 1.0;
+    vec3 qx = 2.0 * directionValue(0) - 1.0;
+    vec3 qy = 2.0 * directionValue(1) - 1.0;
+    vec3 qz = 2.0 * directionValue(2) - 1.0;
     for (int c = 0; c < 3; ++c) {
       vec3 q = vec3(qx[c], qy[c], qz[c]);
       f[c] = luxelL1(q, n);
       f0[c] = luxelL1(q, n0);
     }
   } else if (uDirectional == 2) {
-    vec3 q = 2.0 * texture(uDirection[0], vUv1).rgb - 1.0;
+    vec3 q = 2.0 * directionValue(0) - 1.0;
     f = vec3(luxelL1(q, n));
     f0 = vec3(luxelL1(q, n0));
   } else {
     vec3 q[9];
     q[0] = vec3(1.0);
-    for (int i = 1; i < 9; ++i) q[i] = (2.0 * texture(uDirection[i - 1], vUv1).rgb - 1.0) * (i < 4 ? 1.7320508 : 2.2360680);
+    for (int i = 1; i < 9; ++i) q[i] = (2.0 * directionValue(i - 1) - 1.0) * (i < 4 ? 1.7320508 : 2.2360680);
     for (int k = 0; k < 2; ++k) {
       vec3 d = k == 0 ? n : n0;
       vec3 e = 3.1415927 * 0.282095 * q[0] + 2.0943951 * 0.488603 * (q[1] * d.y + q[2] * d.z + q[3] * d.x) +
@@ -477,19 +485,17 @@ void main() {
   vec3 base = uBaseColor.rgb;
   if (uBaseTexture) base *= texture(uBaseMap, vUv0).rgb;
   vec3 radiance = uEmission;
-  if (uKind == 1) radiance = vColor;
+  // glTF's tangent frame: bitangent = cross(normal, tangent) * w, both along the image's up.
+  vec3 n0 = normalize(vNormal), t = normalize(vTangent.xyz), b = cross(n0, t) * vTangent.w;
+  vec3 m = 2.0 * texture(uNormalMap, vUv0).rgb - 1.0;
+  vec3 n = normalize(t * (m.x * uNormalScale) + b * (m.y * uNormalScale) + n0 * m.z);
+  if (uKind == 1) radiance = uDirectional > 0 ? uEmission + (vColor - uEmission) * directionalFactor(n, n0) : vColor;
   else if (uKind == 2) radiance += base * kInvPi * vColor;
   else if (uKind == 3) {
     vec4 rgbm = texture(uLightMap, vUv1);
     vec3 h = rgbm.rgb * rgbm.a * uRgbmRange;
     if (uTransferBands > 0) h = transferIrradiance(h);
-    if (uDirectional > 0) {
-      // glTF's tangent frame: bitangent = cross(normal, tangent) * w, both along the image's up.
-      vec3 n0 = normalize(vNormal), t = normalize(vTangent.xyz), b = cross(n0, t) * vTangent.w;
-      vec3 m = 2.0 * texture(uNormalMap, vUv0).rgb - 1.0;
-      vec3 n = normalize(t * (m.x * uNormalScale) + b * (m.y * uNormalScale) + n0 * m.z);
-      h *= directionalFactor(n, n0);
-    }
+    if (uDirectional > 0) h *= directionalFactor(n, n0);
     radiance += base * kInvPi * h;
   }
   outRadiance = vec4(min(radiance * uOutputScale, vec3(60000.0)), 1.0);

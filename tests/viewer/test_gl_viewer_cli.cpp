@@ -97,8 +97,9 @@ TEST(GlViewerCli, BakedGlbShowsWhatLuxelRenderShowsOfTheBake) {
 // A directional bake (LUXEL_lightmap_directional) under a normal map, in the baked view: a floor
 // whose normal map has stripes tilted 12 degrees towards and away from a grazing lamp, which the
 // plain lightmap cannot show (it is the same whatever the normal). The view reads the directions
-// at the normal map's normal as `luxel render --mode lightmap --directional` does: within 5% per
-// region, where the plain render differs by far more.
+// at the normal map's normal as `luxel render --mode lightmap --directional` does, from the
+// lightmap's direction textures or the vertices' (--vertex-colors): within 5% per region, where
+// the plain render differs by far more.
 TEST(GlViewerCli, DirectionalBakeShowsTheNormalMapAsLuxelRenderDoes) {
   const fs::path dir = scratchDir();
   // The normal map: 16 x 1, the left half tilted towards +u, the right half away (tangent space).
@@ -119,18 +120,23 @@ TEST(GlViewerCli, DirectionalBakeShowsTheNormalMapAsLuxelRenderDoes) {
   const std::vector<std::string> camera = {"--eye", "0,4,3", "--target", "0,0,0", "--fov", "60", "--size", "128x128"};
   const std::vector<std::string> solve = with({"--elements", "1600"}, camera);
   ASSERT_EQ(luxel(dir, with({"render", "floor.json", "--mode", "lightmap", "-o", "plain.exr", "-q"}, solve)).code, 0);
-  for (const std::string mode : {"sh-l1", "dominant", "sh-l2"}) {
-    ASSERT_EQ(luxel(dir, {"bake", "floor.json", "-o", "floor.glb", "--lightmaps", "--directional", mode, "--elements", "1600", "-q"}).code, 0);
-    const CliRun view = luxel(dir, with({"view", "floor.glb", "--headless", "--paused", "--frames", "2", "--screenshot", "view.exr"}, camera));
-    if (view.code != 0 && view.err.find("OpenGL 4.5") != std::string::npos) GTEST_SKIP() << "no OpenGL 4.5 context: " << view.err;
-    ASSERT_EQ(view.code, 0) << view.err;
-    ASSERT_EQ(luxel(dir, with({"render", "floor.json", "--mode", "lightmap", "--directional", mode, "-o", "render.exr", "-q"}, solve)).code, 0);
-    const luxel::Image shown = luxel::readExr(dir / "view.exr");
-    const luxel::test::RegionDifference d = luxel::test::compareRegions(shown, luxel::readExr(dir / "render.exr"), 8, 0.1);
-    EXPECT_LT(d.worst, 0.05) << mode << ": region " << d.region << ": view " << d.a << ", render " << d.b;
-    const luxel::test::RegionDifference plain = luxel::test::compareRegions(shown, luxel::readExr(dir / "plain.exr"), 8, 0.1);
-    EXPECT_GT(plain.worst, 0.3) << mode << ": the plain lightmap should miss the stripes";
-  }
+  // Directional lightmaps, and directions per vertex (LUXEL_vertex_directional, on the element
+  // tessellation's vertex colours), against the same lightmap render.
+  for (const std::string bake : {"--lightmaps", "--vertex-colors"})
+    for (const std::string mode : {"sh-l1", "dominant", "sh-l2"}) {
+      ASSERT_EQ(luxel(dir, {"bake", "floor.json", "-o", "floor.glb", bake, "--directional", mode, "--elements", "1600", "-q"}).code, 0);
+      const CliRun view = luxel(dir, with({"view", "floor.glb", "--headless", "--paused", "--frames", "2", "--screenshot", "view.exr"}, camera));
+      if (view.code != 0 && view.err.find("OpenGL 4.5") != std::string::npos) GTEST_SKIP() << "no OpenGL 4.5 context: " << view.err;
+      ASSERT_EQ(view.code, 0) << view.err;
+      ASSERT_EQ(luxel(dir, with({"render", "floor.json", "--mode", "lightmap", "--directional", mode, "-o", "render.exr", "-q"}, solve)).code, 0);
+      const luxel::Image shown = luxel::readExr(dir / "view.exr");
+      const luxel::test::RegionDifference d = luxel::test::compareRegions(shown, luxel::readExr(dir / "render.exr"), 8, 0.1);
+      EXPECT_LT(d.worst, 0.05) << bake << " " << mode << ": region " << d.region << ": view " << d.a << ", render " << d.b;
+      const luxel::test::RegionDifference plain = luxel::test::compareRegions(shown, luxel::readExr(dir / "plain.exr"), 8, 0.1);
+      EXPECT_GT(plain.worst, 0.3) << bake << " " << mode << ": the plain lightmap should miss the stripes";
+      std::printf("%s %s: worst region %.4f off the directional render, %.3f off the plain one\n", bake.c_str(), mode.c_str(),
+                  d.worst, plain.worst);
+    }
 }
 
 // An open corner (a floor and two walls) under a sun and a uniform sky, for transfer bakes.
