@@ -209,6 +209,28 @@ void editGlbJson(const fs::path& from, const fs::path& to, const std::function<v
   writeFile(to, out + text + rest);
 }
 
+// readBakedGlb checks LUXEL_vertex_directional too: one error naming the file, the mesh and what.
+TEST(GlViewerCli, BrokenVertexDirectionsAreAnErrorNamingTheFileAndWhat) {
+  const fs::path dir = scratchDir();
+  writeCorner(dir);
+  ASSERT_EQ(luxel(dir, {"bake", "corner.json", "-o", "corner.glb", "--vertex-colors", "--directional", "sh-l1",
+                        "--elements", "300", "-q"}).code, 0);
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> cases = {
+      {[](nlohmann::json& e) { e["mode"] = "sh-l3"; }, "mode 'sh-l3' is not sh-l1, sh-l2 or dominant"},
+      {[](nlohmann::json& e) { e["attributes"].erase(0); }, "has 2 attributes where sh-l1 needs 3"},
+      {[](nlohmann::json& e) { e["attributes"][1] = "_NO_SUCH"; }, "attribute 1 is not one of the primitive's"},
+      {[](nlohmann::json& e) { e.erase("mode"); }, "needs a string 'mode' and an array 'attributes'"},
+  };
+  for (const auto& [edit, message] : cases) {
+    editGlbJson(dir / "corner.glb", dir / "broken.glb", [&](nlohmann::json& json) {
+      edit(json["meshes"][0]["primitives"][0]["extensions"]["LUXEL_vertex_directional"]);
+    });
+    const std::vector<std::string> before = listDir(dir);
+    expectFailure(luxel(dir, {"view", "broken.glb", "--headless", "--frames", "1"}), dir, before,
+                  {"broken.glb: mesh", "LUXEL_vertex_directional " + message});
+  }
+}
+
 // readBakedGlb checks LUXEL_lightmap_transfer before anything is drawn: a broken extension is one
 // error naming the file, the material and what is wrong; the actions check their numbers.
 TEST(GlViewerCli, BrokenTransferBakeIsAnErrorNamingTheFileAndWhat) {
