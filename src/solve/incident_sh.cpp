@@ -138,7 +138,7 @@ void addShooterBlockL1(const SurfaceSet& surfaces, const ElementFrames& frames, 
   // Elements a chunk at a time, so that the sums stay in L1 cache: the integral of the radiance
   // (band 0) and of the radiance times the direction (band 1), per channel.
   constexpr size_t kChunk = 64;
-  constexpr float kFarField2 = 0.04f;  // addFarPatchSh's kFarField, squared
+  constexpr float kFarField2 = kShFarField * kShFarField;  // addFarPatchSh's test
   float sum[3][kChunk], sumW[3][3][kChunk];
   uint8_t nearPair[kChunk];
   for (size_t first = begin; first < end; first += kChunk) {

@@ -28,11 +28,11 @@ void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb
 // A cos / r^2 to a few parts in a thousand, so f b / cos(theta) is the integral of L. Returns false
 // (and adds nothing) for a nearer patch or for L2, which addPatchSh then takes. Inline: a pass over
 // every element and shooter calls it tens of millions of times.
+inline constexpr float kShFarField = 0.2f;  // a far patch's side, at most, over its distance
 inline bool addFarPatchSh(const Element& el, const Patch& patch, float f, Rgb b, int count, Rgb* c) {
-  constexpr float kFarField = 0.2f;
   const Vec3 toPatch = patch.centroid - el.centroid;
   const float r2 = glm::dot(toPatch, toPatch);
-  if (count > kShL1Coefficients || !(patch.area < kFarField * kFarField * r2)) return false;
+  if (count > kShL1Coefficients || !(patch.area < kShFarField * kShFarField * r2)) return false;
   const Vec3 w = toPatch / std::sqrt(r2);
   const Rgb weight = (f / std::max(glm::dot(el.normal, w), kShMinimumCosine)) * b;
   c[0] += kShY0 * weight;
