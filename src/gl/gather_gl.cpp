@@ -28,7 +28,8 @@ namespace {
 
 // One work group per element of the batch: the sum over its k x k hemicubes' pixels of delta
 // form factor times radiosity, reduced in shared memory (floats in a fixed order: the same
-// answer every run), then the element's new radiosity B = E + rho (H0 + H).
+// answer every run), then the element's new radiosity B = E + rho (H0 + H); and, for directional
+// bakes, the same pixels' radiance in spherical harmonics.
 const char* kIntegrateCompute = R"(
 layout(local_size_x = GATHER_GROUP) in;
 layout(binding = DISTANCE_TEXTURE_UNIT) uniform sampler2DArray radiosityLayers;
@@ -37,20 +38,32 @@ layout(std430, binding = GATHER_ELEMENT_BINDING) readonly buffer GatherElements 
 layout(std430, binding = GATHER_RESIDUAL_BINDING) buffer Residual { uint maxChange; uint maxRadiosity; };
 layout(std430, binding = ELEMENT_STATE_BINDING) buffer ElementStates { GpuElementState states[]; };
 layout(std430, binding = SHOOTER_BINDING) readonly buffer Eyes { GpuShooter eyes[]; };
-// Directional bakes (Solver::recordIncidentSh): the L1 SH of what this iteration gathered, 4 per
-// element, rgb: each pixel one direction, its centre's.
+// Directional bakes (Solver::recordIncidentSh): the SH of what this iteration gathered, shCount
+// (0, 4 or 9) per element, rgb: each pixel one direction, its centre's.
 layout(std430, binding = ELEMENT_SH_BINDING) writeonly buffer ElementSh { vec4 elementSh[]; };
-uniform bool recordSh;
+uniform int shCount;
 uniform uint firstElement, samples;
 uniform int resolution;
 uniform bool firstIteration;
 shared vec3 partial[GATHER_GROUP];
-shared vec3 partialSh[4][GATHER_GROUP];
+
+// The group's sum of every thread's `value`, in a fixed order (the same answer every run).
+vec3 groupSum(vec3 value, uint tid) {
+  barrier();
+  partial[tid] = value;
+  barrier();
+  for (uint w = GATHER_GROUP / 2; w > 0u; w >>= 1) {
+    if (tid < w) partial[tid] += partial[tid + w];
+    barrier();
+  }
+  return partial[0];
+}
 void main() {
   const uint local = gl_WorkGroupID.x, e = firstElement + local, tid = gl_LocalInvocationIndex;
   const int half_ = resolution / 2, top = resolution * resolution, side = resolution * half_;
   const int perHemicube = top + 4 * side;
-  vec3 sum = vec3(0.0), sh[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+  vec3 sum = vec3(0.0), sh[9];
+  for (int i = 0; i < 9; ++i) sh[i] = vec3(0.0);
   for (int i = int(tid); i < int(samples) * perHemicube; i += GATHER_GROUP) {
     const int h = i / perHemicube, k = i % perHemicube;
     int face, x, y, d;
@@ -62,7 +75,7 @@ void main() {
     }
     const vec3 b = texelFetch(radiosityLayers, ivec3(x, y, (int(local * samples) + h) * 5 + face), 0).rgb;
     sum += deltas[d] * b;
-    if (recordSh) {
+    if (shCount > 0) {
       // The pixel centre's direction, by hemicubeClip's conventions inverted: d + x s + y u.
       const GpuShooter eye = eyes[e * samples + uint(h)];
       const HemicubeFrame f = hemicubeFrame(eye.normal.xyz, eye.normal.w);
@@ -74,26 +87,25 @@ void main() {
       const vec3 w = normalize(fwd + ndc.x * s + ndc.y * u);
       // Radiance b / pi over the pixel's solid angle, pi delta / cos: b delta / cos.
       const vec3 weight = deltas[d] / max(dot(w, f.n), 1e-3) * b;
+      // The real SH basis of core/spherical_harmonics.h, bands 0 to 2.
       sh[0] += 0.282095 * weight;
       sh[1] += 0.488603 * w.y * weight, sh[2] += 0.488603 * w.z * weight, sh[3] += 0.488603 * w.x * weight;
+      if (shCount > 4) {
+        sh[4] += 1.092548 * w.x * w.y * weight, sh[5] += 1.092548 * w.y * w.z * weight;
+        sh[6] += 0.315392 * (3.0 * w.z * w.z - 1.0) * weight, sh[7] += 1.092548 * w.x * w.z * weight;
+        sh[8] += 0.546274 * (w.x * w.x - w.y * w.y) * weight;
+      }
     }
   }
-  partial[tid] = sum;
-  for (int i = 0; i < 4; ++i) partialSh[i][tid] = sh[i];
-  barrier();
-  for (uint w = GATHER_GROUP / 2; w > 0u; w >>= 1) {
-    if (tid < w) {
-      partial[tid] += partial[tid + w];
-      if (recordSh)
-        for (int i = 0; i < 4; ++i) partialSh[i][tid] += partialSh[i][tid + w];
-    }
-    barrier();
+  // One shared array, reduced once per number: the group stays within the 32 KiB OpenGL promises.
+  for (int i = 0; i < shCount; ++i) {
+    const vec3 total = groupSum(sh[i], tid);
+    if (tid == 0u) elementSh[uint(shCount) * e + uint(i)] = vec4(total / float(samples), 0.0);
   }
+  const vec3 gathered = groupSum(sum, tid);
   if (tid != 0u) return;
-  if (recordSh)
-    for (int i = 0; i < 4; ++i) elementSh[4u * e + uint(i)] = vec4(partialSh[i][0] / float(samples), 0.0);
   GpuGatherElement g = gatherElements[e];
-  const vec3 h = g.analytic.rgb + partial[0] / float(samples);
+  const vec3 h = g.analytic.rgb + gathered / float(samples);
   const vec3 b = g.emissionArea.rgb + g.reflectance.rgb * h;
   GpuElementState st = states[e];
   const vec3 change = abs(b - st.radiosity.rgb);
@@ -231,7 +243,7 @@ class GlGatherSolver final : public Solver {
     glUniform1i(glGetUniformLocation(integrate_->id(), "resolution"), o.resolution);
     firstElement_ = glGetUniformLocation(integrate_->id(), "firstElement");
     firstIteration_ = glGetUniformLocation(integrate_->id(), "firstIteration");
-    glUniform1i(glGetUniformLocation(integrate_->id(), "recordSh"), 0);
+    glUniform1i(glGetUniformLocation(integrate_->id(), "shCount"), 0);
     patchMean_->use();
     glUniform1ui(glGetUniformLocation(patchMean_->id(), "patchCount"), GLuint(np));
     Context::check("setting up GPU gathering");
@@ -265,21 +277,22 @@ class GlGatherSolver final : public Solver {
     return sol;
   }
 
-  // L1 only. Each iteration gathers everything again, so its directions replace the last's: they
+  // L1 or L2. Each iteration gathers everything again, so its directions replace the last's: they
   // are the solution's once an iteration has run with them on.
   void recordIncidentSh(int count) override {
-    if (count != kShL1Coefficients || buf_.elementSh) return;
-    const std::vector<glm::vec4> zero(kShL1Coefficients * sys_.elementCount(), glm::vec4(0.0f));
+    if ((count != kShL1Coefficients && count != kShCoefficients) || buf_.elementSh) return;
+    const std::vector<glm::vec4> zero(size_t(count) * sys_.elementCount(), glm::vec4(0.0f));
     buf_.elementSh = storageBuffer(zero.data(), zero.size() * sizeof(glm::vec4));
+    shCount_ = count;
     buf_.bind();
     integrate_->use();
-    glUniform1i(glGetUniformLocation(integrate_->id(), "recordSh"), 1);
+    glUniform1i(glGetUniformLocation(integrate_->id(), "shCount"), count);
     Context::check("recording directions on the GPU");
   }
 
   bool incidentSh(int count, std::span<Rgb> out) override {
-    if (count != kShL1Coefficients || !shRecorded_) return false;  // the owner gathers them by rays
-    std::vector<glm::vec4> sh(kShL1Coefficients * sys_.elementCount());
+    if (count != shCount_ || !shRecorded_) return false;  // the owner gathers them by rays
+    std::vector<glm::vec4> sh(size_t(count) * sys_.elementCount());
     glGetNamedBufferSubData(buf_.elementSh, 0, GLsizeiptr(sh.size() * sizeof(glm::vec4)), sh.data());
     Context::check("reading back the GPU's directions");
     for (size_t i = 0; i < sh.size(); ++i) out[i] = Rgb(sh[i]);
@@ -368,6 +381,7 @@ class GlGatherSolver final : public Solver {
   double setupSeconds_ = 0.0, seconds_ = 0.0;
   bool done_ = false;
   bool shRecorded_ = false;  // the last iteration recorded its directions in buf_.elementSh
+  int shCount_ = 0;          // recordIncidentSh's count
 };
 
 }  // namespace
