@@ -16,40 +16,15 @@
 #include "luxel/directional_lightmap.h"
 #include "luxel/import.h"
 #include "luxel/lightmap.h"
+#include "unit/sh_furnace.h"
 
 namespace {
 
 using luxel::Rgb;
 using luxel::Vec3;
-
-void addQuad(luxel::Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
-  luxel::Mesh m;
-  m.name = "wall" + std::to_string(s.meshes.size());
-  m.positions = {a, b, c, d};
-  m.faces = {luxel::Face{{0, 1, 2, 3}}};
-  m.material = 0;
-  s.meshes.push_back(m);
-}
-
-// A closed 1 m box, every inward wall glowing evenly and reflecting half: each texel sees a
-// uniform hemisphere about its normal, c0 = 2 H Y00 and band 1 = H n Y1.
-luxel::Scene furnace() {
-  luxel::Scene s;
-  s.name = "furnace";
-  luxel::Material glow;
-  glow.name = "glow";
-  glow.reflectance = Rgb(0.5f);
-  glow.emission = Rgb(1.0f);
-  s.materials.push_back(glow);
-  const Vec3 p[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  addQuad(s, p[0], p[1], p[2], p[3]);
-  addQuad(s, p[4], p[7], p[6], p[5]);
-  addQuad(s, p[0], p[3], p[7], p[4]);
-  addQuad(s, p[1], p[5], p[6], p[2]);
-  addQuad(s, p[0], p[4], p[5], p[1]);
-  addQuad(s, p[3], p[2], p[6], p[7]);
-  return s;
-}
+using luxel::test::furnace;
+using luxel::test::furnaceErrors;
+using luxel::test::FurnaceErrors;
 
 luxel::BakedLightmaps bake(const luxel::Scene& s, const std::string& backend, luxel::DirectionalMode mode,
                            float texelsPerMetre, const std::string& method = "progressive") {
@@ -64,28 +39,6 @@ luxel::BakedLightmaps bake(const luxel::Scene& s, const std::string& backend, lu
     r.solve.settings.set("hemicube-resolution", 32).set("hemicubes-per-side", 1).set("residual", 1e-3);
   }
   return luxel::bakeLightmaps(s, r);
-}
-
-// Each texel's band 0 and band 1 against the furnace's uniform hemisphere: worst band 0, worst and
-// mean band 1, relative to the texel's irradiance.
-struct FurnaceErrors {
-  double worst0 = 0.0, worst1 = 0.0, mean1 = 0.0;
-};
-FurnaceErrors furnaceErrors(const luxel::BakedLightmaps& b) {
-  FurnaceErrors r;
-  const auto& set = b.bake.surfaces.surfaces;
-  for (size_t e = 0; e < set.elements.size(); ++e) {
-    const auto& t = b.bake.surfaces.texels[e];
-    const size_t i = size_t(t.y) * size_t(b.bake.pageSize) + t.x;
-    Rgb c[4];
-    for (int k = 0; k < 4; ++k) c[k] = b.bake.sh[size_t(k)][t.page][i];
-    const float h = b.bake.pages[t.page][i].r;
-    r.worst0 = std::max(r.worst0, double(std::abs(c[0].r - 2.0f * h * luxel::kShY0) / (2.0f * h * luxel::kShY0)));
-    const double off = glm::length(luxel::shBand1Vector(c[1].r, c[2].r, c[3].r) - h * set.elements[e].normal) / h;
-    r.worst1 = std::max(r.worst1, off);
-    r.mean1 += off / double(set.elements.size());
-  }
-  return r;
 }
 
 TEST(GlDirectionalLightmap, FurnaceDirectionsAreRecordedAsTheGpuShoots) {

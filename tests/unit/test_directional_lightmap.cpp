@@ -17,20 +17,14 @@
 #include "luxel/render.h"
 #include "luxel/solve.h"
 #include "luxel/surface.h"
+#include "sh_furnace.h"
 
 namespace {
 
 using luxel::Rgb;
 using luxel::Vec3;
-
-void addQuad(luxel::Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, uint32_t material) {
-  luxel::Mesh m;
-  m.name = "quad" + std::to_string(s.meshes.size());
-  m.positions = {a, b, c, d};
-  m.faces = {luxel::Face{{0, 1, 2, 3}}};
-  m.material = material;
-  s.meshes.push_back(m);
-}
+using luxel::test::addQuad;
+using luxel::test::furnace;
 
 // A 2 m floor in the xz plane facing +y, a lamp 0.5 m up and 3 m off to the side: light arrives
 // at about 75 degrees from the normal.
@@ -114,25 +108,6 @@ TEST(DirectionalLightmap, PlainLightmapMissesWhatTheDirectionCatches) {
   EXPECT_GT(lampIrradiance(s.lights[0], el.centroid, n), 1.5f * lampIrradiance(s.lights[0], el.centroid, el.normal));
 }
 
-luxel::Scene furnace() {
-  luxel::Scene s;
-  s.name = "furnace";
-  luxel::Material glow;
-  glow.name = "glow";
-  glow.reflectance = Rgb(0.5f);
-  glow.emission = Rgb(1.0f);
-  s.materials.push_back(glow);
-  const Vec3 p[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  // Inward-facing quads (counter-clockwise seen from inside).
-  addQuad(s, p[0], p[1], p[2], p[3], 0);  // z = 0, normal +z
-  addQuad(s, p[4], p[7], p[6], p[5], 0);  // z = 1, normal -z
-  addQuad(s, p[0], p[3], p[7], p[4], 0);  // x = 0, normal +x
-  addQuad(s, p[1], p[5], p[6], p[2], 0);  // x = 1, normal -x
-  addQuad(s, p[0], p[4], p[5], p[1], 0);  // y = 0, normal +y
-  addQuad(s, p[3], p[2], p[6], p[7], 0);  // y = 1, normal -y
-  return s;
-}
-
 // A closed 1 m box, every wall emitting evenly and reflecting half: the radiance inside is the
 // same everywhere and in every direction, so each texel's incident light is a uniform hemisphere
 // about its normal, whose SH is closed form: c0 = 2 H Y00, band 1 = H n Y1, band 2 = 0.
@@ -177,23 +152,11 @@ TEST(DirectionalLightmap, FurnaceTexelsSeeAUniformHemisphereInL1) {
   const luxel::Scene s = furnace();
   // 48 texels per metre: patches of 8 texels are a sixth of a metre, so most of them are far.
   const auto b = bake(s, luxel::DirectionalMode::ShL1, 48.0f);
-  const auto& set = b.bake.surfaces.surfaces;
-  double worst0 = 0.0, worst1 = 0.0, mean1 = 0.0;
-  for (size_t e = 0; e < set.elements.size(); ++e) {
-    const auto& t = b.bake.surfaces.texels[e];
-    const size_t i = size_t(t.y) * size_t(b.bake.pageSize) + t.x;
-    Rgb c[4];
-    for (int k = 0; k < 4; ++k) c[k] = b.bake.sh[size_t(k)][t.page][i];
-    const float h = b.bake.pages[t.page][i].r;
-    worst0 = std::max(worst0, double(std::abs(c[0].r - 2.0f * h * luxel::kShY0) / (2.0f * h * luxel::kShY0)));
-    const double off = glm::length(luxel::shBand1Vector(c[1].r, c[2].r, c[3].r) - h * set.elements[e].normal) / h;
-    worst1 = std::max(worst1, off);
-    mean1 += off / double(set.elements.size());
-  }
-  std::printf("L1 furnace: band 0 worst %.4f, band 1 worst %.4f mean %.4f\n", worst0, worst1, mean1);
-  EXPECT_LT(worst0, 0.025);
-  EXPECT_LT(worst1, 0.05);
-  EXPECT_LT(mean1, 0.015);
+  const luxel::test::FurnaceErrors r = luxel::test::furnaceErrors(b);
+  std::printf("L1 furnace: band 0 worst %.4f, band 1 worst %.4f mean %.4f\n", r.worst0, r.worst1, r.mean1);
+  EXPECT_LT(r.worst0, 0.025);
+  EXPECT_LT(r.worst1, 0.05);
+  EXPECT_LT(r.mean1, 0.015);
 }
 
 // The blocked L1 pass sums what addFarPatchSh and addPatchSh give pair by pair: form factors with
