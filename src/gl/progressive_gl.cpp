@@ -296,6 +296,7 @@ void main() {
   for (int q = 0; q < 4; ++q) x[q] = polygonPoint(el.corners, corners, 0.25 + 0.5 * float(q & 1), 0.25 + 0.5 * float(q >> 1));
   vec3 dh = vec3(0.0), dd = vec3(0.0);
   vec3 sh[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+  bool reached = false;     // some shot reached it: its directions change
   vec3 centre = vec3(0.0);  // the corners' mean: the centroid of a triangle or parallelogram
   for (int i = 0; i < corners; ++i) centre += el.corners[i].xyz / float(corners);
   bool shooter = false;
@@ -328,9 +329,13 @@ void main() {
     F *= 0.25;
     dh += F * s.unshot.rgb;
     dd += F * s.emission.rgb;
-    if (recordSh && F != 0.0) addPatchL1(centre, n, P, F, s.unshot.rgb, sh);
+    if (recordSh && F != 0.0) {
+      addPatchL1(centre, n, P, F, s.unshot.rgb, sh);
+      reached = true;
+    }
   }
-  if (recordSh && dh != vec3(0.0))
+  // Not only where dh is non-zero: a redistribution's shots of both signs can cancel in dh alone.
+  if (reached)
     for (int i = 0; i < 4; ++i) elementSh[4u * e + uint(i)].rgb += sh[i];
   if (redistributing) shooter = false;
   if (!shooter && dh == vec3(0.0) && dd == vec3(0.0)) return;
