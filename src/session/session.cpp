@@ -100,15 +100,20 @@ void Session::setMaterial(uint32_t material, const Rgb& reflectance, const Rgb& 
   state_->host->sourcesChanged();
 }
 
-std::vector<Rgb> Session::incidentSh(int count) {
+namespace {
+void checkShCount(int count) {
   if (count != kShL1Coefficients && count != kShCoefficients)
     throw Error(fmt::format("incident SH: {} coefficients per channel; 4 (L1) or 9 (L2) expected", count));
+}
+}  // namespace
+
+std::vector<Rgb> Session::incidentSh(int count) {
+  checkShCount(count);
   return state_->host->incidentSh(count);
 }
 
 void Session::recordIncidentSh(int count) {
-  if (count != kShL1Coefficients && count != kShCoefficients)
-    throw Error(fmt::format("incident SH: {} coefficients per channel; 4 (L1) or 9 (L2) expected", count));
+  checkShCount(count);
   state_->host->recordIncidentSh(count);
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -61,7 +62,9 @@ bool ProgressiveSolver::incidentSh(int count, std::span<Rgb> out) {
   // A block of columns at a time: those the cache lost are computed again, block by block.
   constexpr size_t kBlock = 32;
   std::vector<std::vector<float>> computed(kBlock);
-  const ElementFrames frames(sys_.surfaces);
+  // L1's blocked pass reads the elements as separate arrays; L2 takes pairs one by one.
+  const std::optional<ElementFrames> frames =
+      count == kShL1Coefficients ? std::optional<ElementFrames>(std::in_place, sys_.surfaces) : std::nullopt;
   for (size_t first = 0; first < shooters.size(); first += kBlock) {
     const size_t n = std::min(kBlock, shooters.size() - first);
     const float* cols[kBlock];
@@ -79,7 +82,7 @@ bool ProgressiveSolver::incidentSh(int count, std::span<Rgb> out) {
       Rgb exitance[kBlock];
       for (size_t k = 0; k < n; ++k) exitance[k] = shot[shooters[first + k]];
       tbb::parallel_for(tbb::blocked_range<size_t>(0, ne, 256), [&](const tbb::blocked_range<size_t>& r) {
-        addShooterBlockL1(sys_.surfaces, frames, std::span(shooters).subspan(first, n), std::span(cols, n),
+        addShooterBlockL1(sys_.surfaces, *frames, std::span(shooters).subspan(first, n), std::span(cols, n),
                           std::span(exitance, n), r.begin(), r.end(), out.data());
       });
       continue;
