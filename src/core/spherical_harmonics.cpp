@@ -34,20 +34,29 @@ const Band2Frame& band2Frame() {
 }
 
 // Unit directions spread evenly over the sphere (a Fibonacci lattice): starting points for the
-// deringing search.
-const std::vector<Vec3>& sphereDirections() {
-  static const std::vector<Vec3> dirs = [] {
-    constexpr int n = 162;
-    std::vector<Vec3> d(n);
+// deringing search. Kept as columns of their coordinates and products, so that a quadratic's
+// values at all of them are a loop the compiler vectorises.
+constexpr int kLatticeSize = 160;  // a multiple of the vector width
+struct SphereLattice {
+  std::array<Vec3, kLatticeSize> d;
+  // x, y, z, then x^2, y^2, z^2, 2xy, 2yz, 2xz.
+  std::array<std::array<float, kLatticeSize>, 9> column;
+  SphereLattice() {
     const float golden = kPi * (3.0f - std::sqrt(5.0f));
-    for (int i = 0; i < n; ++i) {
-      const float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
+    for (int i = 0; i < kLatticeSize; ++i) {
+      const float z = 1.0f - (2.0f * float(i) + 1.0f) / float(kLatticeSize);
       const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-      d[size_t(i)] = Vec3(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
+      const Vec3 v(r * std::cos(golden * float(i)), r * std::sin(golden * float(i)), z);
+      d[size_t(i)] = v;
+      const float c[9] = {v.x, v.y, v.z, v.x * v.x, v.y * v.y, v.z * v.z, 2 * v.x * v.y, 2 * v.y * v.z, 2 * v.x * v.z};
+      for (int k = 0; k < 9; ++k) column[size_t(k)][size_t(i)] = c[k];
     }
-    return d;
-  }();
-  return dirs;
+  }
+};
+
+const SphereLattice& sphereLattice() {
+  static const SphereLattice lattice;
+  return lattice;
 }
 
 // The linear irradiance of one channel of L2 on the unit sphere as a polynomial,
@@ -79,17 +88,37 @@ Quadratic irradiancePolynomial(const float* c, int count, float s) {
   return p;
 }
 
-// The smallest irradiance of one channel, band l scaled by s^l: the best of a lattice, then
-// projected gradient descent on the sphere from it (a quadratic on the sphere has few, wide
-// basins: the lattice's spacing of 0.28 rad starts in the deepest).
-float minimumIrradiance(const float* c, int count, float s) {
-  const Quadratic p = irradiancePolynomial(c, count, s);
-  Vec3 best(0.0f, 0.0f, 1.0f);
-  float lowest = INFINITY;
-  for (const Vec3& d : sphereDirections()) {
-    const float e = p.at(d);
-    if (e < lowest) lowest = e, best = d;
+// Along lattice direction i the windowed irradiance is a quadratic in the scale s:
+// E_s(d_i) = a + s beta_i + s^2 gamma_i, with beta_i = b . d_i and gamma_i = d_i^T Q d_i.
+struct LatticeTerms {
+  std::array<float, kLatticeSize> beta, gamma;
+  explicit LatticeTerms(const Quadratic& p) {
+    const SphereLattice& l = sphereLattice();
+    const float q[6] = {p.q[0][0], p.q[1][1], p.q[2][2], p.q[0][1], p.q[1][2], p.q[0][2]};
+    for (int i = 0; i < kLatticeSize; ++i) {
+      beta[size_t(i)] = p.b.x * l.column[0][size_t(i)] + p.b.y * l.column[1][size_t(i)] + p.b.z * l.column[2][size_t(i)];
+      gamma[size_t(i)] = q[0] * l.column[3][size_t(i)] + q[1] * l.column[4][size_t(i)] + q[2] * l.column[5][size_t(i)] +
+                         q[3] * l.column[6][size_t(i)] + q[4] * l.column[7][size_t(i)] + q[5] * l.column[8][size_t(i)];
+    }
   }
+};
+
+// The smallest irradiance of one channel on the sphere at scale s (`whole` is its polynomial at
+// s = 1, `terms` its lattice terms), and where: the best of the lattice, then projected gradient
+// descent on the sphere from it (a quadratic on the sphere has few, wide basins: the lattice's
+// spacing of 0.28 rad starts in the deepest).
+float minimumIrradiance(const Quadratic& whole, const LatticeTerms& terms, float s, Vec3& where) {
+  std::array<float, kLatticeSize> e;
+  for (int i = 0; i < kLatticeSize; ++i) e[size_t(i)] = whole.a + s * terms.beta[size_t(i)] + (s * s) * terms.gamma[size_t(i)];
+  // The lowest in four independent chains, then where it is.
+  float m[4] = {e[0], e[1], e[2], e[3]};
+  for (int i = 4; i < kLatticeSize; i += 4)
+    for (int k = 0; k < 4; ++k) m[k] = std::min(m[k], e[size_t(i + k)]);
+  float lowest = std::min(std::min(m[0], m[1]), std::min(m[2], m[3]));
+  const size_t first = size_t(std::find(e.begin(), e.end(), lowest) - e.begin());
+  Vec3 best = sphereLattice().d[std::min(first, size_t(kLatticeSize - 1))];  // NaN: any
+  Quadratic p = whole;
+  p.b *= s, p.q *= s * s;
   // Step below the inverse of the gradient's Lipschitz bound.
   float qNorm = 0.0f;
   for (int i = 0; i < 3; ++i) qNorm += glm::length(p.q[i]);
@@ -98,11 +127,30 @@ float minimumIrradiance(const float* c, int count, float s) {
     const Vec3 g = p.b + 2.0f * (p.q * best);
     const Vec3 tangent = g - glm::dot(g, best) * best;
     const Vec3 next = glm::normalize(best - step * tangent);
-    const float e = p.at(next);
-    if (!(e < lowest)) break;
-    lowest = e, best = next;
+    const float value = p.at(next);
+    // Steps that gain under 1e-5 of the mean irradiance end it: the margin is 500 times that.
+    if (!(value < lowest - 1e-5f * whole.a)) break;
+    lowest = value, best = next;
   }
+  where = best;
   return lowest;
+}
+
+// The first root past 0 of a + s beta + s^2 gamma (a > 0), or 1 if there is none in (0, 1].
+float firstRoot(double a, double beta, double gamma) {
+  double root = INFINITY;
+  if (std::abs(gamma) <= 1e-12 * (std::abs(a) + std::abs(beta))) {
+    if (beta < 0.0) root = -a / beta;
+  } else {
+    const double disc = beta * beta - 4.0 * gamma * a;
+    if (disc >= 0.0) {
+      // The stable pair of roots, q / gamma and a / q.
+      const double q = -0.5 * (beta + std::copysign(std::sqrt(disc), beta));
+      for (double r : {q / gamma, q != 0.0 ? a / q : INFINITY})
+        if (r > 0.0) root = std::min(root, r);
+    }
+  }
+  return float(std::min(root, 1.0));
 }
 
 float channelWindow(const float* c, int count) {
@@ -113,11 +161,33 @@ float channelWindow(const float* c, int count) {
     return m1 > 0.5f * m0 ? 0.5f * m0 / m1 : 1.0f;
   }
   const float margin = 0.005f * kPi * kShY0 * c[0];  // 0.5% of the mean irradiance, pi m0 / 4pi
-  if (minimumIrradiance(c, count, 1.0f) >= margin) return 1.0f;
-  float lo = 0.0f, hi = 1.0f;  // lo always passes: only band 0 left
+  const Quadratic whole = irradiancePolynomial(c, count, 1.0f);
+  const LatticeTerms terms(whole);
+  const float a = whole.a - margin;
+  // Each lattice direction bounds the window from above in closed form: where its quadratic in s
+  // reaches the margin, if it does by s = 1 (below it at 1, or dipping below it on the way).
+  float s = 1.0f;
+  for (int i = 0; i < kLatticeSize; ++i) {
+    const float beta = terms.beta[size_t(i)], gamma = terms.gamma[size_t(i)];
+    const bool dips = gamma > 0.0f && beta < 0.0f && -beta < 2.0f * gamma && beta * beta > 4.0f * gamma * a;
+    if (a + beta + gamma < 0.0f || dips) s = std::min(s, firstRoot(a, beta, gamma));
+  }
+  // The descent then looks between the directions, and each one it finds below the margin cuts
+  // the window again (a cutting-plane search: one or two rounds, where bisecting on s took
+  // twenty descents). Each cut goes just inside its root, so that the next check is not lost to
+  // rounding.
+  if (s < 1.0f) s *= 1.0f - 1e-4f;
+  for (int round = 0; round < 8; ++round) {
+    Vec3 where;
+    if (minimumIrradiance(whole, terms, s, where) >= margin) return s;
+    s = std::min(s, firstRoot(a, glm::dot(whole.b, where), glm::dot(where, whole.q * where))) * (1.0f - 1e-4f);
+  }
+  // Rounds that keep finding new directions (not seen in testing): bisect below s.
+  float lo = 0.0f, hi = s;  // lo always passes: only band 0 left
   for (int it = 0; it < 20; ++it) {
     const float mid = 0.5f * (lo + hi);
-    (minimumIrradiance(c, count, mid) >= margin ? lo : hi) = mid;
+    Vec3 where;
+    (minimumIrradiance(whole, terms, mid, where) >= margin ? lo : hi) = mid;
   }
   return lo;
 }
@@ -172,7 +242,7 @@ void shAddUniformHemisphere(Rgb* c, int count, Vec3 n, Rgb e) {
 float shNonNegativeWindow(const Rgb* c, int count) {
   float s = 1.0f;
   for (int ch = 0; ch < 3; ++ch) {
-    float channel[kShCoefficients];
+    float channel[kShCoefficients] = {};
     for (int i = 0; i < count; ++i) channel[i] = c[i][ch];
     s = std::min(s, channelWindow(channel, count));
   }

@@ -67,10 +67,15 @@ struct Field {
   // coefficient (channel, i) at channel * 9 + i. Summed as vectors, light from around a round
   // cluster (a statue lit by every wall) cancels.
   std::array<float, 3 * kShCoefficients> sh{};
+  // L1 directional bakes only (Solver::recordIncidentSh), for the light that came as vectors:
+  // its radiance integrated over the sphere, the vector's companion that band 0 of the incident
+  // SH needs, per basis function per channel at alpha * 3 + channel.
+  std::array<float, kMaxBasisFunctions * 3> radiance{};
 
   Field& operator+=(const Field& o) {
     for (size_t k = 0; k < c.size(); ++k) c[k] += o.c[k];
     for (size_t k = 0; k < sh.size(); ++k) sh[k] += o.sh[k];
+    for (size_t k = 0; k < radiance.size(); ++k) radiance[k] += o.radiance[k];
     return *this;
   }
 };
@@ -194,6 +199,49 @@ class HierarchicalSolver final : public Solver {
     return out;
   }
 
+  // L1 directions are recorded from the first sweep on, or not at all (a record that missed a
+  // bounce would be short of it). L2's band 2 is left to its owner's final gather: kept constant
+  // over each element from the clusters' points, it was five times further from a furnace's
+  // (zero) than a gather of 256 rays (docs/baking.md, "Directions from the hierarchy").
+  void recordIncidentSh(int count) override {
+    if (iterations_ == 0 && count == kShL1Coefficients) recordSh_ = count;
+  }
+
+  // The incident L1 at each face from the field that holds it: band 0 from the radiance's
+  // integral and band 1 from the vector irradiance, both in the element's basis and evaluated at
+  // the face's centroid as its irradiance is (Gobbetti et al.'s vectors are exactly the integral
+  // of L(w) w, so band 1 is the vector times kShY1), plus the light that came as harmonics.
+  bool incidentSh(int count, std::span<Rgb> out) override {
+    if (recordSh_ != count) return false;
+    const size_t ne = sys_.elementCount();
+    if (out.size() != ne * size_t(count)) throw Error("hierarchical solver: incidentSh's output has the wrong size");
+    tbb::parallel_for(uint32_t(0), uint32_t(ne), [&](uint32_t e) {
+      Rgb* c = &out[size_t(e) * size_t(count)];
+      std::fill(c, c + count, Rgb(0.0f));
+      uint32_t m = e;
+      while (since_[m].load(std::memory_order_relaxed) == kNever) m = tree_.nodes[m].parent;
+      const uint32_t f = field_[m].load(std::memory_order_relaxed);
+      if (f == kNever) return;
+      const Field& field = fields_[f];
+      float basis[kMaxBasisFunctions];
+      evaluateBasis(tree_.nodes[m].box.planeParameters(sys_.surfaces.elements[e].centroid), s_.basis, basis);
+      for (int ch = 0; ch < 3; ++ch) {
+        float radiance = 0.0f;
+        Vec3 v(0.0f);
+        for (int a = 0; a < s_.basis; ++a) {
+          radiance += basis[a] * field.radiance[size_t(a * 3 + ch)];
+          v += basis[a] * field.c[size_t(a * 3 + ch)];
+        }
+        // The integral of L is at least the length of the integral of L w; fitted separately
+        // over a large element, the two can cross near its corners.
+        c[0][ch] = kShY0 * std::max(radiance, glm::length(v));
+        c[1][ch] = kShY1 * v.y, c[2][ch] = kShY1 * v.z, c[3][ch] = kShY1 * v.x;
+        for (int i = 0; i < count; ++i) c[i][ch] += field.sh[size_t(ch * kShCoefficients + i)];
+      }
+    });
+    return true;
+  }
+
   // The tree and the cluster points are made again from the surfaces, to the same bits; the
   // element tree and its fields are saved. Between sweeps nothing is in flight (next_ is zero).
   bool checkpoints() const override { return true; }
@@ -209,6 +257,7 @@ class HierarchicalSolver final : public Solver {
     for (const auto* counter : {&links_, &refinedNear_, &refinedTransfer_, &refinedShadow_, &refinedSelf_})
       out.value(counter->load());
     out.value(uint64_t(leaves_.load())), out.value(uint64_t(elements_.load()));
+    out.value(recordSh_);
   }
   void restoreState(StateReader& in) override {
     const size_t nodes = tree_.nodes.size();
@@ -229,6 +278,9 @@ class HierarchicalSolver final : public Solver {
     for (auto* counter : {&links_, &refinedNear_, &refinedTransfer_, &refinedShadow_, &refinedSelf_})
       counter->store(in.value<uint64_t>());
     leaves_.store(size_t(in.value<uint64_t>())), elements_.store(size_t(in.value<uint64_t>()));
+    // The directions saved are whole for what was recorded then: enough for what is asked now,
+    // or none at all (incidentSh then says so, and its owner gathers them).
+    if (in.value<int>() != recordSh_) recordSh_ = 0;
   }
 
   SolveStats stats() const override {
@@ -346,22 +398,31 @@ class HierarchicalSolver final : public Solver {
     const Vec3 normal = tree_.nodes[child].vectorArea;
     std::array<bool, 3> keep;
     for (int ch = 0; ch < 3; ++ch) keep[size_t(ch)] = glm::dot(normal, from.c[size_t(ch)]) > 0.0f;
+    // The directions' record goes with the vectors it belongs to.
     if (nb == 1) {
       to = from;
       for (int ch = 0; ch < 3; ++ch)
-        if (!keep[size_t(ch)]) to.c[size_t(ch)] = Vec3(0.0f);
+        if (!keep[size_t(ch)]) to.c[size_t(ch)] = Vec3(0.0f), to.radiance[size_t(ch)] = 0.0f;
       return;
     }
     to = Field{};
     to.sh = from.sh;
+    const bool record = recordSh_ > 0;
     for (size_t p = 0; p < np; ++p) {
       float basis[kMaxBasisFunctions];
       evaluateBasis(tree_.nodes[parent].box.planeParameters(r.points[p].position), nb, basis);
       for (int ch = 0; ch < 3; ++ch) {
         if (!keep[size_t(ch)]) continue;
         Vec3 value(0.0f);
+        float radiance = 0.0f;
         for (int a = 0; a < nb; ++a) value += basis[a] * from.c[size_t(a * 3 + ch)];
-        for (int a = 0; a < nb; ++a) to.c[size_t(a * 3 + ch)] += r.projection[size_t(a) * np + p] * value;
+        if (record)
+          for (int a = 0; a < nb; ++a) radiance += basis[a] * from.radiance[size_t(a * 3 + ch)];
+        for (int a = 0; a < nb; ++a) {
+          const float w = r.projection[size_t(a) * np + p];
+          to.c[size_t(a * 3 + ch)] += w * value;
+          to.radiance[size_t(a * 3 + ch)] += w * radiance;
+        }
       }
     }
   }
@@ -399,6 +460,9 @@ class HierarchicalSolver final : public Solver {
     // The same light as harmonics, for receivers that take it so (couple's `asHarmonics`): per
     // receiver point, per channel, kShCoefficients numbers.
     std::vector<float> transportSh, directSh;
+    // L1 directional bakes, for light that comes as vectors: per receiver point, its radiance
+    // integrated over the sphere (all light).
+    std::vector<Rgb> radiance;
   };
 
   // Point-to-point estimates of the power per unit radiosity between every receiver and emitter
@@ -438,6 +502,17 @@ class HierarchicalSolver final : public Solver {
       s.transportSh.assign(np * 3 * kShCoefficients, 0.0f);
       s.directSh.assign(np * 3 * kShCoefficients, 0.0f);
     }
+    // For the directions' record, each polygon's exact moments over the part in front of the
+    // point: radiance b / pi over its solid angle (at least pi |vector|, which rounding can
+    // break), as solve/incident_sh.cpp takes them. The vectors the irradiance takes are computed
+    // as without the record, so that the solution stays the same to the bit.
+    const bool record = !asHarmonics && recordSh_ > 0;
+    if (record) s.radiance.assign(np, Rgb(0.0f));
+    auto addIncident = [&](size_t p, const Polygon& poly, Vec3 polyNormal, float visible, const Rgb& unshot) {
+      const SurfacePoint& x = r.points[p];
+      const PolygonMoments m = clippedPolygonMoments(x.position, x.normal, poly, polyNormal);
+      s.radiance[p] += (visible * std::max(m.solidAngle, kPi * glm::length(m.vector)) / kPi) * unshot;
+    };
     // Light from one emitter point (or face) as a delta of radiance along its irradiance vector,
     // whose length is what it brings. Kept per emitter point rather than for their sum: the sum's
     // length is less than what a surface facing each point in turn receives. The vector is the
@@ -510,6 +585,7 @@ class HierarchicalSolver final : public Solver {
         }
         const Vec3 m = all > 0.0f ? (seen / all) * phi : phi;
         for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] = unshot[ch] * m, s.direct[p][size_t(ch)] = emitted[ch] * m;
+        if (record) addIncident(p, el->polygon, el->normal, all > 0.0f ? seen / all : 1.0f, unshot);
         if (asHarmonics) {
           const Vec3 whole = polygonIrradianceVector(x.position, -el->normal, el->polygon, el->normal);
           addHarmonics(p, all > 0.0f ? (seen / all) * whole : whole, unshot, emitted);
@@ -542,6 +618,7 @@ class HierarchicalSolver final : public Solver {
         if (counts) {
           const Vec3 m = polygonIrradianceVector(x.position, x.normal, square, q[k].normal);
           for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] += unshot[ch] * m, s.direct[p][size_t(ch)] += emitted[ch] * m;
+          if (record) addIncident(p, square, q[k].normal, 1.0f, unshot);
         }
         if (asHarmonics) {
           const float seen = counts ? 1.0f : seenAbove / tracedAbove;
@@ -582,6 +659,17 @@ class HierarchicalSolver final : public Solver {
       const float* from = &perPoint[p * 3 * kShCoefficients];
       for (int k = 0; k < 3 * kShCoefficients; ++k) to.sh[size_t(k)] += w * from[k];
     }
+  }
+
+  // The directions of a link whose light came as vectors: the integral of its radiance, fitted
+  // in the receiver's basis as the vectors are (`projection`).
+  void recordVectorLink(const Receiver& r, const Scratch& s, const std::vector<float>& projection, Field& to) const {
+    const size_t np = r.points.size();
+    for (size_t p = 0; p < np; ++p)
+      for (int a = 0; a < s_.basis; ++a) {
+        const float w = projection[size_t(a) * np + p];
+        for (int ch = 0; ch < 3; ++ch) to.radiance[size_t(a * 3 + ch)] += w * s.radiance[p][ch];
+      }
   }
 
   // TRANSPORT-LIGHT of Algorithm 1: element i with the unshot irradiance its ancestors gathered
@@ -682,6 +770,7 @@ class HierarchicalSolver final : public Solver {
               direct.c[size_t(a * 3 + ch)] += w * s.direct[p][size_t(ch)];
             }
           }
+        if (recordSh_) recordVectorLink(r, s, *projection, total);
         continue;
       }
       // Harmonics are kept constant over the receiver (the mean over its points that see): a
@@ -804,6 +893,7 @@ class HierarchicalSolver final : public Solver {
   std::vector<size_t> levelStart_;
   bool done_ = false;
   double seconds_ = 0.0, setupSeconds_ = 0.0;
+  int recordSh_ = 0;  // SH coefficients recorded for directional bakes (recordIncidentSh), 0: none
 };
 
 }  // namespace

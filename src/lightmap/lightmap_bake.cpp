@@ -322,6 +322,18 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
 
   bake.directional = options.directional;
   bake.sh.resize(size_t(shCount));
+  t0 = Clock::now();
+  // L2 is read linearly: window each element's coefficients until no normal gets negative light.
+  // Done before filling: every texel is then a convex combination of elements' sets (filling
+  // copies, stitching and dilation average), and irradiance at or above a share of the mean for
+  // every normal survives averaging, so the dilated and stitched texels need no search.
+  if (options.directional == DirectionalMode::ShL2)
+    tbb::parallel_for(size_t(0), set.elements.size(), [&](size_t e) {
+      Rgb* c = &incident[e * size_t(kShCoefficients)];
+      const float s = shNonNegativeWindow(c, kShCoefficients);
+      if (s < 1.0f) shApplyWindow(c, kShCoefficients, s);
+    });
+  bake.secondsPost += since(t0);
   // Every texel value is a plane: the irradiance first, then each SH coefficient. Filling,
   // stitching and dilation treat them alike, so a texel's coefficients stay those of its value.
   std::vector<std::vector<std::vector<Rgb>>*> planes{&bake.pages};
@@ -329,21 +341,6 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
   lightmap::finishPlanes(options, bake, atlas.pageCount, planes, [&](size_t k, size_t e) {
     return k == 0 ? bake.solution.irradiance[e] : incident[e * size_t(shCount) + (k - 1)];
   });
-  t0 = Clock::now();
-  const size_t pages = bake.pages.size(), n = size_t(bake.pageSize) * size_t(bake.pageSize);
-  // L2 is read linearly: window each texel's coefficients until no normal gets negative light.
-  if (options.directional == DirectionalMode::ShL2)
-    for (size_t p = 0; p < pages; ++p)
-      tbb::parallel_for(size_t(0), n, [&](size_t i) {
-        if (bake.state[p][i] == LightmapBake::Empty) return;
-        Rgb c[kShCoefficients];
-        for (int k = 0; k < kShCoefficients; ++k) c[k] = bake.sh[size_t(k)][p][i];
-        const float s = shNonNegativeWindow(c, kShCoefficients);
-        if (s >= 1.0f) return;
-        shApplyWindow(c, kShCoefficients, s);
-        for (int k = 0; k < kShCoefficients; ++k) bake.sh[size_t(k)][p][i] = c[k];
-      });
-  bake.secondsPost += since(t0);
   return bake;
 }
 
