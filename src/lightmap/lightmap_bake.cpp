@@ -305,8 +305,7 @@ LightmapBake bakeLightmaps(const Scene& scene, const LightmapAtlas& atlas, const
   const int shCount = directionalCoefficients(options.directional);
   std::vector<Rgb> incident;  // per element, shCount coefficients
   {
-    SolverHost host(scene, set, options.solve);
-    if (shCount > 0) host.recordIncidentSh(shCount);
+    SolverHost host(scene, set, options.solve, {}, shCount);
     while (host.step({}, progress)) {
     }
     bake.solution = host.solution();

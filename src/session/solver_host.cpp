@@ -43,8 +43,9 @@ const char* const kLikelyCauses =
 
 }  // namespace
 
-SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& requested, BorrowedResources borrowed)
-    : scene_(scene), surfaces_(surfaces), options_(withMethodChosen(requested, surfaces)) {
+SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& requested, BorrowedResources borrowed,
+                       int incidentShCount)
+    : scene_(scene), surfaces_(surfaces), options_(withMethodChosen(requested, surfaces)), recordSh_(incidentShCount) {
   const SolveOptions& options = options_;
   const Stopwatch watch;
   if (!scene.hasLight())
@@ -148,21 +149,34 @@ void SolverHost::computeAnalytic() {
   const Stopwatch watch;
   const size_t ne = surfaces_.elements.size();
   analytic_.assign(ne, Rgb(0.0f));
+  const size_t shSize = ne * size_t(recordSh_);
+  analyticSh_.assign(shSize, Rgb(0.0f));
+  analyticShCount_ = recordSh_;
   if (scene_.lights.size() > kMaxKeptLightParts) {
     lightParts_.clear();
-    transport_->analyticIrradiance(analytic_);
+    if (recordSh_ > 0) {
+      std::vector<uint32_t> all(scene_.lights.size());
+      for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+      transport_->lightIrradianceAndSh(all, recordSh_, analytic_, analyticSh_);
+    } else {
+      transport_->analyticIrradiance(analytic_);
+    }
   } else {
     lightParts_.resize(scene_.lights.size());
     for (uint32_t i = 0; i < scene_.lights.size(); ++i) {
       LightPart& part = lightParts_[i];
-      if (part.geometry != geometry_ || part.irradiance.size() != ne || !sameLight(part.light, scene_.lights[i])) {
+      if (part.geometry != geometry_ || part.irradiance.size() != ne || part.sh.size() != shSize ||
+          !sameLight(part.light, scene_.lights[i])) {
         part.light = scene_.lights[i];
         part.geometry = geometry_;
         part.irradiance.assign(ne, Rgb(0.0f));
+        part.sh.assign(shSize, Rgb(0.0f));
         const uint32_t one[] = {i};
-        transport_->lightIrradiance(one, part.irradiance);
+        if (recordSh_ > 0) transport_->lightIrradianceAndSh(one, recordSh_, part.irradiance, part.sh);
+        else transport_->lightIrradiance(one, part.irradiance);
       }
       for (size_t e = 0; e < ne; ++e) analytic_[e] += part.irradiance[e];
+      for (size_t k = 0; k < shSize; ++k) analyticSh_[k] += part.sh[k];
     }
   }
   analyticSeconds_ += watch.seconds();
@@ -386,9 +400,13 @@ std::vector<Rgb> SolverHost::incidentSh(int count, bool* gathered) {
   const bool known = solver_->incidentSh(count, sh);
   if (!known) sh = gatherIncidentSh(surfaces_, solver_->solution().radiosity, count, kGatherShRays);
   if (gathered) *gathered = !known;
-  std::vector<uint32_t> all(scene_.lights.size());
-  for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-  transport_->lightSh(all, count, lights);
+  if (analyticShCount_ == count) {
+    lights = analyticSh_;  // traced with the analytic irradiance
+  } else {
+    std::vector<uint32_t> all(scene_.lights.size());
+    for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+    transport_->lightSh(all, count, lights);
+  }
   for (size_t i = 0; i < sh.size(); ++i) sh[i] += lights[i];
   return sh;
 }

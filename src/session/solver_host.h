@@ -37,7 +37,11 @@ class SolverHost {
   // options against the chosen solver, builds what it needs and makes the solver. Throws Error
   // on an unknown method, backend or option. `scene` and `surfaces` must outlive the host;
   // `surfaces` is refined in place when options.refine.budget > 0.
-  SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options, BorrowedResources borrowed = {});
+  // `incidentShCount`: an owner that will ask incidentSh(count) says so here (as recordIncidentSh
+  // would), and the analytic light's directions are then taken with its irradiance, by the same
+  // rays, instead of traced again when asked.
+  SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& options, BorrowedResources borrowed = {},
+             int incidentShCount = 0);
   ~SolverHost();
 
   // Advances the solver by at most `limit`; when it is done and refinement has budget left,
@@ -107,12 +111,17 @@ class SolverHost {
   std::unique_ptr<Transport> ownTransport_;
   Transport* transport_ = nullptr;
   std::vector<Rgb> analytic_;
+  // Where analytic_ comes from, for directional bakes (recordSh_ coefficients an element), kept
+  // while analyticShCount_ says it was traced with analytic_ (0: not).
+  std::vector<Rgb> analyticSh_;
+  int analyticShCount_ = 0;
   // Each light's part of analytic_, for scenes of up to kMaxKeptLightParts lights: the light it was
   // traced for, and the geometry it was traced on (geometry_ counts moves and refinements).
   struct LightPart {
     Light light;
     uint64_t geometry = 0;
     std::vector<Rgb> irradiance;
+    std::vector<Rgb> sh;  // recordSh_ coefficients an element where directions were asked for
   };
   static constexpr size_t kMaxKeptLightParts = 16;
   std::vector<LightPart> lightParts_;

@@ -702,17 +702,40 @@ size_t CpuTransport::updateLightIrradianceAfterMove(std::span<const uint32_t> li
   return redo.size();
 }
 
-void CpuTransport::lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) {
+namespace {
+
+void addSamplesSh(std::span<const LightSample> reached, Vec3 n, int count, Rgb* c) {
+  for (const LightSample& ls : reached) {
+    const Vec3 w = glm::normalize(ls.direction);
+    shAddDirection(c, count, w, ls.irradiance / std::max(glm::dot(n, w), kShMinimumCosine));
+  }
+}
+
+void checkShCount(int count) {
   if (count != kShL1Coefficients && count != kShCoefficients)
     throw Error(fmt::format("spherical harmonics of {} coefficients: 4 (L1) or 9 (L2)", count));
+}
+
+}  // namespace
+
+void CpuTransport::lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) {
+  checkShCount(count);
   std::fill(out.begin(), out.end(), Rgb(0.0f));
   visitLightSamples(lights, [&](size_t e, std::span<const LightSample> reached) {
-    Rgb* c = out.data() + e * size_t(count);
-    const Vec3 n = surfaces_.elements[e].normal;
-    for (const LightSample& ls : reached) {
-      const Vec3 w = glm::normalize(ls.direction);
-      shAddDirection(c, count, w, ls.irradiance / std::max(glm::dot(n, w), kShMinimumCosine));
-    }
+    addSamplesSh(reached, surfaces_.elements[e].normal, count, out.data() + e * size_t(count));
+  });
+}
+
+void CpuTransport::lightIrradianceAndSh(std::span<const uint32_t> lights, int count, std::span<Rgb> irradiance,
+                                        std::span<Rgb> sh) {
+  checkShCount(count);
+  std::fill(irradiance.begin(), irradiance.end(), Rgb(0.0f));
+  std::fill(sh.begin(), sh.end(), Rgb(0.0f));
+  visitLightSamples(lights, [&](size_t e, std::span<const LightSample> reached) {
+    Rgb sum(0.0f);
+    for (const LightSample& ls : reached) sum += ls.irradiance;
+    irradiance[e] = sum;
+    addSamplesSh(reached, surfaces_.elements[e].normal, count, sh.data() + e * size_t(count));
   });
 }
 

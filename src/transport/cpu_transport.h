@@ -31,6 +31,8 @@ class CpuTransport final : public Transport {
   void analyticIrradiance(std::span<Rgb> out) override;
   void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) override;
   void lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) override;
+  void lightIrradianceAndSh(std::span<const uint32_t> lights, int count, std::span<Rgb> irradiance,
+                            std::span<Rgb> sh) override;
   uint64_t raysTraced() const override {
     return tracer_.raysTraced() + movedRays_ + (movedBefore_ ? movedBefore_->raysTraced() + movedAfter_->raysTraced() : 0);
   }

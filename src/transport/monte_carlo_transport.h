@@ -33,6 +33,10 @@ class MonteCarloTransport final : public Transport {
   void lightIrradiance(std::span<const uint32_t> lights, std::span<Rgb> out) override {
     lights_.lightIrradiance(lights, out);
   }
+  void lightIrradianceAndSh(std::span<const uint32_t> lights, int count, std::span<Rgb> irradiance,
+                            std::span<Rgb> sh) override {
+    lights_.lightIrradianceAndSh(lights, count, irradiance, sh);
+  }
   void lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out) override {
     lights_.lightSh(lights, count, out);
   }

@@ -57,6 +57,13 @@ class Transport {
   // adds its irradiance / cos(theta) along its direction (cos clamped at kShMinimumCosine, so that
   // sky samples at the horizon do not explode). Throws Error where the backend cannot.
   virtual void lightSh(std::span<const uint32_t> lights, int count, std::span<Rgb> out);
+  // Both at once, for owners that want the directions from the start (a directional bake): the
+  // default asks for each in turn; a transport that traces does it with one set of rays.
+  virtual void lightIrradianceAndSh(std::span<const uint32_t> lights, int count, std::span<Rgb> irradiance,
+                                    std::span<Rgb> sh) {
+    lightIrradiance(lights, irradiance);
+    lightSh(lights, count, sh);
+  }
 
   // The ray tracer over the scene's faces, for solvers that trace their own rays (the
   // hierarchical solver); null where the backend has none.
