@@ -177,52 +177,83 @@ uniform uint elementCount, samples;
 uniform int resolution, visibility;  // visibility 0: item ids, 1: distances
 uniform bool redistributing;         // shots that move light already shot: no shooter's unshot is spent
 uniform float nearPlane, farPlane;
-// Directional bakes (Solver::recordIncidentSh): L1 SH of what each shot brings, 4 per element.
+// Directional bakes (Solver::recordIncidentSh): the SH of what each shot brings, shCount (4: L1,
+// 9: L2; 0: not recording) per element.
 layout(std430, binding = ELEMENT_SH_BINDING) buffer ElementSh { vec4 elementSh[]; };
-uniform bool recordSh;
+uniform int shCount;
 
-// Bands 0 and 1 of the light a patch of exitance b brings point x (normal n) through the
-// visibility-weighted factor F: solve/incident_sh.cpp's addPatchSh for L1, so that the GPU's
-// directions are the CPU's. Far patches (under a fifth of their distance across) as one
-// direction; near ones by the irradiance vector (Arvo 1994) and solid angle (Van Oosterom and
-// Strackee 1983) of the polygon's part in front of x, scaled by the visible share F / (unoccluded
-// factor).
-void addPatchL1(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, inout vec3 c[4]) {
-  const int count = int(P.corners[0].w);
+// The moments of polygon q (count corners) seen from x, clipped to the half-space in front of x's
+// plane (normal n): its irradiance vector per unit exitance (Arvo 1994's contour sum) and its solid
+// angle (Van Oosterom and Strackee 1983, a fan of triangles). transport/form_factor.h's
+// clippedPolygonMoments.
+void clippedMoments(vec3 x, vec3 n, vec3 q[4], int count, out vec3 v, out float omega) {
+  v = vec3(0.0);
+  omega = 0.0;
+  float d[4];
+  bool above = true;
+  for (int i = 0; i < count; ++i) {
+    d[i] = dot(n, q[i] - x);
+    above = above && d[i] >= 0.0;
+  }
+  vec3 r[5];
+  int m = 0;
+  for (int i = 0; i < count; ++i) {
+    int j = i + 1 == count ? 0 : i + 1;
+    if (above || d[i] > 0.0) r[m++] = q[i] - x;
+    if (!above && (d[i] > 0.0) != (d[j] > 0.0)) r[m++] = mix(q[i], q[j], d[i] / (d[i] - d[j])) - x;
+  }
+  for (int i = 0; m >= 3 && i < m; ++i) {
+    const vec3 e = cross(r[i], r[i + 1 == m ? 0 : i + 1]);
+    const float el = length(e);
+    if (el > 0.0) v += atan(el, dot(r[i], r[i + 1 == m ? 0 : i + 1])) / el * e;
+  }
+  v *= (dot(v, n) < 0.0 ? -1.0 : 1.0) * 0.15915494309189535;
+  for (int i = 1; i + 1 < m; ++i) {
+    const float la = length(r[0]), lq = length(r[i]), lt = length(r[i + 1]);
+    omega += 2.0 * atan(abs(dot(r[0], cross(r[i], r[i + 1]))),
+                        la * lq * lt + dot(r[0], r[i]) * lt + dot(r[0], r[i + 1]) * lq + dot(r[i], r[i + 1]) * la);
+  }
+}
+
+// Band 2 of light of weight w along unit d (core/spherical_harmonics.h's shBasis).
+void addBand2(vec3 d, vec3 w, inout vec3 c[9]) {
+  c[4] += 1.092548 * d.x * d.y * w;
+  c[5] += 1.092548 * d.y * d.z * w;
+  c[6] += 0.315392 * (3.0 * d.z * d.z - 1.0) * w;
+  c[7] += 1.092548 * d.x * d.z * w;
+  c[8] += 0.546274 * (d.x * d.x - d.y * d.y) * w;
+}
+
+// The part of piece q (count corners) of a patch that x sees, as one direction (its irradiance
+// vector's) with its solid angle: band 2 of radiance b / pi over it, scaled by `visible`.
+void addPiece(vec3 x, vec3 n, vec3 q[4], int count, float visible, vec3 b, inout vec3 c[9]) {
+  vec3 v;
+  float omega;
+  clippedMoments(x, n, q, count, v, omega);
+  const float len = length(v);
+  if (!(len > 0.0)) return;
+  addBand2(v / len, visible * max(omega, 3.14159265 * len) / 3.14159265 * b, c);
+}
+
+// What a patch of exitance b brings point x (normal n) through the visibility-weighted factor F,
+// in `count` (4 or 9) coefficients: solve/incident_sh.cpp's addPatchSh, so that the GPU's
+// directions are the CPU's. L1's far patches (under a fifth of their distance across) as one
+// direction; others by the moments of the polygon's part in front of x, scaled by the visible
+// share F / (unoccluded factor); band 2 from k x k pieces of it, each one direction, more of them
+// the nearer the patch.
+void addPatchSh(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, int count, inout vec3 c[9]) {
+  const int pc = int(P.corners[0].w);
+  vec3 q[4];
   vec3 middle = vec3(0.0);  // the corners' mean
-  for (int i = 0; i < count; ++i) middle += P.corners[i].xyz;
-  middle /= float(count);
+  for (int i = 0; i < 4; ++i) q[i] = P.corners[i].xyz;
+  for (int i = 0; i < pc; ++i) middle += q[i];
+  middle /= float(pc);
   const vec3 toPatch = middle - x;
   const float r2 = dot(toPatch, toPatch);
   vec3 v = vec3(0.0);
-  float omega = 0.0;  // the solid angle of the part in front of x's plane, a fan of triangles
-  if (!(P.normalArea.w < 0.04 * r2) && dot(P.normalArea.xyz, P.corners[0].xyz - x) < 0.0) {
-    // Arvo's contour sum over the polygon clipped to x's upper half-space.
-    float d[4];
-    bool above = true;
-    for (int i = 0; i < count; ++i) {
-      d[i] = dot(n, P.corners[i].xyz - x);
-      above = above && d[i] >= 0.0;
-    }
-    vec3 r[5];
-    int m = 0;
-    for (int i = 0; i < count; ++i) {
-      int j = i + 1 == count ? 0 : i + 1;
-      if (above || d[i] > 0.0) r[m++] = P.corners[i].xyz - x;
-      if (!above && (d[i] > 0.0) != (d[j] > 0.0)) r[m++] = mix(P.corners[i].xyz, P.corners[j].xyz, d[i] / (d[i] - d[j])) - x;
-    }
-    for (int i = 0; m >= 3 && i < m; ++i) {
-      const vec3 e = cross(r[i], r[i + 1 == m ? 0 : i + 1]);
-      const float el = length(e);
-      if (el > 0.0) v += atan(el, dot(r[i], r[i + 1 == m ? 0 : i + 1])) / el * e;
-    }
-    v *= (dot(v, n) < 0.0 ? -1.0 : 1.0) * 0.15915494309189535;
-    for (int i = 1; i + 1 < m; ++i) {
-      const float la = length(r[0]), lq = length(r[i]), lt = length(r[i + 1]);
-      omega += 2.0 * atan(abs(dot(r[0], cross(r[i], r[i + 1]))),
-                          la * lq * lt + dot(r[0], r[i]) * lt + dot(r[0], r[i + 1]) * lq + dot(r[i], r[i + 1]) * la);
-    }
-  }
+  float omega = 0.0;
+  if ((count > 4 || !(P.normalArea.w < 0.04 * r2)) && dot(P.normalArea.xyz, q[0] - x) < 0.0)
+    clippedMoments(x, n, q, pc, v, omega);
   const float unoccluded = dot(v, n), len = length(v);
   if (!(unoccluded > 1e-7) || !(len > 0.0)) {  // far, or the centroid sees none of it: one direction
     if (!(r2 > 0.0)) return;
@@ -230,12 +261,41 @@ void addPatchL1(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, inout vec3 c[4]) {
     const vec3 weight = F / max(dot(n, w), 0.05) * b;
     c[0] += 0.282095 * weight;
     c[1] += 0.488603 * w.y * weight, c[2] += 0.488603 * w.z * weight, c[3] += 0.488603 * w.x * weight;
+    if (count > 4) addBand2(w, weight, c);
     return;
   }
   omega = max(omega, 3.14159265 * len);
   const float visible = F / unoccluded;
-  c[0] += 0.282095 * (visible * omega / 3.14159265) * b;
+  const vec3 m0 = (visible * omega / 3.14159265) * b;
+  c[0] += 0.282095 * m0;
   c[1] += 0.488603 * v.y * visible * b, c[2] += 0.488603 * v.z * visible * b, c[3] += 0.488603 * v.x * visible * b;
+  if (count <= 4) return;
+  const float across = sqrt(P.normalArea.w) / max(sqrt(r2), 1e-30);
+  const int k = across < 2.0 ? max(1, int(ceil(4.0 * across))) : 8;
+  if (k == 1) {
+    addBand2(v / len, m0, c);
+    return;
+  }
+  const float step = 1.0 / float(k);
+  vec3 piece[4];
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      if (pc == 4) {
+        const float s0 = float(i) * step, t0 = float(j) * step;
+        piece[0] = polygonPoint(P.corners, 4, s0, t0), piece[1] = polygonPoint(P.corners, 4, s0 + step, t0);
+        piece[2] = polygonPoint(P.corners, 4, s0 + step, t0 + step), piece[3] = polygonPoint(P.corners, 4, s0, t0 + step);
+        addPiece(x, n, piece, 4, visible, b, c);
+      } else if (i + j < k) {
+        // Barycentric sub-triangles: (i, j) upright, and the inverted one beside it when it fits.
+        const vec3 e1 = (q[1] - q[0]) * step, e2 = (q[2] - q[0]) * step;
+        piece[0] = q[0] + float(i) * e1 + float(j) * e2, piece[1] = piece[0] + e1, piece[2] = piece[0] + e2;
+        addPiece(x, n, piece, 3, visible, b, c);
+        if (i + j + 1 < k) {
+          piece[0] = q[0] + float(i + 1) * e1 + float(j) * e2, piece[1] = piece[0] + e2, piece[2] = piece[0] - e1 + e2;
+          addPiece(x, n, piece, 3, visible, b, c);
+        }
+      }
+    }
 }
 
 bool isNeighbour(uint face, uint item) {
@@ -295,7 +355,8 @@ void main() {
   vec3 x[4];
   for (int q = 0; q < 4; ++q) x[q] = polygonPoint(el.corners, corners, 0.25 + 0.5 * float(q & 1), 0.25 + 0.5 * float(q >> 1));
   vec3 dh = vec3(0.0), dd = vec3(0.0);
-  vec3 sh[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+  vec3 sh[9];
+  for (int i = 0; i < 9; ++i) sh[i] = vec3(0.0);
   bool reached = false;     // some shot reached it: its directions change
   vec3 centre = vec3(0.0);  // the corners' mean: the centroid of a triangle or parallelogram
   for (int i = 0; i < corners; ++i) centre += el.corners[i].xyz / float(corners);
@@ -329,14 +390,14 @@ void main() {
     F *= 0.25;
     dh += F * s.unshot.rgb;
     dd += F * s.emission.rgb;
-    if (recordSh && F != 0.0) {
-      addPatchL1(centre, n, P, F, s.unshot.rgb, sh);
+    if (shCount > 0 && F != 0.0) {
+      addPatchSh(centre, n, P, F, s.unshot.rgb, shCount, sh);
       reached = true;
     }
   }
   // Not only where dh is non-zero: a redistribution's shots of both signs can cancel in dh alone.
   if (reached)
-    for (int i = 0; i < 4; ++i) elementSh[4u * e + uint(i)].rgb += sh[i];
+    for (int i = 0; i < shCount; ++i) elementSh[uint(shCount) * e + uint(i)].rgb += sh[i];
   if (redistributing) shooter = false;
   if (!shooter && dh == vec3(0.0) && dd == vec3(0.0)) return;
   GpuElementState st = states[e];
@@ -545,7 +606,7 @@ class GlProgressiveSolver final : public Solver {
     reconstructSamples_ = uniform(*reconstruct_, "samples");
     reconstructRedistributing_ = uniform(*reconstruct_, "redistributing");
     glUniform1i(reconstructRedistributing_, 0);
-    glUniform1i(uniform(*reconstruct_, "recordSh"), 0);
+    glUniform1i(uniform(*reconstruct_, "shCount"), 0);
     if (o.followChanges) {
       amounts_ = std::make_unique<ShaderProgram>("redistribution amounts", preamble + kAmountsCompute);
       redistribute_ = std::make_unique<ShaderProgram>("redistribution shooters", preamble + kRedistributeCompute);
@@ -626,22 +687,23 @@ class GlProgressiveSolver final : public Solver {
     return sol;
   }
 
-  // L1 only, and only from the first shot on: each shot adds what it brings along its exact
-  // directions (addPatchL1 above), so the sum is the CPU's pass over what every patch has shot.
+  // L1 or L2, only from the first shot on: each shot adds what it brings along its exact
+  // directions (addPatchSh above), so the sum is the CPU's pass over what every patch has shot.
   void recordIncidentSh(int count) override {
-    if (count != kShL1Coefficients || buf_.elementSh || shots_ > 0 || emittersShot_) return;
-    const std::vector<glm::vec4> zero(kShL1Coefficients * sys_.elementCount(), glm::vec4(0.0f));
+    if ((count != kShL1Coefficients && count != kShCoefficients) || buf_.elementSh || shots_ > 0 || emittersShot_)
+      return;
+    const std::vector<glm::vec4> zero(size_t(count) * sys_.elementCount(), glm::vec4(0.0f));
     buf_.elementSh = storageBuffer(zero.data(), zero.size() * sizeof(glm::vec4));
-    shRecorded_ = true;
+    shCount_ = count;
     reconstruct_->use();
-    glUniform1i(glGetUniformLocation(reconstruct_->id(), "recordSh"), 1);
+    glUniform1i(glGetUniformLocation(reconstruct_->id(), "shCount"), count);
     Context::check("recording directions on the GPU");
   }
 
   bool incidentSh(int count, std::span<Rgb> out) override {
-    if (count != kShL1Coefficients || !shRecorded_) return false;  // the owner gathers them
+    if (count != shCount_) return false;  // none recorded, or not these: the owner gathers them
     const size_t ne = sys_.elementCount();
-    std::vector<glm::vec4> sh(kShL1Coefficients * ne);
+    std::vector<glm::vec4> sh(size_t(count) * ne);
     glGetNamedBufferSubData(buf_.elementSh, 0, GLsizeiptr(sh.size() * sizeof(glm::vec4)), sh.data());
     Context::check("reading back the GPU's directions");
     for (size_t i = 0; i < sh.size(); ++i) out[i] = Rgb(sh[i]);
@@ -655,7 +717,7 @@ class GlProgressiveSolver final : public Solver {
         irradiance[e] = before[e] = Rgb(states[e].irradiance);
       addAmbientTerm(sys_, unshot, radiosity, irradiance);
       for (size_t e = 0; e < ne; ++e)
-        shAddUniformHemisphere(out.data() + e * kShL1Coefficients, kShL1Coefficients, sys_.surfaces.elements[e].normal,
+        shAddUniformHemisphere(out.data() + e * size_t(count), count, sys_.surfaces.elements[e].normal,
                                irradiance[e] - before[e]);
     }
     return true;
@@ -672,7 +734,7 @@ class GlProgressiveSolver final : public Solver {
   }
   void restoreState(StateReader& in) override {
     for (GLuint b : {buf_.elementStates, buf_.patchStates, buf_.state}) restoreBuffer(b, in);
-    shRecorded_ = false;
+    shCount_ = 0;
     in.value(emittersShot_), in.value(emitterShots_), in.value(shots_), in.value(unshotFraction_);
     in.value(seconds_), in.value(done_);
   }
@@ -904,7 +966,7 @@ class GlProgressiveSolver final : public Solver {
   int samples_ = 0, batch_ = 0, emitterSide_ = 0, emitterSamples_ = 0, emitterBatch_ = 0;
   size_t emitters_ = 0;
   bool emittersApart_ = false, emittersShot_ = false, done_ = false;
-  bool shRecorded_ = false;  // every shot so far added its directions to buf_.elementSh
+  int shCount_ = 0;  // every shot so far added this many SH coefficients an element to buf_.elementSh
   double sourcePower_ = 0.0, unshotFraction_ = 1.0;
   ProgressThrottle throttle_;
   double setupSeconds_ = 0.0, seconds_ = 0.0;

@@ -45,7 +45,7 @@ constexpr int kFaceNeighbourBinding = 8;
 // list of patches a redistribution pass shoots again.
 constexpr int kRedistributionAmountBinding = 9;
 constexpr int kRedistributionListBinding = 10;
-// vec4[4 per element]: the L1 SH of what the shots brought each element (rgb), when a directional
+// vec4[4 or 9 per element]: the L1 or L2 SH of what the shots brought each element (rgb), when a directional
 // bake asked for it (Solver::recordIncidentSh).
 constexpr int kElementShBinding = 11;
 constexpr int kDistanceTextureUnit = 1;    // R32F distances (or RGBA32F radiosity) of layered hemicubes
