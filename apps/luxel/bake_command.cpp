@@ -178,8 +178,11 @@ int runBake(const BakeArgs& a) {
           list += fmt::format("{}{}{}", i ? ", " : "", names[i].first,
                               names[i].second > 1 ? fmt::format(" ({})", names[i].second) : std::string());
         if (names.size() > 20) list += ", ...";
-        std::cout << fmt::format("luxel: vertex colours (irradiance) instead of lightmaps on {} mesh{}: {}\n", count,
-                                 count == 1 ? "" : "es", list);
+        std::cout << fmt::format("luxel: vertex colours (irradiance{}) instead of lightmaps on {} mesh{}: {}\n",
+                                 bake.directional == DirectionalMode::None
+                                     ? std::string()
+                                     : fmt::format(", with directions: {}", directionalModeName(bake.directional)),
+                                 count, count == 1 ? "" : "es", list);
       }
       std::cout << "luxel: wrote " << a.output << "\n";
       if (a.html) std::cout << "luxel: wrote " << htmlPagePath(out).string() << " (open it in a browser)\n";
@@ -203,7 +206,7 @@ int runBake(const BakeArgs& a) {
     go.elementColors = elementRadiance(surfaces, solution);
     if (vertexDirections != DirectionalMode::None) {
       const auto shStart = std::chrono::steady_clock::now();
-      go.elementDirectionalMode = directionalModeName(vertexDirections);
+      go.vertexDirectionalMode = directionalModeName(vertexDirections);
       go.elementDirections =
           elementDirections(surfaces, vertexDirections, session.incidentSh(directionalCoefficients(vertexDirections)));
       secondsDirectional = std::chrono::duration<double>(std::chrono::steady_clock::now() - shStart).count();
@@ -223,9 +226,9 @@ int runBake(const BakeArgs& a) {
     if (a.vertexColors)
       std::cout << fmt::format("luxel: bake {} elements with vertex colours (radiance){}; total {:.3f} s\n",
                                surfaces.elements.size(),
-                               go.elementDirectionalMode.empty()
+                               go.vertexDirectionalMode.empty()
                                    ? std::string()
-                                   : fmt::format(" and directions ({}, {:.3f} s)", go.elementDirectionalMode,
+                                   : fmt::format(" and directions ({}, {:.3f} s)", go.vertexDirectionalMode,
                                                  secondsDirectional),
                                total);
     else

@@ -69,12 +69,14 @@ struct GlbOptions {
   // scaled as above. Excludes vertexColors and secondUvs.
   const SurfaceSet* elements = nullptr;
   std::vector<Rgb> elementColors;
-  // With `elements`: directions per vertex, elementDirections' lists for `elementDirectionalMode`
-  // ("" for none), written as float VEC3 attributes _LUXEL_DIRECTION0, 1, ... that each
-  // primitive's LUXEL_vertex_directional extension names (docs/baking.md,
-  // docs/schema/LUXEL_vertex_directional.schema.json), in extensionsUsed, not required.
-  std::string elementDirectionalMode;
+  // Directions per vertex for `vertexDirectionalMode` ("" for none), written as float VEC3
+  // attributes _LUXEL_DIRECTION0, 1, ... that each primitive's LUXEL_vertex_directional extension
+  // names (docs/baking.md, docs/schema/LUXEL_vertex_directional.schema.json), in extensionsUsed,
+  // not required: with `elements`, elementDirections' lists; with vertexColors,
+  // lightmapCornerDirections' lists (FaceCornerValues layout, on the meshes that have colours).
+  std::string vertexDirectionalMode;
   std::vector<std::vector<Rgb>> elementDirections;
+  std::vector<FaceCornerValues> vertexDirections;
   // TEXCOORD_1 (the lightmap UV set): empty for none, else per mesh, per face corner
   // ([mesh][face * 4 + corner]; empty for a mesh without), v up as in Mesh::uvs (written
   // flipped, as glTF wants).
@@ -128,13 +130,20 @@ std::vector<std::vector<uint8_t>> flippedFaceFlags(const Scene& scene, const Sur
 // Corners of faces the bake skipped (no area) take that average too, or 0 without one.
 FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
                                           const std::vector<uint8_t>& meshes);
+// A directional bake's direction textures at the same corners: each SH plane read at the texels
+// lightmapCornerIrradiance reads and averaged as it averages, then encoded as the textures are
+// (encodeDirectionalTexel, before 8-bit quantising): directionalTextureCount(bake.directional)
+// lists. Throws Error for a bake without directions.
+std::vector<FaceCornerValues> lightmapCornerDirections(const Scene& scene, const LightmapAtlas& atlas,
+                                                       const LightmapBake& bake, const std::vector<uint8_t>& meshes);
 
 // Adds a lightmap bake to `o`: TEXCOORD_1 from the atlas (texel / page size), the pages the
 // lightmapped faces use as RGBM PNG images (appended to o.images, named lightmapN after the page)
 // and the faces' images (o.faceLightmap). Meshes flagged in `vertexColorMeshes` ([mesh], 1 =
 // flagged; empty for none) get no TEXCOORD_1 and no lightmap but COLOR_0 =
 // lightmapCornerIrradiance, with vertexColorQuantity "irradiance" (docs/baking.md). A directional
-// bake adds each page's direction textures (8-bit PNG, directional_lightmap.h's encoding).
+// bake adds each page's direction textures (8-bit PNG, directional_lightmap.h's encoding), and
+// the vertex-coloured meshes' directions (lightmapCornerDirections).
 void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
                   const std::vector<uint8_t>& vertexColorMeshes = {});
 

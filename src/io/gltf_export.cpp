@@ -180,12 +180,22 @@ void checkOptions(const Scene& scene, const GlbOptions& o) {
     for (const SurfaceFace& f : o.elements->faces)
       if (f.mesh >= scene.meshes.size()) throw Error("glb: the elements come from another scene");
   }
-  if (!o.elementDirections.empty() || !o.elementDirectionalMode.empty()) {
-    if (!o.elements) throw Error("glb: directions per vertex need the element tessellation");
-    const int textures = directionalTextureCount(parseDirectionalMode(o.elementDirectionalMode));
-    if (textures == 0 || int(o.elementDirections.size()) != textures)
-      throw Error(fmt::format("glb: {} direction lists for mode '{}', expected {}", o.elementDirections.size(),
-                              o.elementDirectionalMode, textures));
+  if (!o.elementDirections.empty() || !o.vertexDirections.empty() || !o.vertexDirectionalMode.empty()) {
+    if (!o.elements && o.vertexColors.empty())
+      throw Error("glb: directions per vertex need vertex colours (the element tessellation's or the meshes')");
+    const int textures = directionalTextureCount(parseDirectionalMode(o.vertexDirectionalMode));
+    const size_t given = o.elements ? o.elementDirections.size() : o.vertexDirections.size();
+    if (textures == 0 || int(given) != textures || (o.elements && !o.vertexDirections.empty()))
+      throw Error(fmt::format("glb: {} direction lists for mode '{}', expected {}", given, o.vertexDirectionalMode,
+                              textures));
+    for (const FaceCornerValues& list : o.vertexDirections) {  // one per coloured corner
+      if (list.size() != o.vertexColors.size())
+        throw Error(fmt::format("glb: vertex directions for {} meshes, the scene has {}", list.size(), scene.meshes.size()));
+      for (size_t m = 0; m < list.size(); ++m)
+        if (list[m].size() != o.vertexColors[m].size())
+          throw Error(fmt::format("glb: mesh '{}': {} vertex directions for {} vertex colours", scene.meshes[m].name,
+                                  list[m].size(), o.vertexColors[m].size()));
+    }
     for (const auto& list : o.elementDirections)
       if (list.size() != o.elements->elements.size() * 4)
         throw Error(fmt::format("glb: {} element directions for {} elements, expected 4 each", list.size(),
@@ -453,11 +463,12 @@ void addMesh(const Scene& scene, size_t mi, const GlbOptions& o, float colorScal
           makePrimitive(model, pb, page < 0 ? int(mesh.material) : lightmapMaterial(model, lightmaps, mesh.material, page)));
     }
   } else {
+    if (b.hasColor && !o.vertexDirections.empty()) b.directions.resize(o.vertexDirections.size());
     addFaces(mesh, mi, o, colorScale, b, [](size_t) { return true; });
   }
   if (!b.indices.empty()) {
     gm.primitives.push_back(makePrimitive(model, b, int(mesh.material)));
-    if (!b.directions.empty()) addVertexDirections(model, b, o.elementDirectionalMode, gm.primitives.back());
+    if (!b.directions.empty()) addVertexDirections(model, b, o.vertexDirectionalMode, gm.primitives.back());
   }
   if (gm.primitives.empty()) return;  // a mesh without faces: glTF meshes need a primitive
   model.meshes.push_back(gm);
@@ -486,9 +497,11 @@ void addFaces(const Mesh& mesh, size_t mi, const GlbOptions& o, float colorScale
       uint32_t corner[4];
       for (int k = 0; k < n; ++k) {
         const size_t fc = fi * 4 + size_t(k);
+        Rgb direction[kMaxDirectionalCoefficients];
+        for (size_t t = 0; t < b.directions.size(); ++t) direction[t] = o.vertexDirections[t][mi][fc];
         corner[k] = b.vertex(poly.v[size_t(k)], normal, b.hasUv ? mesh.uvs[face.v[size_t(k)]] : Vec2(0.0f),
                              b.hasUv1 ? o.secondUvs[mi][fc] : Vec2(0.0f),
-                             b.hasColor ? o.vertexColors[mi][fc] / colorScale : Rgb(0.0f), tangent);
+                             b.hasColor ? o.vertexColors[mi][fc] / colorScale : Rgb(0.0f), tangent, direction);
       }
       b.polygon(corner, n, flipped);
     }
@@ -589,12 +602,22 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path, const GlbOp
     lightmaps.range.push_back(image.rgbmRange);
   }
   lightmaps.options = &options;
-  if (options.transferBands > 0) model.extensionsUsed.push_back(kTransferExtension);
-  if (!options.directionalMode.empty()) model.extensionsUsed.push_back(kDirectionalExtension);
-  if (!options.elementDirectionalMode.empty()) model.extensionsUsed.push_back(kVertexDirectionalExtension);
   const float colorScale = vertexColorScale(options);
   const ElementIndex index = options.elements ? indexElements(scene, *options.elements) : ElementIndex{};
   for (size_t m = 0; m < scene.meshes.size(); ++m) addMesh(scene, m, options, colorScale, index, lightmaps, model);
+  // Our extensions are declared where something carries them: a bake whose meshes all took vertex
+  // colours has no lightmap material to extend.
+  auto materialsUse = [&](const char* name) {
+    return std::any_of(model.materials.begin(), model.materials.end(), [&](auto& m) { return m.extensions.count(name) > 0; });
+  };
+  auto primitivesUse = [&](const char* name) {
+    return std::any_of(model.meshes.begin(), model.meshes.end(), [&](auto& m) {
+      return std::any_of(m.primitives.begin(), m.primitives.end(), [&](auto& p) { return p.extensions.count(name) > 0; });
+    });
+  };
+  for (const char* name : {kTransferExtension, kDirectionalExtension})
+    if (materialsUse(name)) model.extensionsUsed.push_back(name);
+  if (primitivesUse(kVertexDirectionalExtension)) model.extensionsUsed.push_back(kVertexDirectionalExtension);
   const bool anyColors = std::any_of(options.vertexColors.begin(), options.vertexColors.end(),
                                      [](const std::vector<Rgb>& mesh) { return !mesh.empty(); });
   if (anyColors || options.elements) {

@@ -412,8 +412,15 @@ std::vector<uint8_t> encodeRgbmPng(const Image& image, float range) {
 
 namespace luxel {
 
-FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
-                                          const std::vector<uint8_t>& meshes) {
+namespace {
+
+// Planes of a lightmap bake (each [page][texel], as LightmapBake::pages) at the face corners of the
+// flagged meshes: lightmapCornerIrradiance's texel choice and smoothing, one FaceCornerValues per
+// plane. Every plane is read at the same texels and averaged with the same weights, so the SH
+// planes of a directional bake stay those of the irradiance.
+std::vector<FaceCornerValues> lightmapCornerPlanes(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
+                                                   const std::vector<uint8_t>& meshes,
+                                                   const std::vector<const std::vector<std::vector<Rgb>>*>& planes) {
   if (meshes.size() != scene.meshes.size() || atlas.faces.size() != scene.meshes.size())
     throw Error(fmt::format("lightmap vertex colours: {} mesh flags and an atlas of {} meshes for {} meshes",
                             meshes.size(), atlas.faces.size(), scene.meshes.size()));
@@ -438,14 +445,15 @@ FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtla
   for (const SurfaceFace& f : set.faces)
     if (meshes[f.mesh] && litNormal[f.mesh][f.meshFace] == Vec3(0.0f)) litNormal[f.mesh][f.meshFace] = f.normal;
 
-  FaceCornerValues out(scene.meshes.size());
+  std::vector<FaceCornerValues> out(planes.size(), FaceCornerValues(scene.meshes.size()));
   const float cosSmooth = std::cos(45.0f * std::numbers::pi_v<float> / 180.0f);
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     if (!meshes[m]) continue;
     const Mesh& mesh = scene.meshes[m];
     struct Corner {
       Vec3 p, normal;
-      Rgb value{0.0f};
+      uint32_t page = 0;
+      size_t texel = 0;
       bool found = false;
     };
     std::vector<Corner> corners(mesh.faces.size() * 4);
@@ -472,7 +480,7 @@ FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtla
             const size_t i = size_t(y) * size_t(size) + size_t(x);
             if (chartOf[uv.page][i] != int32_t(uv.chart)) continue;
             const double d = (x + 0.5 - q.x) * (x + 0.5 - q.x) + (y + 0.5 - q.y) * (y + 0.5 - q.y);
-            if (d < best) best = d, c.value = bake.pages[uv.page][i], c.found = true;
+            if (d < best) best = d, c.page = uv.page, c.texel = i, c.found = true;
           }
       }
     }
@@ -482,23 +490,57 @@ FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtla
       const Vec3 &a = corners[x].p, &b = corners[y].p;
       return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
     });
-    out[m].assign(corners.size(), Rgb(0.0f));
+    for (auto& plane : out) plane[m].assign(corners.size(), Rgb(0.0f));
     for (size_t g0 = 0; g0 < used.size();) {
       size_t g1 = g0;
       while (g1 < used.size() && corners[used[g1]].p == corners[used[g0]].p) ++g1;
       for (size_t i = g0; i < g1; ++i) {
         const Corner& c = corners[used[i]];
-        Rgb sum(0.0f);
-        int count = 0;
-        for (size_t j = g0; j < g1; ++j) {
-          const Corner& o = corners[used[j]];
-          if (!o.found) continue;
-          if (c.normal != Vec3(0.0f) && glm::dot(c.normal, o.normal) < cosSmooth) continue;
-          sum += o.value, ++count;
+        for (size_t k = 0; k < planes.size(); ++k) {
+          Rgb sum(0.0f);
+          int count = 0;
+          for (size_t j = g0; j < g1; ++j) {
+            const Corner& o = corners[used[j]];
+            if (!o.found) continue;
+            if (c.normal != Vec3(0.0f) && glm::dot(c.normal, o.normal) < cosSmooth) continue;
+            sum += (*planes[k])[o.page][o.texel], ++count;
+          }
+          out[k][m][used[i]] = count > 0 ? sum / float(count) : Rgb(0.0f);
         }
-        out[m][used[i]] = count > 0 ? sum / float(count) : Rgb(0.0f);
       }
       g0 = g1;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
+                                          const std::vector<uint8_t>& meshes) {
+  return std::move(lightmapCornerPlanes(scene, atlas, bake, meshes, {&bake.pages}).front());
+}
+
+std::vector<FaceCornerValues> lightmapCornerDirections(const Scene& scene, const LightmapAtlas& atlas,
+                                                       const LightmapBake& bake, const std::vector<uint8_t>& meshes) {
+  const int count = directionalCoefficients(bake.directional);
+  if (count == 0 || bake.sh.size() != size_t(count))
+    throw Error(fmt::format("lightmap vertex directions: a bake with {} SH planes for mode '{}'", bake.sh.size(),
+                            directionalModeName(bake.directional)));
+  std::vector<const std::vector<std::vector<Rgb>>*> planes;
+  for (const auto& plane : bake.sh) planes.push_back(&plane);
+  const std::vector<FaceCornerValues> coefficients = lightmapCornerPlanes(scene, atlas, bake, meshes, planes);
+  // Averages of the texels' sets: an L2 texel's window (at least 0.5% of the mean irradiance
+  // for every normal) holds for them too, so they are encoded as they are.
+  const int textures = directionalTextureCount(bake.directional);
+  std::vector<FaceCornerValues> out(size_t(textures), FaceCornerValues(scene.meshes.size()));
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const size_t corners = coefficients[0][m].size();
+    for (auto& list : out) list[m].assign(corners, Rgb(0.0f));
+    for (size_t i = 0; i < corners; ++i) {
+      Rgb c[kMaxDirectionalCoefficients];
+      for (int k = 0; k < count; ++k) c[k] = coefficients[size_t(k)][m][i];
+      for (int t = 0; t < textures; ++t) out[size_t(t)][m][i] = encodeDirectionalTexel(bake.directional, c, t);
     }
   }
   return out;
@@ -566,6 +608,10 @@ void addLightmaps(GlbOptions& o, const Scene& scene, const LightmapAtlas& atlas,
   if (std::any_of(vertexColorMeshes.begin(), vertexColorMeshes.end(), [](uint8_t v) { return v != 0; })) {
     o.vertexColors = lightmapCornerIrradiance(scene, atlas, bake, vertexColorMeshes);
     o.vertexColorQuantity = "irradiance";  // as the lightmaps: the material's colour and texture still apply
+    if (bake.directional != DirectionalMode::None) {
+      o.vertexDirectionalMode = directionalModeName(bake.directional);
+      o.vertexDirections = lightmapCornerDirections(scene, atlas, bake, vertexColorMeshes);
+    }
   }
 }
 
