@@ -87,7 +87,7 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
     d.directional = d.kind == kLightmap && m && !p.normals.empty() && !p.tangents.empty() && !p.uv0.empty() &&
                     m->normalTexture >= 0 && directionalCode(m->directionalMode) > 0;
     d.transfer = d.kind == kLightmap && m && m->transferBands > 0;
-    if (d.kind == kVertexRadiance && m && !p.directions.empty() && !p.normals.empty() && !p.tangents.empty() &&
+    if ((d.kind == kVertexRadiance || d.kind == kVertexIrradiance) && m && !p.directions.empty() && !p.normals.empty() && !p.tangents.empty() &&
         !p.uv0.empty() && m->normalTexture >= 0)
       d.vertexDirections = directionalCode(p.directionalMode);
     for (uint32_t i : p.indices) indices.push_back(base + i);

@@ -490,7 +490,7 @@ void main() {
   vec3 m = 2.0 * texture(uNormalMap, vUv0).rgb - 1.0;
   vec3 n = normalize(t * (m.x * uNormalScale) + b * (m.y * uNormalScale) + n0 * m.z);
   if (uKind == 1) radiance = uDirectional > 0 ? uEmission + (vColor - uEmission) * directionalFactor(n, n0) : vColor;
-  else if (uKind == 2) radiance += base * kInvPi * vColor;
+  else if (uKind == 2) radiance += base * kInvPi * vColor * (uDirectional > 0 ? directionalFactor(n, n0) : vec3(1.0));
   else if (uKind == 3) {
     vec4 rgbm = texture(uLightMap, vUv1);
     vec3 h = rgbm.rgb * rgbm.a * uRgbmRange;

@@ -124,9 +124,11 @@ struct GlbOptions {
 std::vector<std::vector<uint8_t>> flippedFaceFlags(const Scene& scene, const SurfaceSet& surfaces);
 
 // The irradiance H of a lightmap bake at every face corner of the meshes flagged in `meshes`
-// ([mesh], 1 = wanted; others get an empty list): the baked texel (filled, stitched) of the face's
-// own chart nearest the corner, averaged over the corners of the mesh at the same position whose
-// faces' normals differ by less than 45 degrees (one smooth surface: one colour per vertex).
+// ([mesh], 1 = wanted; others get an empty list): the baked texels (filled, stitched) of the
+// face's own chart around the corner, bilinearly as a renderer samples the lightmap (the nearest
+// of them where none of the four is the chart's), averaged over the corners of the mesh at the
+// same position whose faces' normals differ by less than 45 degrees (one smooth surface: one
+// colour per vertex).
 // Corners of faces the bake skipped (no area) take that average too, or 0 without one.
 FaceCornerValues lightmapCornerIrradiance(const Scene& scene, const LightmapAtlas& atlas, const LightmapBake& bake,
                                           const std::vector<uint8_t>& meshes);

@@ -453,7 +453,9 @@ std::vector<FaceCornerValues> lightmapCornerPlanes(const Scene& scene, const Lig
     struct Corner {
       Vec3 p, normal;
       uint32_t page = 0;
-      size_t texel = 0;
+      std::array<size_t, 4> texel{};  // the texels read, with their weights
+      std::array<float, 4> weight{};
+      int taps = 0;
       bool found = false;
     };
     std::vector<Corner> corners(mesh.faces.size() * 4);
@@ -470,8 +472,31 @@ std::vector<FaceCornerValues> lightmapCornerPlanes(const Scene& scene, const Lig
         c.normal = litNormal[m][f];
         used.push_back(uint32_t(f * 4 + size_t(k)));
         if (c.normal == Vec3(0.0f) || uv.page >= chartOf.size()) continue;  // skipped by the bake: no texels
-        // The texel of the face's chart nearest the corner, nudged inside as the seams do.
+        // The lightmap at the corner (nudged inside, as the seams do) as a renderer samples it:
+        // bilinearly, from the four texels around it that belong to the face's chart. A texel's
+        // value alone stands half a texel off the vertex: under a lamp's fall-off that put the
+        // vertex colours of a 10 cm grid on 10 cm texels 2-4% dark.
         const glm::dvec2 q = glm::dvec2(uv.texel[size_t(k)]) + 1e-3 * (mid - glm::dvec2(uv.texel[size_t(k)]));
+        const int bx = int(std::floor(q.x - 0.5)), by = int(std::floor(q.y - 0.5));
+        const double fx = q.x - 0.5 - bx, fy = q.y - 0.5 - by;
+        float total = 0.0f;
+        c.page = uv.page;
+        for (int j = 0; j < 2; ++j)
+          for (int i = 0; i < 2; ++i) {
+            const int x = bx + i, y = by + j;
+            if (x < 0 || y < 0 || x >= size || y >= size) continue;
+            const size_t t = size_t(y) * size_t(size) + size_t(x);
+            const float w = float((i ? fx : 1.0 - fx) * (j ? fy : 1.0 - fy));
+            if (chartOf[uv.page][t] != int32_t(uv.chart) || !(w > 0.0f)) continue;
+            c.texel[size_t(c.taps)] = t, c.weight[size_t(c.taps)] = w, ++c.taps, total += w;
+          }
+        if (total > 1e-3f) {
+          for (int t = 0; t < c.taps; ++t) c.weight[size_t(t)] /= total;
+          c.found = true;
+          continue;
+        }
+        // None of them (a corner of a chart a texel or two across): its texel nearest the corner.
+        c.taps = 0;
         double best = 1e300;
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
@@ -480,7 +505,7 @@ std::vector<FaceCornerValues> lightmapCornerPlanes(const Scene& scene, const Lig
             const size_t i = size_t(y) * size_t(size) + size_t(x);
             if (chartOf[uv.page][i] != int32_t(uv.chart)) continue;
             const double d = (x + 0.5 - q.x) * (x + 0.5 - q.x) + (y + 0.5 - q.y) * (y + 0.5 - q.y);
-            if (d < best) best = d, c.page = uv.page, c.texel = i, c.found = true;
+            if (d < best) best = d, c.texel[0] = i, c.weight[0] = 1.0f, c.taps = 1, c.found = true;
           }
       }
     }
@@ -503,7 +528,8 @@ std::vector<FaceCornerValues> lightmapCornerPlanes(const Scene& scene, const Lig
             const Corner& o = corners[used[j]];
             if (!o.found) continue;
             if (c.normal != Vec3(0.0f) && glm::dot(c.normal, o.normal) < cosSmooth) continue;
-            sum += (*planes[k])[o.page][o.texel], ++count;
+            for (int t = 0; t < o.taps; ++t) sum += o.weight[size_t(t)] * (*planes[k])[o.page][o.texel[size_t(t)]];
+            ++count;
           }
           out[k][m][used[i]] = count > 0 ? sum / float(count) : Rgb(0.0f);
         }

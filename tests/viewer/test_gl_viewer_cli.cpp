@@ -120,15 +120,36 @@ TEST(GlViewerCli, DirectionalBakeShowsTheNormalMapAsLuxelRenderDoes) {
   const std::vector<std::string> camera = {"--eye", "0,4,3", "--target", "0,0,0", "--fov", "60", "--size", "128x128"};
   const std::vector<std::string> solve = with({"--elements", "1600"}, camera);
   ASSERT_EQ(luxel(dir, with({"render", "floor.json", "--mode", "lightmap", "-o", "plain.exr", "-q"}, solve)).code, 0);
-  // Directional lightmaps, and directions per vertex (LUXEL_vertex_directional, on the element
-  // tessellation's vertex colours), against the same lightmap render.
-  for (const std::string bake : {"--lightmaps", "--vertex-colors"})
+  // The same floor as a 40 x 40 grid, for irradiance vertex colours at its own vertices.
+  {
+    std::string obj = "mtllib floor.mtl\no floor\n";
+    for (int j = 0; j <= 40; ++j)
+      for (int i = 0; i <= 40; ++i)
+        obj += fmt::format("v {} 0 {}\nvt {} {}\n", -2.0 + 0.1 * i, 2.0 - 0.1 * j, 0.05 * i, 0.05 * j);
+    obj += "usemtl floor\n";
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 40; ++i) {
+        const int a = j * 41 + i + 1, b = a + 1, c = a + 42, d = a + 41;
+        obj += fmt::format("f {0}/{0} {1}/{1} {2}/{2} {3}/{3}\n", a, b, c, d);
+      }
+    writeFile(dir / "grid.obj", obj);
+    std::string json = readFile(dir / "floor.json");
+    json.replace(json.find("floor.obj"), 9, "grid.obj");
+    writeFile(dir / "grid.json", json);
+  }
+  // Directional lightmaps, directions per vertex (LUXEL_vertex_directional, on the element
+  // tessellation's vertex colours) and beside lightmaps (--vertex-colors-for: the grid's own
+  // vertices, irradiance), against the same lightmap render.
+  for (const std::string bake : {"--lightmaps", "--vertex-colors", "--vertex-colors-for"})
     for (const std::string mode : {"sh-l1", "dominant", "sh-l2"}) {
-      ASSERT_EQ(luxel(dir, {"bake", "floor.json", "-o", "floor.glb", bake, "--directional", mode, "--elements", "1600", "-q"}).code, 0);
+      const std::string scene = bake == "--vertex-colors-for" ? "grid.json" : "floor.json";
+      const std::vector<std::string> what =
+          bake == "--vertex-colors-for" ? std::vector<std::string>{"--lightmaps", bake, "floor"} : std::vector<std::string>{bake};
+      ASSERT_EQ(luxel(dir, with({"bake", scene, "-o", "floor.glb"}, with(what, {"--directional", mode, "--elements", "1600", "-q"}))).code, 0);
       const CliRun view = luxel(dir, with({"view", "floor.glb", "--headless", "--paused", "--frames", "2", "--screenshot", "view.exr"}, camera));
       if (view.code != 0 && view.err.find("OpenGL 4.5") != std::string::npos) GTEST_SKIP() << "no OpenGL 4.5 context: " << view.err;
       ASSERT_EQ(view.code, 0) << view.err;
-      ASSERT_EQ(luxel(dir, with({"render", "floor.json", "--mode", "lightmap", "--directional", mode, "-o", "render.exr", "-q"}, solve)).code, 0);
+      ASSERT_EQ(luxel(dir, with({"render", scene, "--mode", "lightmap", "--directional", mode, "-o", "render.exr", "-q"}, solve)).code, 0);
       const luxel::Image shown = luxel::readExr(dir / "view.exr");
       const luxel::test::RegionDifference d = luxel::test::compareRegions(shown, luxel::readExr(dir / "render.exr"), 8, 0.1);
       EXPECT_LT(d.worst, 0.05) << bake << " " << mode << ": region " << d.region << ": view " << d.a << ", render " << d.b;

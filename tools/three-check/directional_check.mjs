@@ -2,12 +2,14 @@
 // LUXEL_lightmap_directional extension) as luxel shows them itself (`luxel render --mode lightmap
 // --directional MODE`), with the directional recipe of docs/baking.md run as written.
 //
-//   node directional_check.mjs --luxel PATH/TO/luxel --out DIR [--mode sh-l1|sh-l2|dominant] [--vertex 1]
+//   node directional_check.mjs --luxel PATH/TO/luxel --out DIR [--mode sh-l1|sh-l2|dominant] [--vertex 1|2]
 //                              [--elements N] [--size N] [--tolerance F] [--chromium PATH] [--docs FILE]
 //
 // With --vertex 1, the same for directions per vertex (`luxel bake --vertex-colors --directional
 // MODE`, the LUXEL_vertex_directional extension, docs/baking.md's vertex recipe), against the same
-// lightmap render, with the plain vertex-colour recipe (no directions) for contrast.
+// lightmap render, with the plain vertex-colour recipe (no directions) for contrast. With --vertex 2,
+// irradiance vertex colours beside lightmaps (`--lightmaps --vertex-colors-for floor --directional
+// MODE`, the floor a 40 x 40 grid) with that section's recipes.
 //
 // 1. writes a scene into DIR: a 4 x 4 m floor (OBJ, uvs along x and z) whose normal map (MTL `norm`,
 //    a 16 x 1 PNG) has stripes 1 m wide tilted 12 degrees towards +x and -x in turn, a lamp 4 m off
@@ -48,12 +50,24 @@ const THREE = await import('three');
 // The recipes: docs/baking.md's ```js blocks, the directional one and the plain one.
 const blocks = [...readFileSync(opts.docs, 'utf8').matchAll(/```js\n([\s\S]*?)```/g)].map((m) => m[1]);
 // Per vertex: the vertex recipe, and the plain vertex-colour one (the complete example's lines from
-// `const S` to the traverse's end, as html_check.mjs takes them).
+// `const S` to the traverse's end, as html_check.mjs takes them). With --vertex 2, irradiance vertex
+// colours beside lightmaps (--vertex-colors-for): that section's directional recipe, which takes
+// LUXEL_VERTEX_GLSL from the vertex recipe, and its plain MeshBasicMaterial one.
 const vertexPlain = blocks.find((b) => b.includes('import ') && b.includes('const S'));
-const directional = blocks.find((b) => b.includes(opts.vertex ? 'LUXEL_vertex_directional' : 'LUXEL_lightmap_directional'));
-const plain = opts.vertex
-  ? vertexPlain?.slice(vertexPlain.indexOf('const S'), vertexPlain.indexOf('\n});\n', vertexPlain.indexOf('const S')) + 5)
-  : blocks.find((b) => b.includes('material.userData.luxel') && !b.includes('LUXEL_lightmap_directional'));
+const glsl = blocks.find((b) => b.includes('const LUXEL_VERTEX_GLSL'));  // the vertex recipes' shared reading
+const vertexRecipes = blocks.filter((b) => b.includes('LUXEL_vertex_directional') && b.includes('traverse'));
+const withGlsl = (recipe) => (glsl && recipe ? `${glsl}\n${recipe}` : undefined);
+let directional, plain;
+if (opts.vertex === 2) {
+  directional = withGlsl(vertexRecipes.find((b) => b.includes("vertexColors: 'irradiance'")));
+  plain = blocks.find((b) => b.includes("vertexColors: 'irradiance'") && !b.includes('LUXEL_vertex_directional'));
+} else if (opts.vertex) {
+  directional = withGlsl(vertexRecipes.find((b) => !b.includes("vertexColors: 'irradiance'")));
+  plain = vertexPlain?.slice(vertexPlain.indexOf('const S'), vertexPlain.indexOf('\n});\n', vertexPlain.indexOf('const S')) + 5);
+} else {
+  directional = blocks.find((b) => b.includes('LUXEL_lightmap_directional'));
+  plain = blocks.find((b) => b.includes('material.userData.luxel') && !b.includes('LUXEL_lightmap_directional'));
+}
 if (!directional || !plain) fail(`${opts.docs}: no directional or no plain ${opts.vertex ? 'vertex-colour' : 'lightmap'} recipe (\`\`\`js blocks)`);
 
 // ---- 1. the scene ---------------------------------------------------------------------------------
@@ -66,8 +80,27 @@ for (let x = 0; x < 16; ++x) {
 }
 writePng(path.join(opts.out, 'stripes.png'), 16, 1, stripes);
 writeFileSync(path.join(opts.out, 'floor.mtl'), 'newmtl floor\nKd 0.5 0.5 0.5\nnorm stripes.png\n');
-writeFileSync(path.join(opts.out, 'floor.obj'),
-  'mtllib floor.mtl\no floor\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nv -2 0 -2\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\nusemtl floor\nf 1/1 2/2 3/3 4/4\n');
+if (opts.vertex === 2) {
+  // Vertex colours at the mesh's own vertices: a 40 x 40 grid of quads, 10 cm apart, so that they
+  // resolve the lamp's fall-off as the lightmap's texels do.
+  const n = 40, lines = ['mtllib floor.mtl', 'o floor'];
+  for (let j = 0; j <= n; ++j)
+    for (let i = 0; i <= n; ++i) {
+      const x = -2 + 4 * i / n, z = 2 - 4 * j / n;
+      lines.push(`v ${x} 0 ${z}`, `vt ${(x + 2) / 2} ${(2 - z) / 2}`);
+    }
+  lines.push('usemtl floor');
+  const at = (i, j) => j * (n + 1) + i + 1;
+  for (let j = 0; j < n; ++j)
+    for (let i = 0; i < n; ++i) {
+      const c = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+      lines.push(`f ${c.map((k) => `${k}/${k}`).join(' ')}`);
+    }
+  writeFileSync(path.join(opts.out, 'floor.obj'), lines.join('\n') + '\n');
+} else {
+  writeFileSync(path.join(opts.out, 'floor.obj'),
+    'mtllib floor.mtl\no floor\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nv -2 0 -2\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\nusemtl floor\nf 1/1 2/2 3/3 4/4\n');
+}
 writeFileSync(path.join(opts.out, 'floor.json'), JSON.stringify({
   name: 'striped floor',
   meshes: [{ file: 'floor.obj' }],
@@ -81,7 +114,8 @@ rmSync(glb, { force: true });
 rmSync(exr, { force: true });
 const luxel = luxelRunner(opts.luxel, report);
 const elements = String(opts.elements), size = opts.size;
-luxel(['bake', scene, '-o', glb, opts.vertex ? '--vertex-colors' : '--lightmaps', '--directional', opts.mode, '--elements', elements]);
+const what = opts.vertex === 2 ? ['--lightmaps', '--vertex-colors-for', 'floor'] : [opts.vertex ? '--vertex-colors' : '--lightmaps'];
+luxel(['bake', scene, '-o', glb, ...what, '--directional', opts.mode, '--elements', elements]);
 luxel(['render', scene, '--mode', 'lightmap', '--directional', opts.mode, '--elements', elements,
        '--size', `${size}x${size}`, '--spp', '16', '-o', exr]);
 const exrBytes = readFileSync(exr);

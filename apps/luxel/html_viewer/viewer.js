@@ -30,11 +30,9 @@ gltf.scene.traverse((o) => {
 });
 }
 
-// "Directions per vertex": --vertex-colors --directional, COLOR_0 holds radiance / S, shaded at the
-// normal map's normal on MeshLambertMaterials.
-function showDirectionalRadiance(gltf) {
-// Directions per vertex: each primitive's LUXEL_vertex_directional (docs/baking.md). COLOR_0 × S is
-// radiance; its reflected part follows the normal map as the light arrives.
+// "Directions per vertex": the reading the two vertex recipes share.
+// Directions per vertex (LUXEL_vertex_directional, docs/baking.md): how the irradiance changes from
+// the vertex normal n0 to the shading normal n, for the vertex recipes below.
 const LUXEL_VERTEX_GLSL = `
 float luxelL1(vec3 q, vec3 n) {  // one light along q plus a constant (Sloan 2008), in units of m0
   float len = length(q), r = min(len, 1.0);
@@ -76,6 +74,12 @@ vec3 luxelVertexDirectional(vec3 n, vec3 n0) {
   return vec3(f0.r > 0.0 ? max(f.r, 0.0) / f0.r : 1.0, f0.g > 0.0 ? max(f.g, 0.0) / f0.g : 1.0,
               f0.b > 0.0 ? max(f.b, 0.0) / f0.b : 1.0);
 }`;
+
+// "Directions per vertex": --vertex-colors --directional, COLOR_0 holds radiance / S, shaded at the
+// normal map's normal on MeshLambertMaterials.
+function showDirectionalRadiance(gltf) {
+// Directions per vertex: each primitive's LUXEL_vertex_directional (docs/baking.md). COLOR_0 × S is
+// radiance; its reflected part follows the normal map as the light arrives.
 const S = gltf.scene.userData.luxel?.vertexColorScale ?? 1;
 const modes = { 'sh-l1': 1, 'dominant': 2, 'sh-l2': 3 };
 gltf.scene.traverse((o) => {
@@ -105,6 +109,44 @@ gltf.scene.traverse((o) => {
         '                luxelVertexDirectional(luxelN, luxelN0);\n#include <opaque_fragment>');
   };
   l.customProgramCacheKey = () => `luxel-vertex-directional-${dir.mode}`;
+  o.material = l;
+});
+}
+
+// "Vertex colours for some meshes, lightmaps for the rest" with --directional: COLOR_0 holds
+// irradiance / S, shaded at the normal map's normal on MeshLambertMaterials.
+function showDirectionalIrradiance(gltf) {
+// --vertex-colors-for with --directional: COLOR_0 x S is irradiance H, which follows the normal map
+// as the light arrives (LUXEL_VERTEX_GLSL: "Directions per vertex").
+const S = gltf.scene.userData.luxel?.vertexColorScale ?? 1;   // vertexColors: 'irradiance'
+const modes = { 'sh-l1': 1, 'dominant': 2, 'sh-l2': 3 };
+gltf.scene.traverse((o) => {
+  const dir = o.isMesh && o.geometry.attributes.color && o.userData.gltfExtensions?.LUXEL_vertex_directional;
+  if (!dir) return;
+  const m = o.material;
+  const l = new THREE.MeshLambertMaterial({
+    name: m.name, map: m.map, vertexColors: true, side: m.side, transparent: m.transparent, alphaTest: m.alphaTest,
+    color: m.color.clone().multiplyScalar(S / Math.PI),   // base colour x H / pi
+    emissive: m.emissive, emissiveMap: m.emissiveMap, emissiveIntensity: m.emissiveIntensity,
+    normalMap: m.normalMap, normalScale: m.normalScale,
+  });
+  const varyings = dir.attributes.map((a, i) => `varying vec3 vLuxelDir${i};`).join('\n');
+  l.onBeforeCompile = (shader) => {
+    shader.vertexShader = shader.vertexShader
+      .replace('#include <common>', '#include <common>\n' + varyings + '\n' +
+        dir.attributes.map((a) => `attribute vec3 ${a.toLowerCase()};`).join('\n'))
+      .replace('#include <color_vertex>', '#include <color_vertex>\n' +
+        dir.attributes.map((a, i) => `vLuxelDir${i} = ${a.toLowerCase()};`).join('\n'));
+    shader.fragmentShader = shader.fragmentShader
+      .replace('#include <common>', `#include <common>\n#define LUXEL_MODE ${modes[dir.mode]}\n` + varyings)
+      .replace('void main() {', LUXEL_VERTEX_GLSL + '\nvoid main() {')
+      .replace('#include <opaque_fragment>',
+        'vec3 luxelN = normalize(inverseTransformDirection(normal, viewMatrix));\n' +
+        'vec3 luxelN0 = normalize(inverseTransformDirection(nonPerturbedNormal, viewMatrix));\n' +
+        'outgoingLight = totalEmissiveRadiance + diffuseColor.rgb * luxelVertexDirectional(luxelN, luxelN0);\n' +
+        '#include <opaque_fragment>');
+  };
+  l.customProgramCacheKey = () => `luxel-vertex-irradiance-directional-${dir.mode}`;
   o.material = l;
 });
 }
@@ -443,7 +485,8 @@ async function main() {
   const baked = scene.userData.luxel ?? {};
   let directions = false;  // per vertex: LUXEL_vertex_directional
   scene.traverse((o) => { directions ||= Boolean(o.isMesh && o.userData.gltfExtensions?.LUXEL_vertex_directional); });
-  if (baked.vertexColors === 'irradiance') showIrradiance(gltf);
+  if (baked.vertexColors === 'irradiance' && directions) showDirectionalIrradiance(gltf);
+  else if (baked.vertexColors === 'irradiance') showIrradiance(gltf);
   else if (baked.vertexColors && directions) showDirectionalRadiance(gltf);
   else if (baked.vertexColors) showRadiance(gltf);
   const lightmapped = [];
