@@ -4,7 +4,11 @@
 // --directional sh-l1 (every covered and dilated texel: 12 numbers), then compressed each way. The
 // counters are the results (bytes per texel, PSNR in dB against the floats; half floats are 24
 // bytes); the time is the compression's. docs/baking.md, "Compression", keeps the figures.
+// Transfer maps (--transfer 4: 48 numbers a texel, 96 bytes as half floats) the same way, with the
+// error that matters there too: of the lightmap relit under the bench's sun and sky.
 // Run: build/luxel-bench --benchmark_filter='VectorQuantised|ClusteredPrincipal' (minutes on 2 cores: the bakes).
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -14,15 +18,13 @@
 #include "luxel/import.h"
 #include "luxel/lightmap.h"
 #include "luxel/sh_compression.h"
+#include "luxel/transfer_lightmap.h"
 
 namespace luxel {
 namespace {
 
-// The L1 coefficients of every non-empty texel of `file` (relative to the shared scenes), baked once.
-const std::vector<float>& l1Texels(const std::string& file) {
-  static std::map<std::string, std::vector<float>> baked;
-  auto it = baked.find(file);
-  if (it != baked.end()) return it->second;
+// `file` (relative to the shared scenes) under the bench's sun and sky.
+Scene sunAndSky(const std::string& file) {
   Scene s = loadScene((std::filesystem::path(LUXEL_BENCH_SCENES) / file).string());
   Light sun;
   sun.type = Light::Type::Directional;
@@ -32,6 +34,15 @@ const std::vector<float>& l1Texels(const std::string& file) {
   sky.type = Light::Type::Sky;
   sky.intensity = 2000.0f;
   s.lights = {sun, sky};
+  return s;
+}
+
+// The L1 coefficients of every non-empty texel of `file`, baked once.
+const std::vector<float>& l1Texels(const std::string& file) {
+  static std::map<std::string, std::vector<float>> baked;
+  auto it = baked.find(file);
+  if (it != baked.end()) return it->second;
+  const Scene s = sunAndSky(file);
   LightmapRecipe r;
   r.texelsPerMetre = 2.0f;
   r.directional = DirectionalMode::ShL1;
@@ -83,12 +94,100 @@ void ClusteredPrincipalComponents(benchmark::State& state, const std::string& fi
   report(state, r, n);
 }
 
+// A 4-band transfer bake of every non-empty texel of `file` at 2 texels per metre, baked once:
+// [texel][coefficient][channel], and the sun and sky's SH.
+struct TransferTexels {
+  std::vector<float> data;
+  DistantLightSh light;
+};
+constexpr int kTransferNumbers = 16 * 3;
+const TransferTexels& transferTexels(const std::string& file) {
+  static std::map<std::string, TransferTexels> baked;
+  auto it = baked.find(file);
+  if (it != baked.end()) return it->second;
+  const Scene s = sunAndSky(file);
+  LightmapRecipe r;
+  r.texelsPerMetre = 2.0f;
+  const BakedTransfer b = bakeTransfer(s, r, 4);
+  TransferTexels t;
+  t.light = distantLightSh(s, 4);
+  const LightmapBake& texels = b.transfer.texels;
+  for (size_t p = 0; p < texels.state.size(); ++p)
+    for (size_t i = 0; i < texels.state[p].size(); ++i) {
+      if (texels.state[p][i] == LightmapBake::Empty) continue;
+      for (int k = 0; k < 16; ++k)
+        for (int ch = 0; ch < 3; ++ch) t.data.push_back(b.transfer.planes[size_t(k)][p][i][ch]);
+    }
+  return baked[file] = std::move(t);
+}
+
+// PSNR of the relit irradiance (sum_i T_i L_i per channel, at least 0) of `decoded` against the
+// original's, peak = the largest original irradiance.
+double relitPsnr(const TransferTexels& t, const std::vector<float>& decoded) {
+  const size_t n = t.data.size() / kTransferNumbers;
+  double peak = 0.0, squared = 0.0;
+  for (size_t v = 0; v < n; ++v)
+    for (int ch = 0; ch < 3; ++ch) {
+      double a = 0.0, b = 0.0;
+      for (int k = 0; k < 16; ++k) {
+        const size_t at = v * kTransferNumbers + size_t(k) * 3 + size_t(ch);
+        a += double(t.data[at]) * t.light.coefficients[size_t(k)][ch];
+        b += double(decoded[at]) * t.light.coefficients[size_t(k)][ch];
+      }
+      a = std::max(a, 0.0), b = std::max(b, 0.0);
+      peak = std::max(peak, a);
+      squared += (a - b) * (a - b);
+    }
+  const double mse = squared / double(3 * n);
+  return mse > 0.0 ? 10.0 * std::log10(peak * peak / mse) : 999.0;
+}
+
+void TransferVectorQuantised(benchmark::State& state, const std::string& file) {
+  const TransferTexels& t = transferTexels(file);
+  const size_t n = t.data.size() / kTransferNumbers;
+  const int codewords = int(state.range(0));
+  CompressionReport r;
+  double relit = 0.0;
+  for (auto _ : state) {
+    const luxel::VectorQuantised vq = vectorQuantise(t.data, kTransferNumbers, codewords, 60);
+    const std::vector<float> decoded = reconstruct(vq);
+    r = compressionReport(t.data, decoded, vq.indexBits, double(codewords) * kTransferNumbers * 2, n);
+    relit = relitPsnr(t, decoded);
+  }
+  report(state, r, n);
+  state.counters["ratio_to_half"] = kTransferNumbers * 2.0 / r.bytesPerVector;
+  state.counters["relit_psnr_db"] = relit;
+}
+
+void TransferClusteredPca(benchmark::State& state, const std::string& file) {
+  const TransferTexels& t = transferTexels(file);
+  const size_t n = t.data.size() / kTransferNumbers;
+  const int clusters = int(state.range(0)), components = int(state.range(1));
+  CompressionReport r;
+  double relit = 0.0;
+  for (auto _ : state) {
+    const ClusteredPca p = clusteredPca(t.data, kTransferNumbers, clusters, components);
+    const std::vector<float> decoded = reconstruct(p);
+    r = compressionReport(t.data, decoded, p.clusterBits + 8 * components,
+                          double(clusters) * (kTransferNumbers + components * (kTransferNumbers + 1)) * 2, n);
+    relit = relitPsnr(t, decoded);
+  }
+  report(state, r, n);
+  state.counters["ratio_to_half"] = kTransferNumbers * 2.0 / r.bytesPerVector;
+  state.counters["relit_psnr_db"] = relit;
+}
+
 BENCHMARK_CAPTURE(VectorQuantised, sibenik, "sibenik-cathedral/sibenik.obj")->Arg(4096)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(VectorQuantised, sponza, "dabrovic-sponza/sponza.obj")->Arg(4096)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(ClusteredPrincipalComponents, sibenik, "sibenik-cathedral/sibenik.obj")
     ->Args({8, 1})->Args({16, 1})->Args({16, 2})->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(ClusteredPrincipalComponents, sponza, "dabrovic-sponza/sponza.obj")
     ->Args({8, 1})->Args({16, 1})->Args({16, 2})->Iterations(1)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_CAPTURE(TransferVectorQuantised, sibenik, "sibenik-cathedral/sibenik.obj")
+    ->Arg(4096)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(TransferClusteredPca, sibenik, "sibenik-cathedral/sibenik.obj")
+    ->Args({8, 1})->Args({8, 4})->Args({16, 4})->Args({16, 8})->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace luxel
