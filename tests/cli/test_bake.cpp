@@ -667,7 +667,8 @@ TEST(Bake, DirectionalGlbCarriesTheDirectionsOfEveryTexel) {
   }
 }
 
-// Every directional glb validates: the McGuire variants (no uvs of their own) and the built-in box.
+// Every directional glb validates: the McGuire variants (no uvs of their own) and the built-in box,
+// with lightmaps and with vertex colours beside them.
 TEST(BakeCli, DirectionalGlbsValidate) {
   if (std::system("node --version >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "node is not installed (scripts/install-deps.sh installs it)";
@@ -691,6 +692,17 @@ TEST(BakeCli, DirectionalGlbsValidate) {
       EXPECT_EQ(report["issues"]["numErrors"], 0) << file << " " << mode << report["issues"].dump(2);
       EXPECT_EQ(report["issues"]["numWarnings"], 0) << file << " " << mode << report["issues"].dump(2);
     }
+  // Directions on vertex colours beside lightmaps: some meshes (the built-in box's blocks) and every
+  // mesh (each McGuire variant: no lightmap left to carry LUXEL_lightmap_directional).
+  for (const std::string& file : files) {
+    CliRun r = luxel(dir, {"bake", file, "-o", "v.glb", "--lightmaps", "--vertex-colors-for", file == "cornell" ? "*block" : "*",
+                           "--directional", "sh-l2", "--elements", "400", "--solver", "progressive", "-q"});
+    ASSERT_EQ(r.code, 0) << file << ": " << r.err;
+    const nlohmann::json report = validate(dir / "v.glb");
+    ASSERT_TRUE(report.is_object()) << file << ": the validator printed no JSON";
+    EXPECT_EQ(report["issues"]["numErrors"], 0) << file << report["issues"].dump(2);
+    EXPECT_EQ(report["issues"]["numWarnings"], 0) << file << report["issues"].dump(2);
+  }
 }
 
 TEST(BakeCli, DirectionalNeedsLightmapsAndWorksWithEverySolver) {
