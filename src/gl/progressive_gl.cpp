@@ -237,8 +237,8 @@ void addPiece(vec3 x, vec3 n, vec3 q[4], int count, float visible, vec3 b, inout
 
 // What a patch of exitance b brings point x (normal n) through the visibility-weighted factor F,
 // in `count` (4 or 9) coefficients: solve/incident_sh.cpp's addPatchSh, so that the GPU's
-// directions are the CPU's. L1's far patches (under a fifth of their distance across) as one
-// direction; others by the moments of the polygon's part in front of x, scaled by the visible
+// directions are the CPU's. Far patches (under a fifth of their distance across) as one
+// direction, band 2 included; others by the moments of the polygon's part in front of x, scaled by the visible
 // share F / (unoccluded factor); band 2 from k x k pieces of it, each one direction, more of them
 // the nearer the patch.
 void addPatchSh(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, int count, inout vec3 c[9]) {
@@ -252,7 +252,7 @@ void addPatchSh(vec3 x, vec3 n, GpuPatch P, float F, vec3 b, int count, inout ve
   const float r2 = dot(toPatch, toPatch);
   vec3 v = vec3(0.0);
   float omega = 0.0;
-  if ((count > 4 || !(P.normalArea.w < 0.04 * r2)) && dot(P.normalArea.xyz, q[0] - x) < 0.0)
+  if (!(P.normalArea.w < 0.04 * r2) && dot(P.normalArea.xyz, q[0] - x) < 0.0)
     clippedMoments(x, n, q, pc, v, omega);
   const float unoccluded = dot(v, n), len = length(v);
   if (!(unoccluded > 1e-7) || !(len > 0.0)) {  // far, or the centroid sees none of it: one direction

@@ -24,21 +24,27 @@ namespace luxel {
 // light in the ceiling that reaches over a wall's plane lights it from the front part only).
 void addPatchSh(const SurfaceSet& surfaces, uint32_t e, uint32_t p, float f, Rgb b, int count, Rgb* c);
 
-// A patch under a fifth of its distance across, for L1 (count 4): one direction, its solid angle
-// A cos / r^2 to a few parts in a thousand, so f b / cos(theta) is the integral of L. Returns false
-// (and adds nothing) for a nearer patch or for L2, which addPatchSh then takes. Inline: a pass over
-// every element and shooter calls it tens of millions of times.
+// A patch under a fifth of its distance across: one direction, its solid angle A cos / r^2 to a
+// few parts in a thousand, so f b / cos(theta) is the integral of L. For L2 (count 9) band 2 goes
+// along the same direction, as addPatchSh takes such a patch's band 2 (one piece: it cuts a patch
+// into pieces only from a quarter of its distance across). Returns false (and adds nothing) for a
+// nearer patch, which addPatchSh then takes. Inline: a pass over every element and shooter calls
+// it tens of millions of times.
 inline constexpr float kShFarField = 0.2f;  // a far patch's side, at most, over its distance
 inline bool addFarPatchSh(const Element& el, const Patch& patch, float f, Rgb b, int count, Rgb* c) {
   const Vec3 toPatch = patch.centroid - el.centroid;
   const float r2 = glm::dot(toPatch, toPatch);
-  if (count > kShL1Coefficients || !(patch.area < kShFarField * kShFarField * r2)) return false;
+  if (!(patch.area < kShFarField * kShFarField * r2)) return false;
   const Vec3 w = toPatch / std::sqrt(r2);
   const Rgb weight = (f / std::max(glm::dot(el.normal, w), kShMinimumCosine)) * b;
   c[0] += kShY0 * weight;
   c[1] += (kShY1 * w.y) * weight;
   c[2] += (kShY1 * w.z) * weight;
   c[3] += (kShY1 * w.x) * weight;
+  if (count > kShL1Coefficients) {
+    const auto y = shBasis(w);
+    for (int i = kShL1Coefficients; i < kShCoefficients; ++i) c[i] += y[size_t(i)] * weight;
+  }
   return true;
 }
 
