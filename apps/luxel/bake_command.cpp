@@ -189,9 +189,10 @@ int runBake(const BakeArgs& a) {
     }
     return 0;
   }
-  Session session(std::move(scene), discretiseOptions(a.solve), {so});
   const DirectionalMode vertexDirections = a.vertexColors ? parseDirectionalMode(a.directional) : DirectionalMode::None;
-  if (vertexDirections != DirectionalMode::None) session.recordIncidentSh(directionalCoefficients(vertexDirections));
+  SessionOptions sessionOptions{so};
+  sessionOptions.incidentShCount = directionalCoefficients(vertexDirections);
+  Session session(std::move(scene), discretiseOptions(a.solve), sessionOptions);
   const Solution solution = session.solve(bar.callback());
   const SurfaceSet& surfaces = session.surfaces();
   const Scene& solved = session.scene();

@@ -25,6 +25,10 @@ struct SessionOptions {
   // viewer's window), instead of making a headless one. It must stay current, on that thread,
   // for every call of the session.
   bool borrowCurrentGlContext = false;
+  // Directional bakes: the SH coefficients (4 or 9; 0 for none) that incidentSh will be asked for.
+  // Said here rather than by recordIncidentSh, the analytic lights' directions come from the same
+  // rays as their irradiance instead of being traced again when asked.
+  int incidentShCount = 0;
 };
 
 class Session {
@@ -79,8 +83,10 @@ class Session {
   // incident radiance, per element (docs/baking.md, "Directional lightmaps"; what a directional
   // lightmap bake records per texel). Throws Error for another count.
   std::vector<Rgb> incidentSh(int count);
-  // Before solve(), when incidentSh(count) will be asked: the GPU's solvers then record directions
-  // as they shoot (exact per shot) instead of gathering them by rays afterwards.
+  // Before solve(), when incidentSh(count) will be asked: solvers that record directions only as
+  // they solve (the GPU's, the hierarchy's) then start doing so instead of leaving them to a final
+  // gather of rays. SessionOptions::incidentShCount does the same from the start, and saves the
+  // analytic lights a second trace.
   void recordIncidentSh(int count);
 
   // The camera a render of this session's scene uses: the one called `name` (Error listing the

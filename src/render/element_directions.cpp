@@ -7,6 +7,7 @@
 #include "luxel/bake.h"
 #include "luxel/error.h"
 #include "luxel/render.h"
+#include "render/corner_values.h"
 
 namespace luxel {
 
@@ -19,12 +20,14 @@ std::vector<std::vector<Rgb>> elementDirections(const SurfaceSet& surfaces, Dire
     throw Error(fmt::format("element directions: {} SH coefficients for {} elements, expected {} each", sh.size(), ne,
                             count));
   // Each coefficient is a linear function of the incident light, so it is carried to the corners
-  // exactly as the irradiance is; the ratios the textures hold are taken after, at each corner.
+  // exactly as the irradiance is (over corner groups found once: finding them sorts every corner);
+  // the ratios the textures hold are taken after, at each corner.
+  const CornerGroups groups(surfaces, kDefaultCreaseCosine);
   std::vector<std::vector<Rgb>> atCorners(static_cast<size_t>(count));
   std::vector<Rgb> plane(ne);
   for (int k = 0; k < count; ++k) {
     for (size_t e = 0; e < ne; ++e) plane[e] = sh[e * size_t(count) + size_t(k)];
-    atCorners[size_t(k)] = elementCornerValues(surfaces, plane);
+    atCorners[size_t(k)] = elementCornerValues(surfaces, groups, plane);
   }
   const int textures = directionalTextureCount(mode);
   std::vector<std::vector<Rgb>> out(size_t(textures), std::vector<Rgb>(ne * 4));

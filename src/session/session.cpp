@@ -12,6 +12,13 @@
 
 namespace luxel {
 
+namespace {
+void checkShCount(int count) {
+  if (count != kShL1Coefficients && count != kShCoefficients)
+    throw Error(fmt::format("incident SH: {} coefficients per channel; 4 (L1) or 9 (L2) expected", count));
+}
+}  // namespace
+
 struct Session::State {
   Scene scene;
   SurfaceSet surfaces;
@@ -24,7 +31,8 @@ struct Session::State {
       borrowed = std::make_unique<gl::Context>(gl::Context::BorrowCurrent{});
       lent.glContext = borrowed.get();
     }
-    host = std::make_unique<SolverHost>(scene, surfaces, options.solve, lent);
+    if (options.incidentShCount != 0) checkShCount(options.incidentShCount);
+    host = std::make_unique<SolverHost>(scene, surfaces, options.solve, lent, options.incidentShCount);
   }
 };
 
@@ -99,13 +107,6 @@ void Session::setMaterial(uint32_t material, const Rgb& reflectance, const Rgb& 
   state_->surfaces.refreshMaterials(scene);
   state_->host->sourcesChanged();
 }
-
-namespace {
-void checkShCount(int count) {
-  if (count != kShL1Coefficients && count != kShCoefficients)
-    throw Error(fmt::format("incident SH: {} coefficients per channel; 4 (L1) or 9 (L2) expected", count));
-}
-}  // namespace
 
 std::vector<Rgb> Session::incidentSh(int count) {
   checkShCount(count);
