@@ -201,8 +201,8 @@ class HierarchicalSolver final : public Solver {
 
   // L1 directions are recorded from the first sweep on, or not at all (a record that missed a
   // bounce would be short of it). L2's band 2 is left to its owner's final gather: kept constant
-  // over each element from the clusters' points, it was five times further from a furnace's
-  // (zero) than a gather of 256 rays (docs/baking.md, "Directions from the hierarchy").
+  // over each element from the clusters' points, it was far less accurate than the gather
+  // (docs/baking.md, "Directions from the hierarchy").
   void recordIncidentSh(int count) override {
     if (iterations_ == 0 && count == kShL1Coefficients) recordSh_ = count;
   }
@@ -414,15 +414,12 @@ class HierarchicalSolver final : public Solver {
       for (int ch = 0; ch < 3; ++ch) {
         if (!keep[size_t(ch)]) continue;
         Vec3 value(0.0f);
-        float radiance = 0.0f;
         for (int a = 0; a < nb; ++a) value += basis[a] * from.c[size_t(a * 3 + ch)];
-        if (record)
-          for (int a = 0; a < nb; ++a) radiance += basis[a] * from.radiance[size_t(a * 3 + ch)];
-        for (int a = 0; a < nb; ++a) {
-          const float w = r.projection[size_t(a) * np + p];
-          to.c[size_t(a * 3 + ch)] += w * value;
-          to.radiance[size_t(a * 3 + ch)] += w * radiance;
-        }
+        for (int a = 0; a < nb; ++a) to.c[size_t(a * 3 + ch)] += r.projection[size_t(a) * np + p] * value;
+        if (!record) continue;
+        float radiance = 0.0f;
+        for (int a = 0; a < nb; ++a) radiance += basis[a] * from.radiance[size_t(a * 3 + ch)];
+        for (int a = 0; a < nb; ++a) to.radiance[size_t(a * 3 + ch)] += r.projection[size_t(a) * np + p] * radiance;
       }
     }
   }

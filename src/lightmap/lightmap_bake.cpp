@@ -474,8 +474,8 @@ std::vector<FaceCornerValues> lightmapCornerPlanes(const Scene& scene, const Lig
         if (c.normal == Vec3(0.0f) || uv.page >= chartOf.size()) continue;  // skipped by the bake: no texels
         // The lightmap at the corner (nudged inside, as the seams do) as a renderer samples it:
         // bilinearly, from the four texels around it that belong to the face's chart. A texel's
-        // value alone stands half a texel off the vertex: under a lamp's fall-off that put the
-        // vertex colours of a 10 cm grid on 10 cm texels 2-4% dark.
+        // value alone stands up to half a texel off the vertex, which shows under a lamp's
+        // fall-off (docs/baking.md, "Vertex colours for some meshes").
         const glm::dvec2 q = glm::dvec2(uv.texel[size_t(k)]) + 1e-3 * (mid - glm::dvec2(uv.texel[size_t(k)]));
         const int bx = int(std::floor(q.x - 0.5)), by = int(std::floor(q.y - 0.5));
         const double fx = q.x - 0.5 - bx, fy = q.y - 0.5 - by;

@@ -30,7 +30,7 @@ gltf.scene.traverse((o) => {
 });
 }
 
-// "Directions per vertex": the reading the two vertex recipes share.
+// "Directions per vertex": the reading and the shader edits the two vertex recipes share.
 // Directions per vertex (LUXEL_vertex_directional, docs/baking.md): how the irradiance changes from
 // the vertex normal n0 to the shading normal n, for the vertex recipes below.
 const LUXEL_VERTEX_GLSL = `
@@ -74,6 +74,26 @@ vec3 luxelVertexDirectional(vec3 n, vec3 n0) {
   return vec3(f0.r > 0.0 ? max(f.r, 0.0) / f0.r : 1.0, f0.g > 0.0 ? max(f.g, 0.0) / f0.g : 1.0,
               f0.b > 0.0 ? max(f.b, 0.0) / f0.b : 1.0);
 }`;
+// A MeshLambertMaterial's shaders with the primitive's directions (`dir`, its extension) passed to
+// the fragment shader, the reading above there, and its output replaced by `output`, GLSL that
+// sets outgoingLight from luxelVertexDirectional(luxelN, luxelN0): the normal map's normal and
+// the vertex's, in world space.
+function luxelVertexShader(shader, dir, output) {
+  const modes = { 'sh-l1': 1, 'dominant': 2, 'sh-l2': 3 };
+  const varyings = dir.attributes.map((a, i) => `varying vec3 vLuxelDir${i};`).join('\n');
+  shader.vertexShader = shader.vertexShader
+    .replace('#include <common>', '#include <common>\n' + varyings + '\n' +
+      dir.attributes.map((a) => `attribute vec3 ${a.toLowerCase()};`).join('\n'))
+    .replace('#include <color_vertex>', '#include <color_vertex>\n' +
+      dir.attributes.map((a, i) => `vLuxelDir${i} = ${a.toLowerCase()};`).join('\n'));
+  shader.fragmentShader = shader.fragmentShader
+    .replace('#include <common>', `#include <common>\n#define LUXEL_MODE ${modes[dir.mode]}\n` + varyings)
+    .replace('void main() {', LUXEL_VERTEX_GLSL + '\nvoid main() {')
+    .replace('#include <opaque_fragment>',
+      'vec3 luxelN = normalize(inverseTransformDirection(normal, viewMatrix));\n' +
+      'vec3 luxelN0 = normalize(inverseTransformDirection(nonPerturbedNormal, viewMatrix));\n' +
+      output + '\n#include <opaque_fragment>');
+}
 
 // "Directions per vertex": --vertex-colors --directional, COLOR_0 holds radiance / S, shaded at the
 // normal map's normal on MeshLambertMaterials.
@@ -81,33 +101,17 @@ function showDirectionalRadiance(gltf) {
 // Directions per vertex: each primitive's LUXEL_vertex_directional (docs/baking.md). COLOR_0 × S is
 // radiance; its reflected part follows the normal map as the light arrives.
 const S = gltf.scene.userData.luxel?.vertexColorScale ?? 1;
-const modes = { 'sh-l1': 1, 'dominant': 2, 'sh-l2': 3 };
 gltf.scene.traverse((o) => {
   const dir = o.isMesh && o.geometry.attributes.color && o.userData.gltfExtensions?.LUXEL_vertex_directional;
   if (!dir) return;
   const m = o.material;
   const l = new THREE.MeshLambertMaterial({
-    name: m.name, vertexColors: true, side: m.side,
+    name: m.name, vertexColors: true, side: m.side, color: new THREE.Color(S, S, S),  // diffuseColor = COLOR_0 x S
     emissive: m.emissive, emissiveMap: m.emissiveMap, emissiveIntensity: m.emissiveIntensity,
     normalMap: m.normalMap, normalScale: m.normalScale,  // GLTFLoader's, y already as three.js wants it
   });
-  const varyings = dir.attributes.map((a, i) => `varying vec3 vLuxelDir${i};`).join('\n');
-  l.onBeforeCompile = (shader) => {
-    shader.uniforms.luxelScale = { value: S };
-    shader.vertexShader = shader.vertexShader
-      .replace('#include <common>', '#include <common>\n' + varyings + '\n' +
-        dir.attributes.map((a) => `attribute vec3 ${a.toLowerCase()};`).join('\n'))
-      .replace('#include <color_vertex>', '#include <color_vertex>\n' +
-        dir.attributes.map((a, i) => `vLuxelDir${i} = ${a.toLowerCase()};`).join('\n'));
-    shader.fragmentShader = shader.fragmentShader
-      .replace('#include <common>', `#include <common>\n#define LUXEL_MODE ${modes[dir.mode]}\nuniform float luxelScale;\n` + varyings)
-      .replace('void main() {', LUXEL_VERTEX_GLSL + '\nvoid main() {')
-      .replace('#include <opaque_fragment>',
-        'vec3 luxelN = normalize(inverseTransformDirection(normal, viewMatrix));\n' +
-        'vec3 luxelN0 = normalize(inverseTransformDirection(nonPerturbedNormal, viewMatrix));\n' +
-        'outgoingLight = totalEmissiveRadiance + (vColor.rgb * luxelScale - totalEmissiveRadiance) *\n' +
-        '                luxelVertexDirectional(luxelN, luxelN0);\n#include <opaque_fragment>');
-  };
+  l.onBeforeCompile = (shader) => luxelVertexShader(shader, dir,
+    'outgoingLight = totalEmissiveRadiance + (diffuseColor.rgb - totalEmissiveRadiance) * luxelVertexDirectional(luxelN, luxelN0);');
   l.customProgramCacheKey = () => `luxel-vertex-directional-${dir.mode}`;
   o.material = l;
 });
@@ -117,9 +121,8 @@ gltf.scene.traverse((o) => {
 // irradiance / S, shaded at the normal map's normal on MeshLambertMaterials.
 function showDirectionalIrradiance(gltf) {
 // --vertex-colors-for with --directional: COLOR_0 x S is irradiance H, which follows the normal map
-// as the light arrives (LUXEL_VERTEX_GLSL: "Directions per vertex").
+// as the light arrives (luxelVertexShader: "Directions per vertex").
 const S = gltf.scene.userData.luxel?.vertexColorScale ?? 1;   // vertexColors: 'irradiance'
-const modes = { 'sh-l1': 1, 'dominant': 2, 'sh-l2': 3 };
 gltf.scene.traverse((o) => {
   const dir = o.isMesh && o.geometry.attributes.color && o.userData.gltfExtensions?.LUXEL_vertex_directional;
   if (!dir) return;
@@ -130,22 +133,8 @@ gltf.scene.traverse((o) => {
     emissive: m.emissive, emissiveMap: m.emissiveMap, emissiveIntensity: m.emissiveIntensity,
     normalMap: m.normalMap, normalScale: m.normalScale,
   });
-  const varyings = dir.attributes.map((a, i) => `varying vec3 vLuxelDir${i};`).join('\n');
-  l.onBeforeCompile = (shader) => {
-    shader.vertexShader = shader.vertexShader
-      .replace('#include <common>', '#include <common>\n' + varyings + '\n' +
-        dir.attributes.map((a) => `attribute vec3 ${a.toLowerCase()};`).join('\n'))
-      .replace('#include <color_vertex>', '#include <color_vertex>\n' +
-        dir.attributes.map((a, i) => `vLuxelDir${i} = ${a.toLowerCase()};`).join('\n'));
-    shader.fragmentShader = shader.fragmentShader
-      .replace('#include <common>', `#include <common>\n#define LUXEL_MODE ${modes[dir.mode]}\n` + varyings)
-      .replace('void main() {', LUXEL_VERTEX_GLSL + '\nvoid main() {')
-      .replace('#include <opaque_fragment>',
-        'vec3 luxelN = normalize(inverseTransformDirection(normal, viewMatrix));\n' +
-        'vec3 luxelN0 = normalize(inverseTransformDirection(nonPerturbedNormal, viewMatrix));\n' +
-        'outgoingLight = totalEmissiveRadiance + diffuseColor.rgb * luxelVertexDirectional(luxelN, luxelN0);\n' +
-        '#include <opaque_fragment>');
-  };
+  l.onBeforeCompile = (shader) => luxelVertexShader(shader, dir,
+    'outgoingLight = totalEmissiveRadiance + diffuseColor.rgb * luxelVertexDirectional(luxelN, luxelN0);');
   l.customProgramCacheKey = () => `luxel-vertex-irradiance-directional-${dir.mode}`;
   o.material = l;
 });
