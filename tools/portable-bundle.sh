@@ -15,7 +15,9 @@ shift
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$work/lib" "$work/bin"
-libs=(/lib/x86_64-linux-gnu/libEGL.so.1 /lib/x86_64-linux-gnu/libOpenGL.so.0 /lib/x86_64-linux-gnu/libGLdispatch.so.0)
+# libGL.so.1 and libGLX.so.0: Dear ImGui's OpenGL loader (Debian's libimgui) opens libGL.so.1 by name.
+libs=(/lib/x86_64-linux-gnu/libEGL.so.1 /lib/x86_64-linux-gnu/libOpenGL.so.0 /lib/x86_64-linux-gnu/libGLdispatch.so.0
+      /lib/x86_64-linux-gnu/libGL.so.1 /lib/x86_64-linux-gnu/libGLX.so.0)
 for program in "$@"; do
   cp -L "$program" "$work/bin/"
   while read -r lib; do libs+=("$lib"); done < <(ldd "$program" | awk '/=> \// {print $3} /^\s*\/lib/ {print $1}')

@@ -1,6 +1,8 @@
 // The viewer without a display: a headless OpenGL 4.5 context through EGL (the GPU backend's own,
 // gl/gl_context.h) and an offscreen framebuffer standing in for the window, with the panels drawn
 // into it too, so that a scripted run on a GPU server times what a user's window would.
+#include <iostream>
+
 #include <epoxy/gl.h>
 #include <imgui.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -37,7 +39,12 @@ int runHeadless(Scene scene, ViewerOptions options, const RunOptions& run) {
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;
   io.DisplaySize = ImVec2(float(options.width), float(options.height));
+  // Debian's Dear ImGui loads its GL functions from libGL.so.1 (GLX's library), which a headless
+  // server may lack while EGL works: the frames are then drawn without panels, saying so.
   const bool ui = ImGui_ImplOpenGL3_Init("#version 450");
+  if (!ui)
+    std::cerr << "luxel view: warning: no panels: Dear ImGui could not load OpenGL through libGL.so.1 "
+                 "(install libglvnd's libgl1); frames are drawn and timed without them\n";
   struct ImGuiDown {
     bool ui;
     ~ImGuiDown() {
