@@ -32,6 +32,9 @@ struct AtlasOptions {
   // in a corner of a large page. Needs texelsPerMetre > 0 (the fitted density depends on the page);
   // ignored when a mesh brings its own UVs (their resolution is the page's).
   bool sizePagesToContent = false;
+  // Given UVs that overlap are kept as they are instead of an error, for diagnostics
+  // (luxel/texel_diagnostics.h, luxel view's texels view): a bake of them mixes the faces' light.
+  bool keepOverlappingUvs = false;
 };
 
 struct LightmapAtlas {
@@ -54,8 +57,10 @@ struct LightmapAtlas {
   std::vector<std::string> warnings;
 };
 
-// Throws Error naming the mesh when given UVs overlap or leave [0,1], or options are absurd. Given
-// UVs of (nearly) no area are replaced by luxel's own, with a warning in LightmapAtlas::warnings.
+// Throws Error naming the mesh when given UVs overlap (unless kept) or leave [0,1], or options are
+// absurd. Given UVs of (nearly) no area are replaced by luxel's own, with a warning in
+// LightmapAtlas::warnings; given charts that touch with no texel between them (bilinear filtering
+// will mix their light) are kept with a warning.
 LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options = {});
 
 // ---- Baking: texels as elements (docs/lightmaps.md, "Baking") ----------------------------------
@@ -80,6 +85,9 @@ struct TexelSurfaces {
   std::vector<std::array<Vec2, 4>> faceTexels; // per face of `surfaces`: corners in texel units, same order
   std::vector<uint32_t> faceChart;             // per face of `surfaces`
   std::vector<uint32_t> facePage;              // per face of `surfaces`
+  // Texels whose centre a second face also holds (given UVs that overlap; the first face keeps
+  // the texel), once per extra claim.
+  std::vector<Texel> contested;
   size_t skippedFaces = 0;                     // faces with no area in space or in texel space
 };
 TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int texelsPerPatchSide = 8,

@@ -100,7 +100,8 @@ LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options
   for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
     if (!given[m]) continue;
     atlas.chartCount +=
-        lightmap::useExistingUvs(scene, m, o.pageSize, page++, uint32_t(atlas.chartCount), atlas);
+        lightmap::useExistingUvs(scene, m, o.pageSize, page++, uint32_t(atlas.chartCount),
+                                  options.keepOverlappingUvs, atlas);
   }
   if (!charts.empty()) {
     float density = o.texelsPerMetre > 0.0f ? o.texelsPerMetre : fitDensity(charts, area, o);

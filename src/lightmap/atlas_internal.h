@@ -80,10 +80,11 @@ int pagesNeeded(const std::vector<Chart>& charts, float density, const AtlasOpti
 // warning. Returns that warning, or "" when the UVs are usable.
 std::string degenerateGivenUvs(const Scene& scene, uint32_t meshIndex);
 
-// Checks a mesh's lightmapUvs (in [0,1], no two faces claiming a texel at pageSize) and writes
-// them to atlas.faces[meshIndex] on `page`, one chart per UV-connected component, numbered from
-// firstChart. Returns the number of charts. Throws Error naming the mesh.
+// Checks a mesh's lightmapUvs (in [0,1], no two faces claiming a texel at pageSize unless
+// keepOverlaps) and writes them to atlas.faces[meshIndex] on `page`, one chart per UV-connected
+// component, numbered from firstChart; charts with no gutter between them add a warning to
+// atlas.warnings. Returns the number of charts. Throws Error naming the mesh.
 size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint32_t page,
-                      uint32_t firstChart, LightmapAtlas& atlas);
+                      uint32_t firstChart, bool keepOverlaps, LightmapAtlas& atlas);
 
 }  // namespace luxel::lightmap

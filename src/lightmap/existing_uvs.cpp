@@ -46,7 +46,7 @@ std::string degenerateGivenUvs(const Scene& scene, uint32_t meshIndex) {
 }
 
 size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint32_t page,
-                      uint32_t firstChart, LightmapAtlas& atlas) {
+                      uint32_t firstChart, bool keepOverlaps, LightmapAtlas& atlas) {
   const Mesh& mesh = scene.meshes[meshIndex];
   const auto& uv = mesh.lightmapUvs;
   for (size_t i = 0; i < uv.size(); ++i)
@@ -78,6 +78,7 @@ size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint
     for (int k = 0; k < 4; ++k) out[f].texel[size_t(k)] = uv[face.v[size_t(k)]] * float(pageSize);
     auto claim = [&](int x, int y) {
       uint32_t& o = owner[size_t(y) * size_t(pageSize) + size_t(x)];
+      if (o != UINT32_MAX && o != f && keepOverlaps) return;  // the first face keeps it, as the bake does
       if (o != UINT32_MAX && o != f)
         throw Error(fmt::format(
             "scene '{}': mesh '{}': lightmap uvs of faces {} and {} overlap (texel {}, {} of {})",
@@ -88,6 +89,30 @@ size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint
     rasteriseTriangle(t[0], t[1], t[2], pageSize, claim);
     if (!face.isTriangle()) rasteriseTriangle(t[0], t[2], t[3], pageSize, claim);
   }
+
+  // Bilinear filtering at a point of a texel reads its 3x3 neighbourhood: a texel next to another
+  // chart's mixes the two charts' light, which dilation cannot undo (there is no gutter to fill).
+  size_t bleeding = 0;
+  for (int y = 0; y < pageSize; ++y)
+    for (int x = 0; x < pageSize; ++x) {
+      const uint32_t o = owner[size_t(y) * size_t(pageSize) + size_t(x)];
+      if (o == UINT32_MAX) continue;
+      bool bleeds = false;
+      for (int dy = -1; dy <= 1 && !bleeds; ++dy)
+        for (int dx = -1; dx <= 1 && !bleeds; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= pageSize || yy >= pageSize) continue;
+          const uint32_t n = owner[size_t(yy) * size_t(pageSize) + size_t(xx)];
+          bleeds = n != UINT32_MAX && out[n].chart != out[o].chart;
+        }
+      bleeding += bleeds;
+    }
+  if (bleeding > 0)
+    atlas.warnings.push_back(fmt::format(
+        "scene '{}': mesh '{}': {} texels of its lightmap uvs lie next to another chart's with no gutter at {} texels a "
+        "side: bilinear filtering mixes the two charts' light there (leave a texel or two between charts; luxel view's "
+        "texels view shows where)",
+        scene.name, mesh.name, bleeding, pageSize));
   return charts;
 }
 

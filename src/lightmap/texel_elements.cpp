@@ -266,6 +266,7 @@ TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int 
   std::vector<FaceMap> maps;
   maps.reserve(set.faces.size());
   for (size_t i = 0; i < set.faces.size(); ++i) maps.emplace_back(set.faces[i], ts.faceTexels[i]);
+  std::vector<uint8_t> conservative(set.faces.size(), 0);
   struct Claim {
     uint32_t face;
     glm::dvec2 sample;
@@ -276,12 +277,15 @@ TexelSurfaces texelSurfaces(const Scene& scene, const LightmapAtlas& atlas, int 
     auto& o = owner[ts.facePage[fi]];
     if (o.empty()) o.assign(size_t(size) * size_t(size), -1);
     int32_t& slot = o[size_t(y) * size_t(size) + size_t(x)];
-    if (slot >= 0) return;
+    if (slot >= 0) {
+      // Two faces hold the texel's centre (conservative faces take only free texels).
+      if (!conservative[fi]) ts.contested.push_back({ts.facePage[fi], uint32_t(x), uint32_t(y)});
+      return;
+    }
     slot = int32_t(claims.size());
     claims.push_back({fi, sample});
     claimTexels.push_back({ts.facePage[fi], uint32_t(x), uint32_t(y)});
   };
-  std::vector<uint8_t> conservative(set.faces.size(), 0);
   for (uint32_t fi = 0; fi < set.faces.size(); ++fi) {
     const auto& uv = atlas.faces[set.faces[fi].mesh][set.faces[fi].meshFace];
     conservative[fi] = uv.conservative;
