@@ -24,7 +24,7 @@ void addViewerOptions(CLI::App& c, ViewerArgs& a) {
   c.add_option("--tonemap", a.toneCurve, "Tone curve: filmic, reinhard or clamp")->capture_default_str();
   c.add_option("--exposure", a.exposure, "Exposure in stops, on top of auto exposure")->check(finiteRange(-64.0, 64.0));
   c.add_option("--view", a.viewMode,
-               "final, indirect, direct, radiosity, patches, elements, density, unshot or baked (default: baked for a glb "
+               "final, indirect, direct, radiosity, patches, elements, density, unshot, baked or texels (default: baked for a glb "
                "written by luxel bake, else final)");
   c.add_option("--shadows", a.shadows, "Shadows of point, spot and sun lights: maps (cube shadow maps) or volumes (stencil shadow volumes)")
       ->capture_default_str();

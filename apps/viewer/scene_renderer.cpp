@@ -22,7 +22,7 @@
 namespace luxel::viewer {
 namespace {
 
-constexpr const char* kModeNames[kViewModeCount] = {"final", "indirect", "direct", "radiosity", "patches", "elements", "density", "unshot", "baked"};
+constexpr const char* kModeNames[kViewModeCount] = {"final", "indirect", "direct", "radiosity", "patches", "elements", "density", "unshot", "baked", "texels"};
 constexpr uint32_t kHasTwin = 1u, kTriangle = 2u;
 
 struct Vertex {
@@ -48,7 +48,7 @@ constexpr Vec2 kTriangleCorners[4] = {{0, 0}, {1, 0}, {0, 1}, {0, 1}};
 ViewMode parseViewMode(const std::string& name) {
   for (int i = 0; i < kViewModeCount; ++i)
     if (name == kModeNames[i]) return ViewMode(i);
-  throw Error(fmt::format("unknown view '{}' (expected final, indirect, direct, radiosity, patches, elements, density, unshot or baked)", name));
+  throw Error(fmt::format("unknown view '{}' (expected final, indirect, direct, radiosity, patches, elements, density, unshot, baked or texels)", name));
 }
 
 const char* viewModeName(ViewMode mode) { return kModeNames[int(mode)]; }

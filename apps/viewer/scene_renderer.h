@@ -20,11 +20,12 @@ class ShaderProgram;
 
 namespace luxel::viewer {
 
-// Baked: what a glb from `luxel bake` carries, drawn as an engine would (baked_renderer.h).
-enum class ViewMode { Final, Indirect, Direct, Radiosity, Patches, Elements, Density, Unshot, Baked };
+// Baked: what a glb from `luxel bake` carries, drawn as an engine would (baked_renderer.h);
+// Texels: the bake's texels and their faults (texel_renderer.h).
+enum class ViewMode { Final, Indirect, Direct, Radiosity, Patches, Elements, Density, Unshot, Baked, Texels };
 ViewMode parseViewMode(const std::string& name);  // throws luxel::Error listing the modes
 const char* viewModeName(ViewMode mode);
-inline constexpr int kViewModeCount = 9;
+inline constexpr int kViewModeCount = 10;
 
 inline constexpr int kMaxPerPixelLights = 8;
 

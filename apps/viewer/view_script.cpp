@@ -25,7 +25,7 @@ const std::vector<ActionSpec>& actionSpecs() {
       {"solve.reset", 0, 0, "", "start the solve again from the unlit state"},
       {"solve.backend", 1, 1, "cpu|gl", "solve on the CPU or the GPU (starts again)"},
       {"solve.budget", 1, 1, "ELEMENTS", "cut the scene into about this many elements and solve again"},
-      {"view", 1, 1, "MODE", "final, indirect, direct, radiosity, patches, elements, density, unshot, baked"},
+      {"view", 1, 1, "MODE", "final, indirect, direct, radiosity, patches, elements, density, unshot, baked, texels"},
       {"exposure", 1, 1, "STOPS", "exposure in stops over the automatic exposure"},
       {"edges", 1, 1, "elements|patches|off", "draw (or stop drawing) the elements' or patches' outlines"},
       {"shading", 1, 1, "pixel|vertex", "shade point, spot and sun lights per pixel, or per vertex (Gouraud)"},

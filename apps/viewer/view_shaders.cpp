@@ -368,6 +368,35 @@ void main() {
 // per-vertex or lightmap irradiance H (RGBM: rgb * a * range) times base colour over pi, plus
 // emission; a transfer lightmap's H relit by the light's SH as the three.js recipe does.
 // glTF texture coordinates have v = 0 at the image's top, as the images are stored.
+// The texels view (texel_renderer.h): each face at its place in the lightmap atlas, each texel's
+// diagnosis fetched whole.
+const char* kTexelsVertex = R"(#version 450 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec2 aTexel;  // texel units on its page
+layout(location = 2) in float aPage;
+uniform mat4 uViewProjection;
+out vec2 vTexel;
+flat out int vPage;
+void main() {
+  vTexel = aTexel;
+  vPage = int(aPage);
+  gl_Position = uViewProjection * vec4(aPosition, 1.0);
+}
+)";
+const char* kTexelsFragment = R"(#version 450 core
+in vec2 vTexel;
+flat in int vPage;
+layout(binding = 0) uniform sampler2DArray uTexels;  // a colour per texel, per page
+uniform float uOutputScale;
+layout(location = 0) out vec4 outRadiance;
+layout(location = 1) out uint outElement;
+void main() {
+  ivec2 size = textureSize(uTexels, 0).xy;
+  ivec2 t = clamp(ivec2(floor(vTexel)), ivec2(0), size - 1);
+  outRadiance = vec4(texelFetch(uTexels, ivec3(t, vPage), 0).rgb * uOutputScale, 1.0);
+  outElement = 0u;
+}
+)";
 const char* kBakedVertex = R"(#version 450 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec2 aUv0;
@@ -554,6 +583,7 @@ const std::vector<ShaderSource>& builtinShaders() {
       {"sky.frag", kSkyFragment},            {"volume.vert", kVolumeVertex},
       {"volume.geom", kVolumeGeometry},      {"volume.frag", kVolumeFragment},
       {"baked.vert", kBakedVertex},          {"baked.frag", kBakedFragment},
+      {"texels.vert", kTexelsVertex},        {"texels.frag", kTexelsFragment},
       {"lights.glsl", kLights},          {"tone.vert", kToneVertex},
       {"tone.frag", kToneFragment},
   };

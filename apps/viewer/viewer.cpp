@@ -36,7 +36,8 @@ std::vector<Rgb> minus(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
 }
 
 bool isFalseColourView(ViewMode m) {
-  return m == ViewMode::Patches || m == ViewMode::Elements || m == ViewMode::Density || m == ViewMode::Unshot;
+  return m == ViewMode::Patches || m == ViewMode::Elements || m == ViewMode::Density || m == ViewMode::Unshot ||
+         m == ViewMode::Texels;
 }
 
 // The unshot view's heat per element: its unshot power (unshot radiosity times area, summed over
@@ -98,6 +99,7 @@ void Viewer::startSession() {
   auto next = std::make_unique<Session>(std::move(scene), options_.discretise, so);
   session_ = std::move(next);
   cornerGroups_.reset();
+  texelRenderer_.reset();
   measureScene();
   if (!renderer_) {
     renderer_ = std::make_unique<SceneRenderer>(session_->scene(), session_->surfaces(), options_.shaderDir);
@@ -121,6 +123,7 @@ void Viewer::afterSourcesChanged() {
 
 void Viewer::afterGeometryChanged() {
   cornerGroups_.reset();
+  texelRenderer_.reset();  // validity depends on where everything is
   measureScene();
   renderer_->setGeometry(session_->scene(), session_->surfaces());
   perPixelIrradiance_ = session_->lightIrradiance(perPixel_);
@@ -344,6 +347,7 @@ void Viewer::performNow(const Action& a) {
                               "--lightmaps` writes one)",
                               a.where, a.where.empty() ? "" : ": ", options_.sceneName));
     options_.mode = mode;
+    if (mode == ViewMode::Texels) buildTexelView();  // now, so that an error is the action's
   } else if (n == "exposure") {
     options_.tone.exposure = argFloat(a, 0);
   } else if (n == "shadows") {
@@ -581,10 +585,43 @@ Image Viewer::readRadiance() {
 }
 
 void Viewer::drawPicture(const SceneRenderer::Frame& f) {
-  if (f.mode == ViewMode::Baked && bakedRenderer_)
+  if (f.mode == ViewMode::Texels) {
+    if (!texelRenderer_) {
+      try {
+        buildTexelView();
+      } catch (const Error& e) {
+        messages_.push_back(std::string("texels view: ") + e.what());
+        options_.mode = ViewMode::Final;
+        renderer_->draw(f);
+        return;
+      }
+    }
+    texelRenderer_->draw(f.viewProjection, f.outputScale);
+  } else if (f.mode == ViewMode::Baked && bakedRenderer_) {
     bakedRenderer_->draw(f.viewProjection, f.outputScale);
-  else
+  } else {
     renderer_->draw(f);
+  }
+}
+
+void Viewer::buildTexelView() {
+  // The atlas luxel bake would make at the view's density, given UVs kept even where they
+  // overlap (a bake refuses them: here they are shown), and the bake's own validity test.
+  const Scene& scene = session_->scene();
+  LightmapRecipe recipe;
+  recipe.texelsPerMetre = options_.texelsPerMetre;
+  AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
+  ao.keepOverlappingUvs = true;
+  const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
+  texels_ = diagnoseTexels(scene, atlas);
+  texelsPerMetreShown_ = atlas.texelsPerMetre;
+  texelRenderer_ = std::make_unique<TexelRenderer>(scene, atlas, texels_, options_.shaderDir);
+  messages_.push_back(fmt::format("texels: {} on {} page{} of {}^2 at {:.3g} texels/m: {} invalid (red), {} overlapping "
+                                  "(magenta), {} next to another chart (yellow), {:.2f} s",
+                                  texels_.covered, atlas.pageCount, atlas.pageCount == 1 ? "" : "s", atlas.pageSize,
+                                  atlas.texelsPerMetre, texels_.invalid, texels_.overlapping, texels_.bleeding,
+                                  texels_.seconds));
+  for (const std::string& w : atlas.warnings) messages_.push_back(w);
 }
 
 void Viewer::present(int width, int height) {

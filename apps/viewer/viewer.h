@@ -21,7 +21,9 @@
 #include "hdr_target.h"
 #include "luxel/image.h"
 #include "luxel/session.h"
+#include "luxel/texel_diagnostics.h"
 #include "scene_renderer.h"
+#include "texel_renderer.h"
 #include "view_camera.h"
 #include "view_script.h"
 
@@ -120,6 +122,11 @@ class Viewer {
   std::unique_ptr<Session> session_;
   std::unique_ptr<SceneRenderer> renderer_;
   std::unique_ptr<BakedRenderer> bakedRenderer_;  // when options_.baked
+  // The texels view, made when first drawn and again after the geometry or density changes.
+  std::unique_ptr<TexelRenderer> texelRenderer_;
+  TexelDiagnostics texels_;
+  float texelsPerMetreShown_ = 0.0f;
+  void buildTexelView();  // throws luxel::Error (a scene too large to lay out at the density)
   // A transfer bake's light as edited (sun-direction, sun-irradiance, sky-scale), bands 0 without one.
   BakedGlb::TransferLight transferLight_;
   Rgb skyScale_{1.0f};

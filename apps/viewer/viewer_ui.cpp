@@ -97,10 +97,16 @@ void Viewer::drawUi() {
     ImGui::Checkbox("element edges", &elementEdges_);
     ImGui::SameLine();
     ImGui::Checkbox("patch edges", &patchEdges_);
-    if (options_.mode == ViewMode::Density) {
+    if (options_.mode == ViewMode::Density || options_.mode == ViewMode::Texels) {
       float tpm = options_.texelsPerMetre;
-      if (ImGui::SliderFloat("texels/m", &tpm, 1.0f, 256.0f, "%.1f", ImGuiSliderFlags_Logarithmic)) options_.texelsPerMetre = tpm;
+      if (ImGui::SliderFloat("texels/m", &tpm, 1.0f, 256.0f, "%.1f", ImGuiSliderFlags_Logarithmic)) {
+        options_.texelsPerMetre = tpm;
+        texelRenderer_.reset();  // laid out again at the new density
+      }
     }
+    if (options_.mode == ViewMode::Texels && texelRenderer_)
+      ImGui::Text("%zu texels at %.3g/m: %zu invalid (red), %zu overlapping (magenta), %zu bleeding (yellow)",
+                  texels_.covered, double(texelsPerMetreShown_), texels_.invalid, texels_.overlapping, texels_.bleeding);
     if (ImGui::Button("Screenshot")) act("screenshot", {fmt::format("luxel-view-{}.png", frameIndex_)});
     ImGui::SameLine();
     if (ImGui::Button("Reload shaders")) act("shaders.reload");

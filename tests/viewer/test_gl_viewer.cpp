@@ -242,6 +242,43 @@ TEST(GlViewer, UnshotViewShowsWhereTheSolveHasWorkLeft) {
   }
 }
 
+// The texels view lays the atlas a bake would make on the faces: two 1 m squares seen from above,
+// the second's given lightmap UVs folded back over the right half of the first's. Three quarters
+// of the squares' area is overlap (the second square whole, half the first), drawn magenta; the
+// rest is its chart's checker; nothing is invalid. The camera's slight tilt (7 degrees) moves the
+// share of pixels by about a percent.
+TEST(GlViewer, TexelsViewShowsOverlappingUvs) {
+  std::string why;
+  Scene scene;
+  scene.name = "folded uvs";
+  scene.materials.push_back(luxel::Material{.name = "white"});
+  luxel::Mesh m;
+  m.name = "squares";
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {1, 0, 0}, {2, 0, 0}, {2, 0, -1}, {1, 0, -1}};
+  m.faces = {luxel::Face{{0, 1, 2, 3}}, luxel::Face{{4, 5, 6, 7}}};
+  m.lightmapUvs = {{0, 0}, {0.5f, 0}, {0.5f, 0.5f}, {0, 0.5f}, {0.25f, 0}, {0.5f, 0}, {0.5f, 0.5f}, {0.25f, 0.5f}};
+  scene.meshes.push_back(m);
+  ViewerOptions o = optionsFor(scene, 96);
+  o.camera = luxel::Camera{"above", {1.0f, 4.0f, 0.0f}, {1.0f, 0.0f, -0.5f}, {0.0f, 1.0f, 0.0f}, 45.0f};
+  o.mode = luxel::viewer::ViewMode::Texels;
+  auto rig = viewerRig(scene, o, why);
+  if (!rig) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  rig->frame();
+  const Image picture = rig->picture();
+  size_t squares = 0, overlap = 0, invalid = 0;
+  for (const luxel::Rgb& c : picture.pixels) {
+    if (c.x + c.y + c.z <= 0.0f) continue;  // the background
+    ++squares;
+    overlap += c.x > 0.6f && c.y < 0.01f && c.z > 0.6f;  // magenta, either shade of the checker
+    invalid += c.x > 0.6f && c.y < 0.01f && c.z < 0.01f;
+  }
+  const double share = double(overlap) / double(squares);
+  std::printf("texels view: %zu pixels on the squares, %.3f of them overlap (0.75 by area)\n", squares, share);
+  EXPECT_GT(squares, picture.pixels.size() / 8);
+  EXPECT_NEAR(share, 0.75, 0.05);
+  EXPECT_EQ(invalid, 0u);
+}
+
 // Blinn-Phong highlights (Material::specular, shininess; display only) appear on the glossy
 // materials of McGuire's glossy box and nowhere else, and shading the lamp per vertex gives nearly
 // the per-pixel picture on a fine cut (Gouraud over small elements).
