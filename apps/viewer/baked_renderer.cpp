@@ -11,6 +11,8 @@
 
 #include "gl/gl_context.h"
 #include "gl/shader_program.h"
+#include "gl_mesh.h"
+#include "hdr_target.h"
 #include "gl_texture.h"
 #include "luxel/error.h"
 #include "view_shaders.h"
@@ -94,25 +96,12 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
     d.count = GLsizei(indices.size()) - d.first;
     g.draws.push_back(d);
   }
-  glCreateBuffers(1, &g.vbo);
-  glNamedBufferStorage(g.vbo, GLsizeiptr(std::max<size_t>(16, vertices.size() * sizeof(Vertex))), vertices.empty() ? nullptr : vertices.data(), 0);
-  glCreateBuffers(1, &g.ibo);
-  glNamedBufferStorage(g.ibo, GLsizeiptr(std::max<size_t>(16, indices.size() * sizeof(uint32_t))), indices.empty() ? nullptr : indices.data(), 0);
-  glCreateVertexArrays(1, &g.vao);
-  glVertexArrayVertexBuffer(g.vao, 0, g.vbo, 0, sizeof(Vertex));
-  glVertexArrayElementBuffer(g.vao, g.ibo);
-  auto attribute = [&](GLuint index, GLint size, size_t offset) {
-    glEnableVertexArrayAttrib(g.vao, index);
-    glVertexArrayAttribFormat(g.vao, index, size, GL_FLOAT, GL_FALSE, GLuint(offset));
-    glVertexArrayAttribBinding(g.vao, index, 0);
-  };
-  attribute(0, 3, offsetof(Vertex, position));
-  attribute(1, 2, offsetof(Vertex, uv0));
-  attribute(2, 2, offsetof(Vertex, uv1));
-  attribute(3, 3, offsetof(Vertex, color));
-  attribute(4, 3, offsetof(Vertex, normal));
-  attribute(5, 4, offsetof(Vertex, tangent));
-  for (GLuint k = 0; k < 8; ++k) attribute(6 + k, 3, offsetof(Vertex, directions) + k * sizeof(Vec3));
+  std::vector<FloatAttribute> attributes = {{0, 3, offsetof(Vertex, position)}, {1, 2, offsetof(Vertex, uv0)},
+                                            {2, 2, offsetof(Vertex, uv1)},      {3, 3, offsetof(Vertex, color)},
+                                            {4, 3, offsetof(Vertex, normal)},   {5, 4, offsetof(Vertex, tangent)}};
+  for (unsigned k = 0; k < 8; ++k) attributes.push_back({6 + k, 3, offsetof(Vertex, directions) + k * sizeof(Vec3)});
+  const IndexedMesh mesh = makeIndexedMesh(vertices.data(), vertices.size(), sizeof(Vertex), indices, attributes);
+  g.vao = mesh.vao, g.vbo = mesh.vbo, g.ibo = mesh.ibo;
   // Base colour images are sRGB with mipmaps and repeat, lightmaps linear, clamped, unfiltered
   // across levels (docs/baking.md: sampled clamp-to-edge without mipmaps).
   for (const BakedGlb::Image& im : glb.images) {
@@ -146,18 +135,7 @@ void BakedRenderer::setTransferLight(const std::vector<Rgb>& sh) {
 
 void BakedRenderer::draw(const glm::mat4& viewProjection, float outputScale) {
   Gl& g = *gl_;
-  const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  const GLuint clearId[4] = {0, 0, 0, 0};
-  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);  // reversed depth, as SceneRenderer
-  glClearBufferfv(GL_COLOR, 0, clearRadiance);
-  glClearBufferuiv(GL_COLOR, 1, clearId);
-  glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_GREATER);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
-  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  beginOpaquePass();
   glFrontFace(GL_CCW);
   glCullFace(GL_BACK);
   g.program->use();

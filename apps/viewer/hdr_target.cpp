@@ -133,4 +133,19 @@ void ToneMapPass::draw(unsigned radianceTexture, int width, int height, float sc
   glBindVertexArray(0);
 }
 
+void beginOpaquePass() {
+  const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  const GLuint clearId[4] = {0, 0, 0, 0};
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glClearBufferfv(GL_COLOR, 0, clearRadiance);
+  glClearBufferuiv(GL_COLOR, 1, clearId);
+  glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_STENCIL_TEST);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+}
+
 }  // namespace luxel::viewer

@@ -49,6 +49,11 @@ class HdrTarget {
 
 // Draws a radiance texture to the bound framebuffer with exposure, a tone curve and the sRGB
 // transfer (the same operator as PNG files, src/io/tonemap.cpp).
+// Clears the bound HdrTarget (radiance, element ids, depth) and sets an opaque pass's state as
+// SceneRenderer draws: reversed depth (cleared to 0, GL_GREATER), no blending or stencil, filled
+// polygons. Culling is the caller's.
+void beginOpaquePass();
+
 class ToneMapPass {
  public:
   explicit ToneMapPass(const std::string& vertex, const std::string& fragment);

@@ -14,6 +14,7 @@
 #include "gl/gl_context.h"
 #include "gl/shader_program.h"
 #include "gl_texture.h"
+#include "hdr_target.h"
 #include "luxel/error.h"
 #include "mesh/corner_groups.h"
 #include "scene/texture_decode.h"
@@ -523,21 +524,10 @@ void SceneRenderer::drawEdges(const Frame& f) {
 
 void SceneRenderer::draw(const Frame& f) {
   Gl& g = *gl_;
-  const float clearRadiance[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  const GLuint clearId[4] = {0, 0, 0, 0};
   // Reversed depth (ViewCamera::projection): put back as found at the end, for the GL solvers
   // that share the context.
-  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-  glClearBufferfv(GL_COLOR, 0, clearRadiance);
-  glClearBufferuiv(GL_COLOR, 1, clearId);
-  glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  beginOpaquePass();
   glDisable(GL_CULL_FACE);  // backs are drawn black or left to their twins (scene.frag)
-  glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
-  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_GREATER);
-  glDepthMask(GL_TRUE);
   const bool perPixelView = f.mode == ViewMode::Final || f.mode == ViewMode::Direct;
   const bool volumes = shadowMethod_ == ShadowMethod::Volumes && perPixelView && g.lightCount > 0;
   if (!volumes) {

@@ -10,6 +10,8 @@
 
 #include "gl/gl_context.h"
 #include "gl/shader_program.h"
+#include "gl_mesh.h"
+#include "hdr_target.h"
 #include "view_shaders.h"
 
 namespace luxel::viewer {
@@ -85,21 +87,10 @@ TexelRenderer::TexelRenderer(const Scene& scene, const LightmapAtlas& atlas, con
     }
   }
   g.indexCount = GLsizei(indices.size());
-  glCreateBuffers(1, &g.vbo);
-  glNamedBufferStorage(g.vbo, GLsizeiptr(std::max<size_t>(16, vertices.size() * sizeof(Vertex))), vertices.empty() ? nullptr : vertices.data(), 0);
-  glCreateBuffers(1, &g.ibo);
-  glNamedBufferStorage(g.ibo, GLsizeiptr(std::max<size_t>(16, indices.size() * sizeof(uint32_t))), indices.empty() ? nullptr : indices.data(), 0);
-  glCreateVertexArrays(1, &g.vao);
-  glVertexArrayVertexBuffer(g.vao, 0, g.vbo, 0, sizeof(Vertex));
-  glVertexArrayElementBuffer(g.vao, g.ibo);
-  auto attribute = [&](GLuint index, GLint size, size_t offset) {
-    glEnableVertexArrayAttrib(g.vao, index);
-    glVertexArrayAttribFormat(g.vao, index, size, GL_FLOAT, GL_FALSE, GLuint(offset));
-    glVertexArrayAttribBinding(g.vao, index, 0);
-  };
-  attribute(0, 3, offsetof(Vertex, position));
-  attribute(1, 2, offsetof(Vertex, texel));
-  attribute(2, 1, offsetof(Vertex, page));
+  const IndexedMesh mesh = makeIndexedMesh(
+      vertices.data(), vertices.size(), sizeof(Vertex), indices,
+      {{0, 3, offsetof(Vertex, position)}, {1, 2, offsetof(Vertex, texel)}, {2, 1, offsetof(Vertex, page)}});
+  g.vao = mesh.vao, g.vbo = mesh.vbo, g.ibo = mesh.ibo;
 
   // One layer a page, a texel a texel: nearest, never filtered, so each texel shows whole.
   const int size = std::max(1, diagnostics.pageSize), pages = std::max<int>(1, int(diagnostics.flags.size()));
@@ -127,19 +118,8 @@ TexelRenderer::~TexelRenderer() = default;
 
 void TexelRenderer::draw(const glm::mat4& viewProjection, float outputScale) {
   Gl& g = *gl_;
-  const float clearColour[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  const GLuint clearId[4] = {0, 0, 0, 0};
-  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);  // reversed depth, as SceneRenderer
-  glClearBufferfv(GL_COLOR, 0, clearColour);
-  glClearBufferuiv(GL_COLOR, 1, clearId);
-  glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_GREATER);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_BLEND);
-  glDisable(GL_STENCIL_TEST);
+  beginOpaquePass();
   glDisable(GL_CULL_FACE);  // both sides: a face seen from behind still shows its texels
-  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   g.program->use();
   const GLuint p = g.program->id();
   glUniformMatrix4fv(glGetUniformLocation(p, "uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
@@ -148,6 +128,7 @@ void TexelRenderer::draw(const glm::mat4& viewProjection, float outputScale) {
   glBindVertexArray(g.vao);
   glDrawElements(GL_TRIANGLES, g.indexCount, GL_UNSIGNED_INT, nullptr);
   glBindVertexArray(0);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);  // as found, for the GL solvers sharing the context
 }
 
 }  // namespace luxel::viewer
