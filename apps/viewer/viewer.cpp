@@ -346,8 +346,8 @@ void Viewer::performNow(const Action& a) {
       throw Error(fmt::format("{}{}view baked: '{}' is not a glb written by luxel bake (`luxel bake SCENE -o OUT.glb "
                               "--lightmaps` writes one)",
                               a.where, a.where.empty() ? "" : ": ", options_.sceneName));
+    if (mode == ViewMode::Texels) buildTexelView();  // first, so that an error is the action's and changes nothing
     options_.mode = mode;
-    if (mode == ViewMode::Texels) buildTexelView();  // now, so that an error is the action's
   } else if (n == "exposure") {
     options_.tone.exposure = argFloat(a, 0);
   } else if (n == "shadows") {
@@ -592,7 +592,9 @@ void Viewer::drawPicture(const SceneRenderer::Frame& f) {
       } catch (const Error& e) {
         messages_.push_back(std::string("texels view: ") + e.what());
         options_.mode = ViewMode::Final;
-        renderer_->draw(f);
+        SceneRenderer::Frame final = f;
+        final.mode = ViewMode::Final;
+        renderer_->draw(final);
         return;
       }
     }

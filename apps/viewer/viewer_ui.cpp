@@ -99,10 +99,9 @@ void Viewer::drawUi() {
     ImGui::Checkbox("patch edges", &patchEdges_);
     if (options_.mode == ViewMode::Density || options_.mode == ViewMode::Texels) {
       float tpm = options_.texelsPerMetre;
-      if (ImGui::SliderFloat("texels/m", &tpm, 1.0f, 256.0f, "%.1f", ImGuiSliderFlags_Logarithmic)) {
-        options_.texelsPerMetre = tpm;
-        texelRenderer_.reset();  // laid out again at the new density
-      }
+      if (ImGui::SliderFloat("texels/m", &tpm, 1.0f, 256.0f, "%.1f", ImGuiSliderFlags_Logarithmic)) options_.texelsPerMetre = tpm;
+      // The texels view is laid out again once the slider is let go, not at every step of a drag.
+      if (ImGui::IsItemDeactivatedAfterEdit()) texelRenderer_.reset();
     }
     if (options_.mode == ViewMode::Texels && texelRenderer_)
       ImGui::Text("%zu texels at %.3g/m: %zu invalid (red), %zu overlapping (magenta), %zu bleeding (yellow)",
