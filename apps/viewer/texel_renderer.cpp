@@ -39,18 +39,22 @@ Rgb chartHue(uint32_t chart) {
   }
 }
 
-}  // namespace
-
+// What the view shows a texel as (linear RGB, shown as it is): its chart's hue or its fault's
+// colour, darker on odd texels (the checker).
 Rgb texelColour(const TexelDiagnostics& d, size_t page, int x, int y) {
+  constexpr Rgb kInvalid{1.0f, 0.0f, 0.0f}, kOverlap{1.0f, 0.0f, 1.0f}, kBleed{1.0f, 0.85f, 0.0f};
+  constexpr Rgb kUncovered{0.05f, 0.05f, 0.05f};
   const size_t i = size_t(y) * size_t(d.pageSize) + size_t(x);
   const uint8_t f = d.flags[page][i];
   const float checker = ((x + y) & 1) ? 0.7f : 1.0f;
-  if (!(f & TexelDiagnostics::Covered)) return kUncoveredTexelColour;
-  if (f & TexelDiagnostics::Overlap) return kOverlapTexelColour * checker;
-  if (f & TexelDiagnostics::Invalid) return kInvalidTexelColour * checker;
-  if (f & TexelDiagnostics::Bleed) return kBleedTexelColour * checker;
+  if (!(f & TexelDiagnostics::Covered)) return kUncovered;
+  if (f & TexelDiagnostics::Overlap) return kOverlap * checker;
+  if (f & TexelDiagnostics::Invalid) return kInvalid * checker;
+  if (f & TexelDiagnostics::Bleed) return kBleed * checker;
   return chartHue(d.chart[page][i]) * checker;
 }
+
+}  // namespace
 
 struct TexelRenderer::Gl {
   std::unique_ptr<gl::ShaderProgram> program;

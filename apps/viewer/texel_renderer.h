@@ -18,14 +18,6 @@
 
 namespace luxel::viewer {
 
-// The colours the view gives each kind of texel (linear RGB, shown as they are).
-inline constexpr Rgb kInvalidTexelColour{1.0f, 0.0f, 0.0f};
-inline constexpr Rgb kOverlapTexelColour{1.0f, 0.0f, 1.0f};
-inline constexpr Rgb kBleedTexelColour{1.0f, 0.85f, 0.0f};
-inline constexpr Rgb kUncoveredTexelColour{0.05f, 0.05f, 0.05f};
-// A covered texel's colour: its chart's hue, darker on odd texels (the checker).
-Rgb texelColour(const TexelDiagnostics& d, size_t page, int x, int y);
-
 class TexelRenderer {
  public:
   TexelRenderer(const Scene& scene, const LightmapAtlas& atlas, const TexelDiagnostics& diagnostics,

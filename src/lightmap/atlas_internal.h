@@ -1,6 +1,7 @@
 // The stages of buildLightmapAtlas (lightmap.h), one file each: charts.cpp (segmentation),
 // planar.cpp and lscm.cpp (parameterisation), pack.cpp (packing), existing_uvs.cpp (given UVs),
-// raster.cpp (texel-centre rasterisation, shared by the checks).
+// raster.cpp (texel-centre rasterisation, shared by the checks), chart_neighbours.cpp (texels
+// that bilinear filtering mixes across charts, shared with the texel diagnostics).
 #pragma once
 
 #include <array>
@@ -73,6 +74,12 @@ PackResult packCharts(const std::vector<Chart>& charts, float density, const Atl
                       uint32_t firstPage, uint32_t firstChart, LightmapAtlas* atlas);
 // The number of pages packCharts would use (no output).
 int pagesNeeded(const std::vector<Chart>& charts, float density, const AtlasOptions& options);
+
+// Per texel of a page of chart ids (kNoChart where no face claims it): 1 where a texel of another
+// chart is among its 8 neighbours, which bilinear filtering at a point of the texel reads, so the
+// two charts' light is mixed there and no dilation can undo it (chart_neighbours.cpp).
+inline constexpr uint32_t kNoChart = UINT32_MAX;
+std::vector<uint8_t> nextToAnotherChart(const std::vector<uint32_t>& chart, int size);
 
 // Given UVs that are no lightmap layout: the faces whose UV area is (near) zero, for their share of
 // the mesh's UV area by their surface area, hold more than half the mesh's surface. Such UVs bake

@@ -1,6 +1,7 @@
 // A mesh's own lightmap UVs (Mesh::lightmapUvs): checked, then used as they are.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -90,23 +91,12 @@ size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint
     if (!face.isTriangle()) rasteriseTriangle(t[0], t[2], t[3], pageSize, claim);
   }
 
-  // Bilinear filtering at a point of a texel reads its 3x3 neighbourhood: a texel next to another
-  // chart's mixes the two charts' light, which dilation cannot undo (there is no gutter to fill).
-  size_t bleeding = 0;
-  for (int y = 0; y < pageSize; ++y)
-    for (int x = 0; x < pageSize; ++x) {
-      const uint32_t o = owner[size_t(y) * size_t(pageSize) + size_t(x)];
-      if (o == UINT32_MAX) continue;
-      bool bleeds = false;
-      for (int dy = -1; dy <= 1 && !bleeds; ++dy)
-        for (int dx = -1; dx <= 1 && !bleeds; ++dx) {
-          const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= pageSize || yy >= pageSize) continue;
-          const uint32_t n = owner[size_t(yy) * size_t(pageSize) + size_t(xx)];
-          bleeds = n != UINT32_MAX && out[n].chart != out[o].chart;
-        }
-      bleeding += bleeds;
-    }
+  // Charts with no gutter between them: their light mixes under bilinear filtering.
+  std::vector<uint32_t> chartOf(owner.size(), kNoChart);
+  for (size_t i = 0; i < owner.size(); ++i)
+    if (owner[i] != UINT32_MAX) chartOf[i] = out[owner[i]].chart;
+  const std::vector<uint8_t> next = nextToAnotherChart(chartOf, pageSize);
+  const auto bleeding = size_t(std::count(next.begin(), next.end(), uint8_t(1)));
   if (bleeding > 0)
     atlas.warnings.push_back(fmt::format(
         "scene '{}': mesh '{}': {} texels of its lightmap uvs lie next to another chart's with no gutter at {} texels a "

@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "lightmap/atlas_internal.h"
 #include "lightmap/bake_steps.h"
 
 namespace luxel {
@@ -31,25 +32,12 @@ TexelDiagnostics diagnoseTexels(const Scene& scene, const LightmapAtlas& atlas, 
   }
   for (const auto& t : bake.surfaces.contested)
     d.flags[t.page][size_t(t.y) * size_t(atlas.pageSize) + t.x] |= TexelDiagnostics::Overlap;
-  // Bilinear filtering at a point of a texel reads the texels of its 3x3 neighbourhood.
-  const int size = atlas.pageSize;
-  for (size_t p = 0; p < d.flags.size(); ++p)
-    for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) {
-        const size_t i = size_t(y) * size_t(size) + size_t(x);
-        const uint32_t c = d.chart[p][i];
-        if (c == TexelDiagnostics::kNoChart) continue;
-        for (int dy = -1; dy <= 1 && !(d.flags[p][i] & TexelDiagnostics::Bleed); ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int xx = x + dx, yy = y + dy;
-            if (xx < 0 || yy < 0 || xx >= size || yy >= size) continue;
-            const uint32_t other = d.chart[p][size_t(yy) * size_t(size) + size_t(xx)];
-            if (other != TexelDiagnostics::kNoChart && other != c) {
-              d.flags[p][i] |= TexelDiagnostics::Bleed;
-              break;
-            }
-          }
-      }
+  static_assert(TexelDiagnostics::kNoChart == lightmap::kNoChart);
+  for (size_t p = 0; p < d.flags.size(); ++p) {
+    const std::vector<uint8_t> next = lightmap::nextToAnotherChart(d.chart[p], atlas.pageSize);
+    for (size_t i = 0; i < next.size(); ++i)
+      if (next[i]) d.flags[p][i] |= TexelDiagnostics::Bleed;
+  }
   for (const auto& page : d.flags)
     for (uint8_t f : page) {
       d.covered += (f & TexelDiagnostics::Covered) != 0;
