@@ -34,6 +34,18 @@ nlohmann::json spreadJson(const Spread& s) {
   return {{"median", s.median}, {"min", s.min}, {"max", s.max}};
 }
 
+nlohmann::json probeJson(const std::optional<ProbeError>& e) {
+  if (!e) return nullptr;
+  return {{"probes", e->probes},  {"nrmse", e->nrmse}, {"noise", e->noise},
+          {"bias", e->bias},      {"within_3_percent", e->withinThreePercent},
+          {"worst", e->worst}};
+}
+
+std::string probeText(const ProbeError& e) {
+  return fmt::format("NRMSE {:.4f} (noise {:.4f}), bias {:+.2f}%, {:.0f}% of probes within 3%, worst {:.1f}%", e.nrmse,
+                     e.noise, 100 * e.bias, 100 * e.withinThreePercent, 100 * e.worst);
+}
+
 nlohmann::json caseJson(const CaseResult& r) {
   const Case& c = r.benchCase;
   nlohmann::json j = {
@@ -65,6 +77,11 @@ nlohmann::json caseJson(const CaseResult& r) {
       {"ms_per_gather", r.msPerGather},
       {"ms_per_shot", r.msPerShot},
   };
+  if (r.probeError)
+    j["probes"] = {{"solution", probeJson(r.probeError)},
+                   {"reference", probeJson(r.referenceProbeError)},
+                   {"paths", r.probePaths},
+                   {"seconds", r.probeSeconds}};
   if (c.solve.method == "hierarchical")
     j["hierarchy"] = {{"seconds", r.hierarchySeconds}, {"bytes", r.hierarchyBytes}, {"links", r.links}, {"leaves", r.leaves}};
   if (!c.seed.source.empty())
@@ -91,6 +108,12 @@ void printRow(const CaseResult& r) {
                            ms(r.solve.median), r.raysPerSecond / 1e6, limit, frac,
                            double(r.peakMemoryBytes) / (1 << 20), error, seedMs, seedErr);
   if (!r.errorNote.empty()) std::cout << "    (" << r.errorNote << ")\n";
+  if (r.probeError) {
+    std::cout << fmt::format("    (irradiance against {} path-traced probes, {:.3g} paths: {})\n", r.probeError->probes,
+                             double(r.probePaths), probeText(*r.probeError));
+    if (r.referenceProbeError)
+      std::cout << fmt::format("    (the reference against the same probes: {})\n", probeText(*r.referenceProbeError));
+  }
   if (c.solve.method == "hierarchical")
     std::cout << fmt::format("    (hierarchy {:.2f} s, {:.1f} MiB; {} leaves, {} links over the sweeps)\n", r.hierarchySeconds,
                              double(r.hierarchyBytes) / (1 << 20), r.leaves, r.links);

@@ -38,6 +38,22 @@ struct Case {
   // Named in the report; cached like the others.
   std::optional<SolveOptions> reference;
   std::string referenceName;  // how the report names it, e.g. "progressive to 1e-4 unshot"
+  // Elements whose irradiance is path traced as an independent check of the solution and of the
+  // reference (bench/probe_reference.h); 0 for none.
+  size_t probes = 0;
+};
+
+// The difference between element irradiances and path-traced probes of them, all channels: the
+// path tracer's noise is measured, and taken out of the RMS figure.
+struct ProbeError {
+  size_t probes = 0;
+  // sqrt(max(0, sum |H - P|^2 - sum s^2) / sum |P|^2), P the probes' means and s their standard errors.
+  double nrmse = 0.0;
+  double noise = 0.0;   // sqrt(sum s^2 / sum |P|^2): what the probes' own noise adds before it is taken out
+  double bias = 0.0;    // sum (H - P) / sum P
+  // Probes whose |H - P| (channels summed) is within 3% of P plus twice its standard error.
+  double withinThreePercent = 0.0;
+  double worst = 0.0;   // the largest |H - P| / P, channels summed, over probes with P above 1% of the mean
 };
 
 struct Suite {
@@ -87,6 +103,10 @@ struct CaseResult {
   std::optional<double> error;
   std::string errorNote;
   double referenceSeconds = 0.0;  // 0 when the reference came from the cache
+  // Against the path-traced probes (Case::probes): the solution's irradiance, and the reference's.
+  std::optional<ProbeError> probeError, referenceProbeError;
+  double probeSeconds = 0.0;  // path tracing them; 0 when they came from the cache
+  uint64_t probePaths = 0;    // paths over all probes
   // Embree alone on the rays one run cast (same streams, same threads).
   double limitRaysPerSecond = 0.0;
   double limitFraction = 0.0;  // raysPerSecond / limitRaysPerSecond

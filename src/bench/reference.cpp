@@ -29,16 +29,8 @@ uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const Solv
   h.bytes(o.method.data(), o.method.size());
   for (const auto& [name, value] : o.settings.values()) h.bytes(name.data(), name.size()), h.bytes(value.data(), value.size());
   if (kind == Options::ReferenceKind::MonteCarlo) h.bytes("monte-carlo", 11), h.value(kMonteCarloReferenceRays);
-  for (const Element& e : surfaces.elements) {
-    h.value(e.polygon.count);
-    h.bytes(e.polygon.v.data(), sizeof(Vec3) * 4);
-    h.value(e.patch), h.value(e.reflectance), h.value(e.exitance);
-  }
-  for (const Light& l : scene.lights) {
-    h.value(l.type), h.value(l.color), h.value(l.intensity), h.value(l.position), h.value(l.direction);
-    h.value(l.innerConeAngle), h.value(l.outerConeAngle), h.value(l.angularRadius);
-  }
-  h.value(scene.up);
+  for (const Element& e : surfaces.elements) h.value(e.patch);
+  hashLightingProblem(h, scene, surfaces);
   const SolverOptionValues values("reference", SolverRegistry::builtin().get(o.method, o.backend).description.options,
                                   o.settings);
   const FormFactorOptions f = formFactorOptions(values);
@@ -62,6 +54,19 @@ bool readCache(const std::filesystem::path& path, uint64_t key, size_t n, std::v
 }
 
 }  // namespace
+
+void hashLightingProblem(ContentHash& h, const Scene& scene, const SurfaceSet& surfaces) {
+  for (const Element& e : surfaces.elements) {
+    h.value(e.polygon.count);
+    h.bytes(e.polygon.v.data(), sizeof(Vec3) * 4);
+    h.value(e.reflectance), h.value(e.exitance);
+  }
+  for (const Light& l : scene.lights) {
+    h.value(l.type), h.value(l.color), h.value(l.intensity), h.value(l.position), h.value(l.direction);
+    h.value(l.innerConeAngle), h.value(l.outerConeAngle), h.value(l.angularRadius);
+  }
+  h.value(scene.up);
+}
 
 SolveOptions referenceSolveOptions() {
   SolveOptions o;

@@ -12,6 +12,10 @@
 #include "luxel/scene.h"
 #include "luxel/solve.h"
 
+namespace luxel {
+class ContentHash;
+}
+
 namespace luxel::bench {
 
 struct Reference {
@@ -19,6 +23,10 @@ struct Reference {
   double seconds = 0.0;  // time to compute it; 0 when it came from the cache
   std::string path;      // the cache file
 };
+
+// Adds what fixes the light on `surfaces` to `h`: every element's polygon, reflectance and
+// exitance, and the scene's analytic lights.
+void hashLightingProblem(ContentHash& h, const Scene& scene, const SurfaceSet& surfaces);
 
 // The settings references are solved with: Gauss-Seidel gathering to a 1e-6 residual, 64
 // visibility rays for every pair, no pair classification, 64 samples per analytic light.

@@ -5,12 +5,14 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "bench/memory.h"
+#include "bench/probe_reference.h"
 #include "bench/reference.h"
 #include "luxel/bench.h"
 #include "luxel/error.h"
@@ -158,20 +160,30 @@ CaseResult runCase(const Case& c, const Options& options) {
 
   if (!options.reference) {
     result.errorNote = "reference off";
-  } else if (!c.reference && double(s.elements) * double(s.patches) > c.maxReferencePairs) {
+    return result;
+  }
+  SurfaceSet surfaces = discretise(scene, c.discretise);
+  std::optional<Reference> ref;
+  if (!c.reference && double(s.elements) * double(s.patches) > c.maxReferencePairs) {
     result.errorNote = fmt::format("no reference: {:.2g} element-patch pairs", double(s.elements) * double(s.patches));
+  } else if (c.solve.refine.budget > 0) {
+    result.errorNote = "no reference: refinement changes the discretisation";
   } else {
     reportProgress(options.progress, c.name, 1.0, "reference");
-    SurfaceSet surfaces = discretise(scene, c.discretise);
-    if (c.solve.refine.budget > 0) {
-      result.errorNote = "no reference: refinement changes the discretisation";
-    } else {
-      Reference ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress, options.referenceKind,
-                                             c.reference);
-      result.referenceSeconds = ref.seconds;
-      result.error = normalisedRmsError(surfaces, last.solution.radiosity, ref.radiosity);
-      if (c.reference) result.errorNote = "error against " + c.referenceName;
-    }
+    ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress, options.referenceKind,
+                                 c.reference);
+    result.referenceSeconds = ref->seconds;
+    result.error = normalisedRmsError(surfaces, last.solution.radiosity, ref->radiosity);
+    if (c.reference) result.errorNote = "error against " + c.referenceName;
+  }
+  if (c.probes > 0 && c.solve.refine.budget == 0) {
+    reportProgress(options.progress, c.name, 1.0, "probes");
+    const ProbeReference probes =
+        loadOrComputeProbes(scene, surfaces, options.cacheDir, c.probes, PathTracingOptions{}, options.progress);
+    result.probeSeconds = probes.seconds;
+    for (const ElementIrradianceEstimate& e : probes.estimates) result.probePaths += e.paths;
+    result.probeError = probeError(probes, last.solution.irradiance);
+    if (ref) result.referenceProbeError = probeError(probes, irradianceFromRadiosity(surfaces, ref->radiosity));
   }
   return result;
 }

@@ -82,6 +82,21 @@ inline Vec3 polygonPoint(const Polygon& poly, float s, float t) {
          (1 - s) * t * poly.v[3];
 }
 
+// A point uniform by area on the polygon from three uniform numbers: a triangle of the fan
+// (0, i, i + 1) chosen by area, then a uniform point of it. (polygonPoint's bilinear map is
+// uniform only on parallelograms.)
+inline Vec3 uniformPolygonPoint(const Polygon& poly, float pick, float a, float b) {
+  const Vec3 o = poly.v[0];
+  int t = 1;
+  if (poly.count == 4) {
+    const float first = glm::length(glm::cross(poly.v[1] - o, poly.v[2] - o));
+    const float second = glm::length(glm::cross(poly.v[2] - o, poly.v[3] - o));
+    t = pick * (first + second) < first ? 1 : 2;
+  }
+  if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+  return o + a * (poly.v[size_t(t)] - o) + b * (poly.v[size_t(t) + 1] - o);
+}
+
 // A uniformly distributed point on the part of `poly` strictly above the plane through `p` with
 // normal `n`, by rejection from (s,t) pairs drawn with `next()`; false when none of `tries`
 // lands there (a sliver). A shadow ray towards the part behind the plane would always count as

@@ -21,21 +21,6 @@ std::vector<Polygon> patchPolygons(const SurfaceSet& surfaces) {
   return polygons;
 }
 
-// A point uniform by area on the polygon from three uniform numbers: a triangle of the fan
-// (0, i, i + 1) chosen by area, then a uniform point of it. (The bilinear map of polygonPoint is
-// uniform only on parallelograms.)
-Vec3 uniformPoint(const Polygon& poly, float pick, float a, float b) {
-  const Vec3 o = poly.v[0];
-  int t = 1;
-  if (poly.count == 4) {
-    const float first = glm::length(glm::cross(poly.v[1] - o, poly.v[2] - o));
-    const float second = glm::length(glm::cross(poly.v[2] - o, poly.v[3] - o));
-    t = pick * (first + second) < first ? 1 : 2;
-  }
-  if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
-  return o + a * (poly.v[size_t(t)] - o) + b * (poly.v[size_t(t) + 1] - o);
-}
-
 }  // namespace
 
 MonteCarloTransport::MonteCarloTransport(const Scene& scene, const SurfaceSet& surfaces, int raysPerElement,
@@ -77,7 +62,7 @@ void MonteCarloTransport::rows(std::span<const uint32_t> elements, std::span<flo
       const bool stratum = j < k * k;
       const float su = stratum ? (float(j % k) + rng.next()) / float(k) : rng.next();
       const float sv = stratum ? (float(j / k) + rng.next()) / float(k) : rng.next();
-      const Vec3 x = uniformPoint(e.polygon, rng.next(), su, sv);
+      const Vec3 x = uniformPolygonPoint(e.polygon, rng.next(), su, sv);
       const int dj = stratum ? int(pairing[size_t(j)]) : 0;
       const float du = stratum ? (float(dj % k) + rng.next()) / float(k) : rng.next();
       const float dv = stratum ? (float(dj / k) + rng.next()) / float(k) : rng.next();
