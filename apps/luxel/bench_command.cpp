@@ -41,6 +41,19 @@ nlohmann::json probeJson(const std::optional<ProbeError>& e) {
           {"worst", e->worst}};
 }
 
+nlohmann::json probeSamplesJson(const std::vector<CaseResult::Probe>& probes) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const CaseResult::Probe& p : probes)
+    a.push_back({{"element", p.element},
+                 {"centroid", {p.centroid.x, p.centroid.y, p.centroid.z}},
+                 {"traced", p.traced},
+                 {"traced_error", p.tracedError},
+                 {"traced_direct", p.tracedDirect},
+                 {"solution", p.solution},
+                 {"solution_direct", p.solutionDirect}});
+  return a;
+}
+
 std::string probeText(const ProbeError& e) {
   return fmt::format("NRMSE {:.4f} (noise {:.4f}), bias {:+.2f}%, {:.0f}% of probes within 3%, worst {:.1f}%", e.nrmse,
                      e.noise, 100 * e.bias, 100 * e.withinThreePercent, 100 * e.worst);
@@ -80,7 +93,10 @@ nlohmann::json caseJson(const CaseResult& r) {
   if (r.probeError)
     j["probes"] = {{"solution", probeJson(r.probeError)},
                    {"reference", probeJson(r.referenceProbeError)},
+                   {"solution_direct", probeJson(r.probeDirectError)},
+                   {"solution_indirect", probeJson(r.probeIndirectError)},
                    {"paths", r.probePaths},
+                   {"each", probeSamplesJson(r.probeSamples)},
                    {"seconds", r.probeSeconds}};
   if (c.solve.method == "hierarchical")
     j["hierarchy"] = {{"seconds", r.hierarchySeconds}, {"bytes", r.hierarchyBytes}, {"links", r.links}, {"leaves", r.leaves}};
@@ -111,6 +127,9 @@ void printRow(const CaseResult& r) {
   if (r.probeError) {
     std::cout << fmt::format("    (irradiance against {} path-traced probes, {:.3g} paths: {})\n", r.probeError->probes,
                              double(r.probePaths), probeText(*r.probeError));
+    if (r.probeDirectError && r.probeIndirectError)
+      std::cout << fmt::format("    (its direct light: {}; the rest: {})\n", probeText(*r.probeDirectError),
+                               probeText(*r.probeIndirectError));
     if (r.referenceProbeError)
       std::cout << fmt::format("    (the reference against the same probes: {})\n", probeText(*r.referenceProbeError));
   }
@@ -132,6 +151,7 @@ void checkBenchArgs(const BenchArgs& a) {
     if (a.runsGiven) throw Error("--runs does not apply to the dynamic suite: its frames are its runs (--frames N)");
     if (a.reference != "cpu")
       throw Error("--reference does not apply to the dynamic suite: its references are progressive solves on the CPU");
+    if (!a.set.empty()) throw Error("--set does not apply to the dynamic suite: each method's options are its own");
   } else if (a.dynamicOptionGiven) {
     throw Error(fmt::format("--frames, --gl-frames, --scenes and --backends belong to the dynamic suite, not '{}'", a.suite));
   }
@@ -174,9 +194,10 @@ int runBench(const BenchArgs& a) {
   }
   nlohmann::json cases = nlohmann::json::array();
   int ran = 0, skipped = 0;
-  for (const Case& c : suite.cases) {
+  for (Case c : suite.cases) {
     if (!a.filter.empty() && c.name.find(a.filter) == std::string::npos) continue;
     ++ran;
+    for (const std::string& s : a.set) c.solve.settings.parse(s);
     CaseResult r;
     try {
       r = runCase(c, options);

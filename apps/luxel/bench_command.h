@@ -13,6 +13,9 @@ struct BenchArgs {
   int runs = 5;
   std::string jsonPath;
   std::string filter;  // only cases whose name contains this
+  // Solver options NAME=VALUE laid over each case's own (not the references'); an option the
+  // case's solver does not read is an error, as with render's --set.
+  std::vector<std::string> set;
   std::string cacheDir;
   bool noReference = false;
   std::string reference = "cpu";  // cpu or monte-carlo

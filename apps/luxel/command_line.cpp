@@ -79,6 +79,8 @@ std::unique_ptr<CommandLine> makeCommandLine() {
       ->check(CLI::IsMember({"cpu", "gl"}));
   bench->add_option("--json", ba.jsonPath, "Write the results as JSON");
   bench->add_option("--case", ba.filter, "Only cases whose name contains this");
+  bench->add_option("--set", ba.set, "A solver option NAME=VALUE laid over each case's (repeatable; not the references')")
+      ->allow_extra_args(false);
   bench->add_option("--cache", ba.cacheDir, "Folder for reference solutions (default ~/.cache/luxel/references)");
   bench->add_flag("--no-reference", ba.noReference, "Skip the error column (no reference solve)");
   bench->add_option("--reference", ba.reference,

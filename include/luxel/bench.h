@@ -105,6 +105,19 @@ struct CaseResult {
   double referenceSeconds = 0.0;  // 0 when the reference came from the cache
   // Against the path-traced probes (Case::probes): the solution's irradiance, and the reference's.
   std::optional<ProbeError> probeError, referenceProbeError;
+  // The solution's direct irradiance against probes of the direct light alone, and the rest
+  // (the indirect light) against the difference of the two sets of probes.
+  std::optional<ProbeError> probeDirectError, probeIndirectError;
+  // Each probe, for a look at where the differences are (channels summed, W/m^2): the element,
+  // its centroid, the path-traced irradiance and its standard error, the path-traced direct
+  // light, and the solution's irradiance and direct irradiance (NaN where it has none).
+  struct Probe {
+    uint32_t element = 0;
+    Vec3 centroid{0.0f};
+    double traced = 0.0, tracedError = 0.0, tracedDirect = 0.0;
+    double solution = 0.0, solutionDirect = 0.0;
+  };
+  std::vector<Probe> probeSamples;
   double probeSeconds = 0.0;  // path tracing them; 0 when they came from the cache
   uint64_t probePaths = 0;    // paths over all probes
   // Embree alone on the rays one run cast (same streams, same threads).

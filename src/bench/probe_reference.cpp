@@ -30,7 +30,7 @@ uint64_t probeKey(const Scene& scene, const SurfaceSet& surfaces, std::span<cons
   h.text("luxel-probes-1");
   hashLightingProblem(h, scene, surfaces);
   h.bytes(elements.data(), elements.size_bytes());
-  h.value(o.minPaths), h.value(o.maxPaths), h.value(o.relativeError), h.value(o.seed);
+  h.value(o.minPaths), h.value(o.maxPaths), h.value(o.relativeError), h.value(o.seed), h.value(o.maxBounces);
   return h.digest();
 }
 
@@ -99,6 +99,21 @@ ProbeReference loadOrComputeProbes(const Scene& scene, const SurfaceSet& surface
     out.close();
   });
   return probes;
+}
+
+ProbeReference probeDifference(const ProbeReference& whole, const ProbeReference& part) {
+  if (whole.elements != part.elements) throw Error("probe difference: the two sets of probes are of different elements");
+  ProbeReference out;
+  out.elements = whole.elements;
+  for (size_t i = 0; i < whole.estimates.size(); ++i) {
+    const ElementIrradianceEstimate &a = whole.estimates[i], &b = part.estimates[i];
+    ElementIrradianceEstimate& d = out.estimates.emplace_back();
+    d.mean = a.mean - b.mean;
+    for (int c = 0; c < 3; ++c)
+      d.standardError[c] = std::sqrt(a.standardError[c] * a.standardError[c] + b.standardError[c] * b.standardError[c]);
+    d.paths = a.paths + b.paths;
+  }
+  return out;
 }
 
 std::vector<Rgb> irradianceFromRadiosity(const SurfaceSet& surfaces, std::span<const Rgb> radiosity) {

@@ -33,6 +33,10 @@ ProbeReference loadOrComputeProbes(const Scene& scene, const SurfaceSet& surface
                                    size_t count, const PathTracingOptions& options,
                                    const ProgressCallback& progress);
 
+// The light `whole` has and `part` does not (the indirect light: every bounce less the direct
+// light), with both estimates' noise. Throws Error unless both are of the same elements.
+ProbeReference probeDifference(const ProbeReference& whole, const ProbeReference& part);
+
 // Element irradiance from radiosity, H = (B - E) / rho per channel, NaN where rho is 0: the
 // cached references keep radiosity only.
 std::vector<Rgb> irradianceFromRadiosity(const SurfaceSet& surfaces, std::span<const Rgb> radiosity);

@@ -184,6 +184,24 @@ CaseResult runCase(const Case& c, const Options& options) {
     for (const ElementIrradianceEstimate& e : probes.estimates) result.probePaths += e.paths;
     result.probeError = probeError(probes, last.solution.irradiance);
     if (ref) result.referenceProbeError = probeError(probes, irradianceFromRadiosity(surfaces, ref->radiosity));
+    const Solution& sol = last.solution;
+    if (sol.directIrradiance.size() == sol.irradiance.size()) {
+      const ProbeReference direct = loadOrComputeProbes(scene, surfaces, options.cacheDir, c.probes,
+                                                        PathTracingOptions{.maxBounces = 0}, options.progress);
+      result.probeSeconds += direct.seconds;
+      result.probeDirectError = probeError(direct, sol.directIrradiance);
+      std::vector<Rgb> indirect(sol.irradiance.size());
+      for (size_t e = 0; e < indirect.size(); ++e) indirect[e] = sol.irradiance[e] - sol.directIrradiance[e];
+      result.probeIndirectError = probeError(probeDifference(probes, direct), indirect);
+      auto total = [](Rgb c) { return double(c.r) + double(c.g) + double(c.b); };
+      for (size_t i = 0; i < probes.elements.size(); ++i) {
+        const uint32_t e = probes.elements[i];
+        const ElementIrradianceEstimate& t = probes.estimates[i];
+        result.probeSamples.push_back({e, surfaces.elements[e].centroid, total(t.mean), glm::length(t.standardError),
+                                       total(direct.estimates[i].mean), total(sol.irradiance[e]),
+                                       total(sol.directIrradiance[e])});
+      }
+    }
   }
   return result;
 }

@@ -10,6 +10,11 @@
 namespace luxel::bench {
 namespace {
 
+// Path-traced irradiance probes per case that has them: an independent check of the solution
+// and of the reference (bench/probe_reference.h), each probe to 0.5% noise where 2^18 paths allow.
+constexpr size_t kProbes = 256;
+
+
 // 001's progressive refinement stops on a fixed budget per frame; ours stops on the unshot
 // fraction, set per scene so the error lands at or below the seed's (docs/performance.md has
 // the sweep: albedo 0.9 needs many more bounces than the Cornell boxes).
@@ -92,6 +97,7 @@ std::vector<Suite> makeSuites() {
     sibenik.setting += ", at most 60 s";
     sibenik.solve.settings.set("time-budget", 60.0);
     sibenik.discretise.elementBudget = 100000;
+    sibenik.probes = kProbes;  // the same elements as the hierarchical suite's: the same probes
     scenes.cases.push_back(sibenik);
     Case conference = progressive("bench/scenes/conference.json", 1e-2, {});
     conference.name = "conference/progressive-60s";
@@ -107,9 +113,6 @@ std::vector<Suite> makeSuites() {
   // progressive refinement to 1e-4 unshot on the same elements; the conference room, where a
   // progressive solve is still at 1% after ten minutes, by the hierarchical solver itself at
   // its converged settings (a self-convergence figure, named so in the report).
-  // Path-traced irradiance probes per case: an independent check of the solution and of the
-  // reference (bench/probe_reference.h), at 0.5% noise each.
-  constexpr size_t kHierarchicalProbes = 256;
   Suite hierarchical{"hierarchical",
                      "face-cluster hierarchical radiosity (seed 002) on the Cornell box, Sibenik, the conference room and "
                      "seed 002's room from 160k to 1.5M faces",
@@ -122,7 +125,7 @@ std::vector<Suite> makeSuites() {
       c.setting = "hierarchical, defaults";
       c.solve.method = "hierarchical";
       c.solve.settings.set("cache", false);  // every run builds the hierarchy: its time is measured
-      c.probes = kHierarchicalProbes;
+      c.probes = kProbes;
       return c;
     };
     // Each scene at the defaults and at a tenth of the default error threshold.

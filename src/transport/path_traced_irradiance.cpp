@@ -21,8 +21,8 @@ namespace {
 
 // Paths traced together as one wavefront: one Embree stream per bounce.
 constexpr uint32_t kBatch = 1024;
-// A path this long has carried less than 1e-4 of its light for any reflectance up to 0.99; the
-// cap only stops a closed scene of reflectance 1, whose irradiance is infinite.
+// A path of 1,000 bounces has carried less than 1e-4 of its light for any reflectance up to 0.99;
+// the cap only stops a closed scene of reflectance 1, whose irradiance is infinite.
 constexpr int kMaxBounces = 1000;
 
 float largest(Rgb c) { return std::max(c.r, std::max(c.g, c.b)); }
@@ -40,8 +40,12 @@ struct Scratch {
 
 class Tracer {
  public:
-  Tracer(const SurfaceSet& surfaces, const RayTracer& rays, const DirectLight& direct)
-      : surfaces_(surfaces), rays_(rays), direct_(direct), offset_(rayOffsetFor(surfaces.sceneExtent)) {}
+  Tracer(const SurfaceSet& surfaces, const RayTracer& rays, const DirectLight& direct, int maxBounces)
+      : surfaces_(surfaces),
+        rays_(rays),
+        direct_(direct),
+        offset_(rayOffsetFor(surfaces.sceneExtent)),
+        maxBounces_(std::min(maxBounces, kMaxBounces)) {}
 
   ElementIrradianceEstimate estimate(uint32_t element, const PathTracingOptions& o, Scratch& s) const {
     const Element& e = surfaces_.elements[element];
@@ -95,12 +99,13 @@ class Tracer {
       const float pick = rng.next(), a = rng.next(), b = rng.next();
       const Vec3 x = uniformPolygonPoint(e.polygon, pick, a, b);
       addDirect(p, x, e.normal, Rgb(1.0f), rng, s);
+      if (maxBounces_ == 0) continue;
       const float u1 = rng.next(), u2 = rng.next();
       s.rays.emplace_back().ray = makeRay(x + offset_ * e.normal, frame.cosine(u1, u2), 0.0f,
                                           std::numeric_limits<float>::infinity());
       s.pathOf.push_back(p);
     }
-    for (int bounce = 0; bounce < kMaxBounces && !s.rays.empty(); ++bounce) {
+    for (int bounce = 0; bounce < maxBounces_ && !s.rays.empty(); ++bounce) {
       rays_.intersect(s.rays, false);
       size_t live = 0;
       for (size_t k = 0; k < s.rays.size(); ++k) {
@@ -117,7 +122,7 @@ class Tracer {
         Rng& rng = s.rngs[p];
         const Vec3 q = Vec3(rh.ray.org_x, rh.ray.org_y, rh.ray.org_z) + d * rh.ray.tfar;
         addDirect(p, q, hit.normal, t, rng, s);
-        if (rng.next() >= survive) continue;  // Russian roulette
+        if (bounce + 1 >= maxBounces_ || rng.next() >= survive) continue;  // Russian roulette
         t /= survive;
         const float u1 = rng.next(), u2 = rng.next();
         s.rays[live].ray = makeRay(q + offset_ * hit.normal, HemisphereFrame(hit.normal).cosine(u1, u2), 0.0f,
@@ -152,6 +157,7 @@ class Tracer {
   const RayTracer& rays_;
   const DirectLight& direct_;
   float offset_;
+  int maxBounces_;
 };
 
 }  // namespace
@@ -167,15 +173,16 @@ std::vector<ElementIrradianceEstimate> pathTraceElementIrradiance(const Scene& s
   for (uint32_t e : elements)
     if (e >= surfaces.elements.size())
       throw Error(fmt::format("path-traced irradiance: element {} of {} does not exist", e, surfaces.elements.size()));
-  if (options.minPaths < 2 || options.maxPaths < options.minPaths || !(options.relativeError >= 0.0))
-    throw Error(fmt::format("path-traced irradiance: paths {}..{} at relative error {} make no estimate",
-                            options.minPaths, options.maxPaths, options.relativeError));
+  if (options.minPaths < 2 || options.maxPaths < options.minPaths || !(options.relativeError >= 0.0) ||
+      options.maxBounces < 0)
+    throw Error(fmt::format("path-traced irradiance: paths {}..{} at relative error {} and {} bounces make no estimate",
+                            options.minPaths, options.maxPaths, options.relativeError, options.maxBounces));
   std::vector<Polygon> polygons;
   polygons.reserve(surfaces.elements.size());
   for (const Element& e : surfaces.elements) polygons.push_back(e.polygon);
   const RayTracer rays(polygons);
   const DirectLight direct(scene, surfaces);
-  const Tracer tracer(surfaces, rays, direct);
+  const Tracer tracer(surfaces, rays, direct, options.maxBounces);
 
   std::vector<ElementIrradianceEstimate> out(elements.size());
   // Elements are handed out in rounds so that progress (and cancelling) runs on this thread.

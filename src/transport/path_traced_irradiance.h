@@ -27,6 +27,8 @@ struct PathTracingOptions {
   uint32_t maxPaths = 1u << 18;
   double relativeError = 0.005;
   uint32_t seed = 0x7a7a7a7au;
+  // Bounces a path may take; 0 estimates the direct light alone (Solution::directIrradiance).
+  int maxBounces = 1000;
 };
 
 struct ElementIrradianceEstimate {
