@@ -589,31 +589,50 @@ void CpuTransport::analyticIrradiance(std::span<Rgb> out) {
   lightIrradiance(all, out);
 }
 
-void CpuTransport::appendLightSamples(uint32_t element, std::span<const uint32_t> lights, std::vector<RTCRay>& rays,
-                                      std::vector<LightSample>& samples) const {
+void CpuTransport::appendSamplesOfLight(uint32_t element, uint32_t li, int k, uint32_t pass, std::vector<RTCRay>& rays,
+                                        std::vector<LightSample>& samples) const {
   const Vec3 up = glm::normalize(scene_.up);
-  const int k = squareCount(options_.lightSamples);
   const int m = k * k;
   const Element& e = surfaces_.elements[element];
-  for (const uint32_t li : lights) {
-    // Seeded by the light's index in the scene, so that a light's samples do not depend on
-    // which other lights are asked for.
-    Rng rng(hashCombine(hashCombine(options_.seed ^ 0xA5A5A5A5u, element), li));
-    int permutation[256];
-    shuffledStrata(rng, m, permutation);
-    for (int i = 0; i < m; ++i) {
-      float s = (float(i % k) + rng.next()) / float(k), t = (float(i / k) + rng.next()) / float(k);
-      Vec3 x = polygonPoint(e.polygon, s, t);
-      // Light samples are stratified independently of the point strata (shuffled index).
-      float u1 = (float(permutation[i]) + rng.next()) / float(m), u2 = rng.next();
-      LightSample ls = sampleLight(scene_.lights[li], x, e.normal, Sides::Front, up, u1, u2);
-      if (!ls.valid()) continue;
-      Vec3 xo = x + e.normal * (glm::dot(e.normal, ls.direction) >= 0.0f ? rayOffset_ : -rayOffset_);
-      rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
-      ls.irradiance /= float(m);
-      samples.push_back(ls);
-    }
+  // Seeded by the light's index in the scene, so that a light's samples do not depend on
+  // which other lights are asked for.
+  Rng rng(hashCombine(hashCombine(options_.seed ^ 0xA5A5A5A5u ^ pass, element), li));
+  int permutation[256];
+  shuffledStrata(rng, m, permutation);
+  for (int i = 0; i < m; ++i) {
+    float s = (float(i % k) + rng.next()) / float(k), t = (float(i / k) + rng.next()) / float(k);
+    Vec3 x = polygonPoint(e.polygon, s, t);
+    // Light samples are stratified independently of the point strata (shuffled index).
+    float u1 = (float(permutation[i]) + rng.next()) / float(m), u2 = rng.next();
+    LightSample ls = sampleLight(scene_.lights[li], x, e.normal, Sides::Front, up, u1, u2);
+    if (!ls.valid()) continue;
+    Vec3 xo = x + e.normal * (glm::dot(e.normal, ls.direction) >= 0.0f ? rayOffset_ : -rayOffset_);
+    rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
+    ls.irradiance /= float(m);
+    samples.push_back(ls);
   }
+}
+
+void CpuTransport::appendLightSamples(uint32_t element, std::span<const uint32_t> lights, std::vector<RTCRay>& rays,
+                                      std::vector<LightSample>& samples, std::vector<uint32_t>* lightOf) const {
+  for (size_t q = 0; q < lights.size(); ++q) {
+    const size_t before = rays.size();
+    appendSamplesOfLight(element, lights[q], firstLightSide(lights[q]), 0, rays, samples);
+    if (lightOf) lightOf->insert(lightOf->end(), rays.size() - before, uint32_t(q));
+  }
+}
+
+int CpuTransport::firstLightSide(uint32_t light) const {
+  const int k = squareCount(options_.lightSamples);
+  return isSkyLight(scene_.lights[light]) ? std::min(16, kSkySampleSide * k) : k;
+}
+
+int CpuTransport::refinedLightSide(uint32_t light) const {
+  // A sky is not refined: inside a building an element sees it through windows that fill a few
+  // per cent of its hemisphere, where the first samples all agree (none reaches) as often as not,
+  // so their disagreement does not find where its light is uncertain.
+  if (isSkyLight(scene_.lights[light])) return firstLightSide(light);
+  return std::min(16, kLightRefinement * firstLightSide(light));
 }
 
 template <typename Visit>
@@ -622,19 +641,39 @@ void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& v
     if (li >= scene_.lights.size())
       throw Error(fmt::format("light {} does not exist: the scene has {} lights", li, scene_.lights.size()));
   if (lights.empty()) return;
+  if (refinedLight_.size() < scene_.lights.size()) refinedLight_.resize(scene_.lights.size());
+  for (uint32_t li : lights) refinedLight_[li].resize(surfaces_.elements.size(), 0);
   const size_t count = elements.empty() ? surfaces_.elements.size() : elements.size();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 16), [&](const tbb::blocked_range<size_t>& r) {
-    std::vector<RTCRay> rays;
-    std::vector<LightSample> samples, reached;
+    std::vector<RTCRay> rays, finer;
+    std::vector<LightSample> samples, reached, finerSamples;
+    std::vector<uint32_t> lightOf;
+    std::vector<uint32_t> arrived, traced;
     for (size_t i = r.begin(); i < r.end(); ++i) {
       const uint32_t ei = elements.empty() ? uint32_t(i) : elements[i];
-      rays.clear();
-      samples.clear();
-      appendLightSamples(ei, lights, rays, samples);
+      rays.clear(), samples.clear(), lightOf.clear();
+      appendLightSamples(ei, lights, rays, samples, &lightOf);
       tracer_.occluded(rays);
+      arrived.assign(lights.size(), 0), traced.assign(lights.size(), 0);
+      for (size_t j = 0; j < rays.size(); ++j) ++traced[lightOf[j]], arrived[lightOf[j]] += !isOccluded(rays[j]);
+      // A light whose samples disagree has a shadow's edge across the element: its light there
+      // is sampled again, kLightRefinement^2 times as densely, in place of the first samples.
       reached.clear();
+      finer.clear(), finerSamples.clear();
+      for (size_t q = 0; q < lights.size(); ++q) {
+        const bool edge = arrived[q] > 0 && arrived[q] < traced[q];
+        const int side = refinedLightSide(lights[q]);
+        const bool refine = edge && side > firstLightSide(lights[q]);
+        refinedLight_[lights[q]][ei] = refine;
+        if (refine) appendSamplesOfLight(ei, lights[q], side, kRefinedPass, finer, finerSamples);
+      }
       for (size_t j = 0; j < rays.size(); ++j)
-        if (!isOccluded(rays[j])) reached.push_back(samples[j]);
+        if (!isOccluded(rays[j]) && !refinedLight_[lights[lightOf[j]]][ei]) reached.push_back(samples[j]);
+      if (!finer.empty()) {
+        tracer_.occluded(finer);
+        for (size_t j = 0; j < finer.size(); ++j)
+          if (!isOccluded(finer[j])) reached.push_back(finerSamples[j]);
+      }
       visit(ei, std::span<const LightSample>(reached));
     }
   });
@@ -650,7 +689,9 @@ void CpuTransport::lightIrradiance(std::span<const uint32_t> lights, std::span<R
 }
 
 size_t CpuTransport::updateLightIrradianceAfterMove(std::span<const uint32_t> lights, std::span<Rgb> irradiance) {
-  if (!movedBefore_) {
+  bool known = true;  // each light's refined elements are those of its last computation
+  for (uint32_t li : lights) known = known && li < refinedLight_.size() && refinedLight_[li].size() == surfaces_.elements.size();
+  if (!movedBefore_ || !known) {
     lightIrradiance(lights, irradiance);
     return surfaces_.elements.size();
   }
@@ -679,6 +720,10 @@ size_t CpuTransport::updateLightIrradianceAfterMove(std::span<const uint32_t> li
       if (behind) continue;
       rays.clear(), samples.clear(), before.clear();
       appendLightSamples(uint32_t(ei), lights, rays, samples);
+      // A light refined here at its last computation keeps its finer samples while the first
+      // ones' verdicts stand (if they change, the element is redone anyway).
+      for (uint32_t li : lights)
+        if (refinedLight_[li][ei]) appendSamplesOfLight(uint32_t(ei), li, refinedLightSide(li), kRefinedPass, rays, samples);
       for (const RTCRay& ray : rays) {
         const Vec3 a(ray.org_x, ray.org_y, ray.org_z), d(ray.dir_x, ray.dir_y, ray.dir_z);
         const float length = glm::length(d) * ray.tfar;

@@ -77,9 +77,30 @@ class CpuTransport final : public Transport {
   // ones that reach it: lightIrradiance and lightSh read the same samples.
   template <typename Visit>
   void visitLightSamples(std::span<const uint32_t> lights, Visit&& visit, std::span<const uint32_t> elements = {});
-  // The shadow rays and samples of `lights` at one element, deterministic per element and light.
+  // The shadow rays and samples of `lights` at one element, deterministic per element and light
+  // (the first pass: lightSamples of each); with `lightOf`, each sample's light as its place in
+  // `lights`.
   void appendLightSamples(uint32_t element, std::span<const uint32_t> lights, std::vector<RTCRay>& rays,
-                          std::vector<LightSample>& samples) const;
+                          std::vector<LightSample>& samples, std::vector<uint32_t>* lightOf = nullptr) const;
+  // Light `light`'s k x k stratified samples at one element; `pass` seeds them (0 first, then
+  // kRefinedPass).
+  void appendSamplesOfLight(uint32_t element, uint32_t light, int k, uint32_t pass, std::vector<RTCRay>& rays,
+                            std::vector<LightSample>& samples) const;
+  // The side of an element's grid of samples of `light`, k = sqrt(lightSamples) in the first pass,
+  // and kSkySampleSide k for skies: a sky's light comes through whatever of the hemisphere is
+  // open (a window, the gaps of a colonnade), which 16 samples an element find or miss by chance
+  // (docs/algorithms.md, "Analytic lights", has the measurements).
+  int firstLightSide(uint32_t light) const;
+  static constexpr int kSkySampleSide = 2;
+  // Where the first pass finds a shadow's edge across an element (some samples reach, some do
+  // not), lamps and suns are sampled again on a kLightRefinement times finer grid (at most 16 x
+  // 16), in place of the first samples; skies are not.
+  int refinedLightSide(uint32_t light) const;
+  static constexpr int kLightRefinement = 4;
+  static constexpr uint32_t kRefinedPass = 0x5EF1u;
+  // Per scene light, per element: whether its last computation refined it (visitLightSamples), so
+  // that a move's update checks the finer samples' verdicts too.
+  std::vector<std::vector<uint8_t>> refinedLight_;
   // Whether the segment's verdict against the last move's objects is the same wherever they stand
   // within `reach` of where they were (< 0: within how far each moved in the last move), proved
   // against their solids without tracing.

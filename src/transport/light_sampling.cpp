@@ -27,6 +27,10 @@ float receiverCosine(Vec3 n, Vec3 w, Sides sides) {
 
 }  // namespace
 
+bool isSkyLight(const Light& light) {
+  return light.type == Light::Type::Sky || light.type == Light::Type::CieOvercastSky;
+}
+
 bool isDistantLight(const Light& light) {
   return light.type == Light::Type::Directional || light.type == Light::Type::Sky ||
          light.type == Light::Type::CieOvercastSky;

@@ -25,4 +25,7 @@ Rgb skyRadiance(const Light& light, Vec3 w, Vec3 up);
 // True for lights at infinity whose shadow rays are unbounded (sun and skies).
 bool isDistantLight(const Light& light);
 
+// True for the skies, which light the whole hemisphere.
+bool isSkyLight(const Light& light);
+
 }  // namespace luxel
