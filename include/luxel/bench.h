@@ -51,7 +51,8 @@ struct ProbeError {
   double nrmse = 0.0;
   double noise = 0.0;   // sqrt(sum s^2 / sum |P|^2): what the probes' own noise adds before it is taken out
   double bias = 0.0;    // sum (H - P) / sum P
-  // Probes whose |H - P| (channels summed) is within 3% of P plus twice its standard error.
+  // Probes whose |H - P| (channels summed) is within 3% of P (or 0.1% of the probes' mean P, if
+  // more) plus twice its standard error.
   double withinThreePercent = 0.0;
   double worst = 0.0;   // the largest |H - P| / P, channels summed, over probes with P above 1% of the mean
 };
