@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 
 #include <fmt/format.h>
@@ -13,7 +11,6 @@
 #include "bench/reference.h"
 #include "core/content_hash.h"
 #include "core/random.h"
-#include "io/atomic_file.h"
 #include "luxel/error.h"
 
 namespace luxel::bench {
@@ -32,20 +29,6 @@ uint64_t probeKey(const Scene& scene, const SurfaceSet& surfaces, std::span<cons
   h.bytes(elements.data(), elements.size_bytes());
   h.value(o.minPaths), h.value(o.maxPaths), h.value(o.relativeError), h.value(o.seed), h.value(o.maxBounces);
   return h.digest();
-}
-
-bool readCache(const std::filesystem::path& path, uint64_t key, size_t n, std::vector<ElementIrradianceEstimate>& out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  char magic[8];
-  uint64_t storedKey = 0, count = 0;
-  in.read(magic, 8);
-  in.read(reinterpret_cast<char*>(&storedKey), 8);
-  in.read(reinterpret_cast<char*>(&count), 8);
-  if (!in || std::memcmp(magic, kMagic, 8) != 0 || storedKey != key || count != n) return false;
-  out.resize(n);
-  in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(ElementIrradianceEstimate)));
-  return bool(in);
 }
 
 }  // namespace
@@ -84,20 +67,12 @@ ProbeReference loadOrComputeProbes(const Scene& scene, const SurfaceSet& surface
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(fmt::format("{}: cannot create the reference cache: {}", cacheDir, ec.message()));
   probes.path = (dir / fmt::format("{}-probes-{:016x}.ref", scene.name, key)).string();
-  if (readCache(probes.path, key, probes.elements.size(), probes.estimates)) return probes;
+  if (readCacheFile(probes.path, kMagic, key, probes.elements.size(), probes.estimates)) return probes;
 
   const auto start = std::chrono::steady_clock::now();
   probes.estimates = pathTraceElementIrradiance(scene, surfaces, probes.elements, options, progress);
   probes.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const uint64_t n = probes.estimates.size();
-  writeFileAtomically(probes.path, [&](const std::filesystem::path& tmp) {
-    OutputFile out(tmp);
-    out.write(kMagic, 8);
-    out.write(&key, 8);
-    out.write(&n, 8);
-    out.write(probes.estimates.data(), n * sizeof(ElementIrradianceEstimate));
-    out.close();
-  });
+  writeCacheFile(probes.path, kMagic, key, probes.estimates);
   return probes;
 }
 

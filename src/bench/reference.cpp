@@ -1,14 +1,11 @@
 #include "bench/reference.h"
 
 #include <chrono>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include <fmt/format.h>
 
 #include "core/content_hash.h"
-#include "io/atomic_file.h"
 #include "luxel/error.h"
 #include "session/solver_host.h"
 #include "transport/form_factor_options.h"
@@ -37,20 +34,6 @@ uint64_t referenceKey(const Scene& scene, const SurfaceSet& surfaces, const Solv
   h.value(f.raysPerPair), h.value(f.nearRaysPerPair), h.value(f.emitterRaysPerPair), h.value(f.nearFactor);
   h.value(f.classifyVisibility), h.value(f.lightSamples), h.value(f.seed);
   return h.digest();
-}
-
-bool readCache(const std::filesystem::path& path, uint64_t key, size_t n, std::vector<Rgb>& out) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  char magic[8];
-  uint64_t storedKey = 0, count = 0;
-  in.read(magic, 8);
-  in.read(reinterpret_cast<char*>(&storedKey), 8);
-  in.read(reinterpret_cast<char*>(&count), 8);
-  if (!in || std::memcmp(magic, kMagic, 8) != 0 || storedKey != key || count != n) return false;
-  out.resize(n);
-  in.read(reinterpret_cast<char*>(out.data()), std::streamsize(n * sizeof(Rgb)));
-  return bool(in);
 }
 
 }  // namespace
@@ -90,7 +73,7 @@ Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces,
   if (ec) throw Error(fmt::format("{}: cannot create the reference cache: {}", cacheDir, ec.message()));
   Reference ref;
   ref.path = (dir / fmt::format("{}-{}{:016x}.ref", scene.name, monteCarlo ? "mc-" : "", key)).string();
-  if (readCache(ref.path, key, surfaces.elements.size(), ref.radiosity)) return ref;
+  if (readCacheFile(ref.path, kMagic, key, surfaces.elements.size(), ref.radiosity)) return ref;
 
   const auto start = std::chrono::steady_clock::now();
   SurfaceSet copy = surfaces;  // solve() may refine in place; references never do, but stay safe
@@ -108,15 +91,7 @@ Reference loadOrComputeReference(const Scene& scene, const SurfaceSet& surfaces,
   }
   ref.radiosity = std::move(sol.radiosity);
   ref.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const uint64_t n = ref.radiosity.size();
-  writeFileAtomically(ref.path, [&](const std::filesystem::path& tmp) {
-    OutputFile out(tmp);
-    out.write(kMagic, 8);
-    out.write(&key, 8);
-    out.write(&n, 8);
-    out.write(ref.radiosity.data(), n * sizeof(Rgb));
-    out.close();
-  });
+  writeCacheFile(ref.path, kMagic, key, ref.radiosity);
   return ref;
 }
 
