@@ -117,8 +117,8 @@ class HierarchicalSolver final : public Solver {
     rayOffset_ = rayOffsetFor(sys.surfaces.sceneExtent);
     const size_t nodes = tree_.nodes.size(), ne = sys.elementCount();
     // The emitting surfaces' direct light, per element as the analytic lights' is: through the
-    // hierarchy's links it was the largest error where lamps are surfaces (the conference room's
-    // troffers: 29% NRMSE against path-traced probes at the default threshold).
+    // hierarchy's links it was the largest error where lamps are surfaces (docs/algorithms.md,
+    // "Direct light first").
     exactDirect_ = s.emitterLightPerElement;
     if (exactDirect_ && emittingPolygonCount(sys.surfaces) > kMaxEmittingPolygons) {
       exactDirect_ = false;
@@ -821,8 +821,8 @@ class HierarchicalSolver final : public Solver {
         // Below the threshold the cluster's light to itself is still a link, taken whole as one
         // harmonics link from the cluster to itself, as a link between two clusters below the
         // threshold is taken whole; dropping it, as the paper's oracle does, lost the light a
-        // concave cluster keeps at every level of the tree (a statue's own folds: 9% of its
-        // light; Sibenik's indirect light: 17% at the default threshold).
+        // concave cluster keeps at every level of the tree (a statue's own folds, a window's
+        // niche: docs/algorithms.md, item 5).
         points_->points(i, s_.emitterSide, s.emitterPoints);
         couple(i, r, s, true);
         ++links_;
