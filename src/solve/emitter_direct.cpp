@@ -51,7 +51,7 @@ std::vector<EmittingPolygon> emittingPolygons(const SurfaceSet& surfaces) {
   return out;
 }
 
-constexpr int kPoints = 4;      // 2 x 2 receiver points, one first ray each
+constexpr int kPoints = 4;      // 2 x 2 points of the element for the unoccluded factor
 constexpr int kFirstSide = 2;  // 2 x 2 first rays, each from its own stratum of the element
 constexpr int kMoreSide = 8;   // where the first rays disagree: 8 x 8 more
 constexpr float kSmallElement = 16.0f;  // elements under 1/16 of the mean area are not refined
@@ -129,7 +129,7 @@ EmitterDirectLight emitterDirectLight(const SurfaceSet& surfaces, const RayTrace
       const Element& el = surfaces.elements[e];
       Rng& rng = rngs.emplace_back(hashCombine(seed, uint32_t(e)));
       Vec3 x[kPoints], n[kPoints];
-      for (int i = 0; i < kPoints; ++i) x[i] = stratum(el, rng, i, 2), n[i] = el.normal;
+      for (int i = 0; i < kPoints; ++i) x[i] = polygonPoint(el.polygon, (float(i % 2) + 0.5f) * 0.5f, (float(i / 2) + 0.5f) * 0.5f), n[i] = el.normal;
       for (uint32_t k = 0; k < emitters.size(); ++k) {
         const EmittingPolygon& em = emitters[k];
         float f[kPoints];
