@@ -162,12 +162,17 @@ CaseResult runCase(const Case& c, const Options& options) {
     result.errorNote = "reference off";
     return result;
   }
-  SurfaceSet surfaces = discretise(scene, c.discretise);
+  const bool tooLarge = !c.reference && double(s.elements) * double(s.patches) > c.maxReferencePairs;
+  const bool refined = c.solve.refine.budget > 0;
+  if (refined || (tooLarge && c.probes == 0)) {
+    result.errorNote = refined ? "no reference: refinement changes the discretisation"
+                               : fmt::format("no reference: {:.2g} element-patch pairs", double(s.elements) * double(s.patches));
+    return result;
+  }
+  const SurfaceSet surfaces = discretise(scene, c.discretise);
   std::optional<Reference> ref;
-  if (!c.reference && double(s.elements) * double(s.patches) > c.maxReferencePairs) {
+  if (tooLarge) {
     result.errorNote = fmt::format("no reference: {:.2g} element-patch pairs", double(s.elements) * double(s.patches));
-  } else if (c.solve.refine.budget > 0) {
-    result.errorNote = "no reference: refinement changes the discretisation";
   } else {
     reportProgress(options.progress, c.name, 1.0, "reference");
     ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress, options.referenceKind,
@@ -176,7 +181,7 @@ CaseResult runCase(const Case& c, const Options& options) {
     result.error = normalisedRmsError(surfaces, last.solution.radiosity, ref->radiosity);
     if (c.reference) result.errorNote = "error against " + c.referenceName;
   }
-  if (c.probes > 0 && c.solve.refine.budget == 0) {
+  if (c.probes > 0) {
     reportProgress(options.progress, c.name, 1.0, "probes");
     const ProbeReference probes =
         loadOrComputeProbes(scene, surfaces, options.cacheDir, c.probes, PathTracingOptions{}, options.progress);

@@ -14,7 +14,6 @@ namespace {
 // and of the reference (bench/probe_reference.h), each probe to 0.5% noise where 2^18 paths allow.
 constexpr size_t kProbes = 256;
 
-
 // 001's progressive refinement stops on a fixed budget per frame; ours stops on the unshot
 // fraction, set per scene so the error lands at or below the seed's (docs/performance.md has
 // the sweep: albedo 0.9 needs many more bounces than the Cornell boxes).
