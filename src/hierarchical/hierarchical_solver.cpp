@@ -224,7 +224,7 @@ class HierarchicalSolver final : public Solver {
     recordSh_ = count;
     // The emitters' direct light again, with its directions: the same samples, so the same
     // irradiance to the bit.
-    if (exactDirect_ && emittingPolygonCount(sys_.surfaces) > 0)
+    if (exactDirect_)
       emitterDirect_ = emitterDirectLight(sys_.surfaces, *tracer_, count, kEmitterDirectSeed);
   }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "transport/emitting_polygons.h"
 #include "transport/light_sampling.h"
 
 namespace luxel {
@@ -24,21 +25,8 @@ Vec2 rotated(Vec2 u, size_t k) {
 
 DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
     : scene_(scene), up_(glm::normalize(scene.up)) {
-  std::vector<bool> faceDone(surfaces.faces.size(), false);
-  for (const Element& e : surfaces.elements) {
-    if (e.exitance.r + e.exitance.g + e.exitance.b <= 0.0f) continue;
-    const Material& m = scene.materials[e.material];
-    const Sides sides = Sides::Front;
-    if (m.emissionTexture < 0) {
-      if (faceDone[e.face]) continue;
-      faceDone[e.face] = true;
-      const SurfaceFace& f = surfaces.faces[e.face];
-      const Polygon polygon{f.corners, f.triangle ? 3 : 4};
-      emitters_.push_back({polygon, polygon.normal(), polygon.area(), e.exitance, sides});
-    } else {
-      emitters_.push_back({e.polygon, e.polygon.normal(), e.polygon.area(), e.exitance, sides});
-    }
-  }
+  for (const EmittingPolygon& p : emittingPolygons(surfaces))
+    emitters_.push_back({p.polygon, p.normal, p.polygon.area(), p.exitance, Sides::Front});
   float total = 0.0f;
   for (const Emitter& em : emitters_) {
     total += em.polygon.area() * (em.exitance.r + em.exitance.g + em.exitance.b);

@@ -5,8 +5,8 @@
 // cos cos / (pi r^2): exact when nothing is in the way, and unbiased when something is. The
 // simpler F V(y) weights every point of the emitter alike, and comes out low where the blocked
 // part is the part the kernel favours (docs/algorithms.md, "Rendering", has the measurements).
-// Emitting faces with uniform emission are used whole; faces with an emission texture are used
-// element by element so the texture's variation is kept.
+// Emitting faces are used whole where their emission is uniform, element by element where it
+// varies (transport/emitting_polygons.h).
 #pragma once
 
 #include <vector>

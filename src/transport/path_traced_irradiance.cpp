@@ -2,7 +2,6 @@
 #include "transport/path_traced_irradiance.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 

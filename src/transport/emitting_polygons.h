@@ -1,0 +1,21 @@
+// The emitting surfaces as polygons, for whatever samples them directly (the renderer's and the
+// path tracer's direct light, the face-cluster solver's per-element direct light): a face whose
+// elements all carry one exitance is one polygon, its own; otherwise (an emission texture) each
+// of its emitting elements is, so that the texture's variation is kept.
+#pragma once
+
+#include <vector>
+
+#include "luxel/surface.h"
+
+namespace luxel {
+
+struct EmittingPolygon {
+  Polygon polygon;
+  Vec3 normal{0.0f};
+  Rgb exitance{0.0f};  // pi Le, W/m^2
+};
+
+std::vector<EmittingPolygon> emittingPolygons(const SurfaceSet& surfaces);
+
+}  // namespace luxel
