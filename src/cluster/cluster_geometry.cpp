@@ -6,6 +6,8 @@
 #include <numbers>
 #include <vector>
 
+#include "core/convex_hull.h"
+
 namespace luxel {
 
 std::array<Vec3, 8> OrientedBox::corners() const {
@@ -39,27 +41,6 @@ Vec3 perpendicular(Vec3 n) {
   return glm::normalize(glm::cross(n, a));
 }
 
-double cross2(glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
-
-// Andrew's monotone chain; counter-clockwise, no repeated first point.
-std::vector<glm::dvec2> hull2(std::vector<glm::dvec2> p) {
-  std::sort(p.begin(), p.end(), [](glm::dvec2 a, glm::dvec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  std::vector<glm::dvec2> h(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross2(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross2(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
-  return h;
-}
-
 }  // namespace
 
 OrientedBox fitOrientedBox(std::span<const Vec3> points, Vec3 normal) {
@@ -74,7 +55,7 @@ OrientedBox fitOrientedBox(std::span<const Vec3> points, Vec3 normal) {
     const double h = glm::dot(p, z);
     zmin = std::min(zmin, h), zmax = std::max(zmax, h);
   }
-  const std::vector<glm::dvec2> hull = hull2(flat);
+  const std::vector<glm::dvec2> hull = convexHull2d(flat);
   // The best rectangle has a side along a hull edge (Freeman and Shapira): try each (hulls here
   // have a few dozen points at most, so the quadratic scan beats calipers' bookkeeping).
   double best = std::numeric_limits<double>::max();

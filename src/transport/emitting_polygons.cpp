@@ -1,8 +1,20 @@
 #include "transport/emitting_polygons.h"
 
-namespace luxel {
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <unordered_map>
 
-std::vector<EmittingPolygon> emittingPolygons(const SurfaceSet& surfaces) {
+#include "core/convex_hull.h"
+
+namespace luxel {
+namespace {
+
+// The polygons as the faces and elements give them: a face whose elements all carry one exitance
+// is one polygon, its own; otherwise each of its emitting elements is.
+std::vector<EmittingPolygon> emittingPieces(const SurfaceSet& surfaces) {
   // A face is uniform when every element of it carries its first element's exitance.
   std::vector<int8_t> uniform(surfaces.faces.size(), -1);
   std::vector<Rgb> first(surfaces.faces.size(), Rgb(0.0f));
@@ -24,6 +36,96 @@ std::vector<EmittingPolygon> emittingPolygons(const SurfaceSet& surfaces) {
     } else {
       out.push_back({e.polygon, e.polygon.normal(), e.exitance});
     }
+  }
+  return out;
+}
+
+// Whether two pieces can be parts of one lamp: the same exitance, facing the same way, in one
+// plane (to a millionth of their size).
+bool sameLamp(const EmittingPolygon& a, const EmittingPolygon& b) {
+  if (a.exitance != b.exitance || glm::dot(a.normal, b.normal) < 1.0f - 1e-6f) return false;
+  const float size = std::sqrt(std::max(a.polygon.area(), b.polygon.area()));
+  for (int k = 0; k < b.polygon.count; ++k)
+    if (std::abs(glm::dot(b.polygon.v[size_t(k)] - a.polygon.v[0], a.normal)) > 1e-6f * size) return false;
+  return true;
+}
+
+struct CornerKey {
+  uint32_t x, y, z;
+  bool operator==(const CornerKey&) const = default;
+};
+struct CornerKeyHash {
+  size_t operator()(const CornerKey& k) const {
+    return (size_t(k.x) * 0x9E3779B97F4A7C15ull) ^ (size_t(k.y) * 0xC2B2AE3D27D4EB4Full) ^ (size_t(k.z) * 0x165667B19E3779F9ull);
+  }
+};
+
+// The one polygon of at most four corners that `pieces` tile exactly, if there is one: their
+// hull, when it has at most four corners and the pieces' areas add up to its area (they overlap
+// nowhere and leave no gap).
+std::optional<Polygon> convexUnion(const std::vector<const EmittingPolygon*>& pieces) {
+  const Vec3 n = pieces[0]->normal, origin = pieces[0]->polygon.v[0];
+  const Vec3 a = std::abs(n.x) < 0.6f ? Vec3(1, 0, 0) : (std::abs(n.y) < 0.6f ? Vec3(0, 1, 0) : Vec3(0, 0, 1));
+  const Vec3 u = glm::normalize(glm::cross(n, a)), v = glm::cross(n, u);
+  std::vector<glm::dvec2> flat;
+  std::vector<Vec3> corner;  // flat[i] is where corner[i] lies in the plane
+  double piecesArea = 0.0;
+  for (const EmittingPolygon* p : pieces) {
+    std::vector<glm::dvec2> own;
+    for (int k = 0; k < p->polygon.count; ++k) {
+      const Vec3 d = p->polygon.v[size_t(k)] - origin;
+      own.emplace_back(glm::dot(d, u), glm::dot(d, v));
+      flat.push_back(own.back()), corner.push_back(p->polygon.v[size_t(k)]);
+    }
+    piecesArea += std::abs(signedArea2d(own));
+  }
+  const std::vector<glm::dvec2> hull = convexHull2d(flat);
+  if (hull.size() < 3 || hull.size() > 4) return std::nullopt;
+  if (std::abs(signedArea2d(hull) - piecesArea) > 1e-5 * piecesArea) return std::nullopt;
+  Polygon out;
+  out.count = int(hull.size());
+  for (size_t h = 0; h < hull.size(); ++h)
+    out.v[h] = corner[size_t(std::find(flat.begin(), flat.end(), hull[h]) - flat.begin())];
+  // Counter-clockwise about u x v = n, so the winding gives the pieces' normal.
+  return out;
+}
+
+}  // namespace
+
+std::vector<EmittingPolygon> emittingPolygons(const SurfaceSet& surfaces) {
+  std::vector<EmittingPolygon> pieces = emittingPieces(surfaces);
+  if (pieces.size() < 2) return pieces;
+  // A lamp modelled as two triangles or as a grid of cells is one polygon to whatever samples
+  // it: each piece took its own shadow rays from every point lit (16 times the rays for seed
+  // 002's room, whose light is 4 x 4 cells), and the pieces of one lamp see the same shadows.
+  // Pieces that share a corner and can belong to one lamp are joined (union-find), and a group
+  // that tiles a convex polygon of at most four corners becomes that polygon.
+  std::vector<uint32_t> parent(pieces.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto root = [&](uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::unordered_map<CornerKey, uint32_t, CornerKeyHash> firstAt;
+  for (uint32_t i = 0; i < pieces.size(); ++i)
+    for (int k = 0; k < pieces[i].polygon.count; ++k) {
+      const Vec3 c = pieces[i].polygon.v[size_t(k)];
+      const CornerKey key{std::bit_cast<uint32_t>(c.x), std::bit_cast<uint32_t>(c.y), std::bit_cast<uint32_t>(c.z)};
+      const auto [it, fresh] = firstAt.try_emplace(key, i);
+      if (!fresh && sameLamp(pieces[it->second], pieces[i])) parent[root(i)] = root(it->second);
+    }
+  std::vector<std::vector<const EmittingPolygon*>> groups(pieces.size());
+  for (uint32_t i = 0; i < pieces.size(); ++i) groups[root(i)].push_back(&pieces[i]);
+  // In the order of each group's first piece, so that the list is the same run to run.
+  std::vector<EmittingPolygon> out;
+  for (uint32_t i = 0; i < pieces.size(); ++i) {
+    std::vector<const EmittingPolygon*>& group = groups[root(i)];
+    if (group.empty()) continue;  // out already, at an earlier piece of its group
+    const std::optional<Polygon> lamp = group.size() > 1 ? convexUnion(group) : std::nullopt;
+    if (lamp) out.push_back({*lamp, pieces[i].normal, pieces[i].exitance});
+    else
+      for (const EmittingPolygon* p : group) out.push_back(*p);
+    group.clear();
   }
   return out;
 }

@@ -1,7 +1,9 @@
 // The emitting surfaces as polygons, for whatever samples them directly (the renderer's and the
 // path tracer's direct light, the face-cluster solver's per-element direct light): a face whose
 // elements all carry one exitance is one polygon, its own; otherwise (an emission texture) each
-// of its emitting elements is, so that the texture's variation is kept.
+// of its emitting elements is, so that the texture's variation is kept. Pieces of one lamp (one
+// exitance, one plane, sharing corners) that tile a convex polygon of at most four corners are
+// that polygon: a quad lamp split into triangles, or a panel made of cells, is sampled as one.
 #pragma once
 
 #include <vector>
