@@ -56,6 +56,15 @@ class Session {
   Solution solution();
   SolveStats stats() const;
 
+  // Ends the session for a caller that only renders from here on: frees the solver (a face-cluster
+  // hierarchy, ray tracers, caches) and hands back the scene and its surfaces. The session can do
+  // nothing more.
+  struct Solved {
+    Scene scene;
+    SurfaceSet surfaces;
+  };
+  Solved release() &&;
+
   // Moves dynamic objects (Scene::objects[i].dynamic) to new transforms (object to world, each a
   // similarity of the pose they were loaded in): the scene's meshes, the surfaces and the ray
   // tracer's instances follow (a transform and a commit, no rebuild), and the solve continues

@@ -61,6 +61,14 @@ bool Session::done() const { return state_->host->done(); }
 Solution Session::solution() { return state_->host->solution(); }
 SolveStats Session::stats() const { return state_->host->stats(); }
 
+Session::Solved Session::release() && {
+  state_->host.reset();  // the solver refers to the surfaces: it goes first
+  state_->borrowed.reset();
+  Solved out{std::move(state_->scene), std::move(state_->surfaces)};
+  state_.reset();
+  return out;
+}
+
 Solution Session::solve(const ProgressCallback& progress) {
   while (step({}, progress)) {
   }
