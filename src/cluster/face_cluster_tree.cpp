@@ -456,8 +456,10 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
     }
   }
 
-  // Children are made before their parents, so one pass in index order fills every node.
-  for (uint32_t i = 0; i < next; ++i) {
+  // Each node's geometry: the leaves from their elements, then the joined nodes level by level
+  // (a node's children are below it), each level in parallel. In one sequential pass this was a
+  // third of the build at 1.5M faces.
+  auto fill = [&](uint32_t i) {
     FaceCluster& c = tree.nodes[i];
     const Moments m = momentsOf(i);
     c.area = float(m.area);
@@ -473,7 +475,7 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
         const float d = glm::dot(el.normal, c.box.axis[size_t(j)]) * el.area;
         c.axisAreas[size_t(j)] = std::max(0.0f, d), c.axisAreas[size_t(j) + 3] = std::max(0.0f, -d);
       }
-      continue;
+      return;
     }
     const FaceCluster &a = tree.nodes[c.child[0]], &b = tree.nodes[c.child[1]];
     c.begin = std::min(a.begin, b.begin), c.count = a.count + b.count;
@@ -504,6 +506,28 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
         c.axisAreas[size_t(j) + 3] = a.maxProjectedArea(-u) + b.maxProjectedArea(-u);
       }
     }
+  };
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(n), 1024), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t i = r.begin(); i != r.end(); ++i) fill(i);
+  });
+  {
+    // Inner nodes by height (a leaf's is 0), in index order within a height.
+    std::vector<uint32_t> height(next, 0), byHeight(next - n);
+    uint32_t levels = 0;
+    for (uint32_t i = uint32_t(n); i < next; ++i) {
+      const FaceCluster& c = tree.nodes[i];
+      height[i] = std::max(height[c.child[0]], height[c.child[1]]) + 1;
+      levels = std::max(levels, height[i]);
+    }
+    std::vector<size_t> start(size_t(levels) + 2, 0);
+    for (uint32_t i = uint32_t(n); i < next; ++i) ++start[height[i] + 1];
+    for (size_t h = 1; h < start.size(); ++h) start[h] += start[h - 1];
+    std::vector<size_t> at(start.begin(), start.end() - 1);
+    for (uint32_t i = uint32_t(n); i < next; ++i) byHeight[at[height[i]]++] = i;
+    for (uint32_t h = 1; h <= levels; ++h)
+      tbb::parallel_for(tbb::blocked_range<size_t>(start[h], start[h + 1], 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k != r.end(); ++k) fill(byHeight[k]);
+      });
   }
   tree.seconds = watch.seconds();
   return tree;
