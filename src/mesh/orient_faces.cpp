@@ -4,11 +4,13 @@
 #include <array>
 #include <atomic>
 #include <limits>
+#include <numbers>
 
 #include <tbb/parallel_for.h>
 
 #include "core/random.h"
 #include "trace/ray_tracer.h"
+#include "transport/emitting_polygons.h"
 #include "transport/form_factor.h"
 #include "transport/light_sampling.h"
 
@@ -39,14 +41,19 @@ Polygon polygonOf(const SurfaceFace& f) { return Polygon{f.corners, f.triangle ?
 }  // namespace
 
 size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces, float sceneExtent) {
-  std::vector<size_t> emitters;
-  for (size_t i = 0; i < faces.size(); ++i)
-    if (scene.materials[faces[i].material].isEmissive()) emitters.push_back(i);
-  auto power = [&](size_t i) {
-    const Rgb& le = scene.materials[faces[i].material].emission;
-    return polygonOf(faces[i]).area() * (le.r + le.g + le.b);
-  };
-  std::sort(emitters.begin(), emitters.end(), [&](size_t a, size_t b) { return power(a) > power(b); });
+  // The emitting faces, a lamp cut into cells or triangles joined into one polygon (as the
+  // direct light samples them, transport/emitting_polygons.h): each is visited from every face.
+  std::vector<EmittingPolygon> pieces;
+  for (const SurfaceFace& f : faces) {
+    const Material& m = scene.materials[f.material];
+    if (m.isEmissive()) pieces.push_back({polygonOf(f), f.normal, m.emission * std::numbers::pi_v<float>});
+  }
+  std::vector<EmittingPolygon> emitters = joinLampPieces(std::move(pieces));
+  // Summed over channels, the most powerful first.
+  auto radianceOf = [](const EmittingPolygon& e) { return (e.exitance.r + e.exitance.g + e.exitance.b) / std::numbers::pi_v<float>; };
+  std::stable_sort(emitters.begin(), emitters.end(), [&](const EmittingPolygon& a, const EmittingPolygon& b) {
+    return a.polygon.area() * radianceOf(a) > b.polygon.area() * radianceOf(b);
+  });
   if (emitters.size() > kMaxEmitters) emitters.resize(kMaxEmitters);
   if (emitters.empty() && scene.lights.empty()) return 0;
 
@@ -57,10 +64,9 @@ size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces, f
   const Vec3 up = glm::normalize(scene.up);
 
   float brightest = 0.0f;
-  std::vector<float> radiance;  // per emitter consulted, summed over channels
-  for (size_t ei : emitters) {
-    const Rgb& le = scene.materials[faces[ei].material].emission;
-    radiance.push_back(le.r + le.g + le.b);
+  std::vector<float> radiance;  // per emitter consulted
+  for (const EmittingPolygon& e : emitters) {
+    radiance.push_back(radianceOf(e));
     brightest = std::max(brightest, radiance.back());
   }
   const float floorLight = kMinFormFactor * float(kPointsPerFace) * brightest;
@@ -84,7 +90,7 @@ size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces, f
     // million faces).
     inFront.assign(emitters.size(), 0), behind.assign(emitters.size(), 0);
     for (size_t e = 0; e < emitters.size(); ++e) {
-      const Polygon& emitter = polygons[emitters[e]];
+      const Polygon& emitter = emitters[e].polygon;
       float lowest = std::numeric_limits<float>::max(), highest = -std::numeric_limits<float>::max();
       for (const Vec3& x : points)
         for (int v = 0; v < emitter.count; ++v) {
@@ -101,20 +107,19 @@ size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces, f
       const Vec3 normals[kPointsPerFace] = {n, n, n, n};
       // The emitting faces' light at each point, the four points in one call per emitter.
       for (size_t e = 0; e < emitters.size(); ++e) {
-        const size_t ei = emitters[e];
         float* w = &weight[e * kPointsPerFace];
-        if (ei == fi || (s == 0 ? behind[e] : inFront[e])) {
+        if (s == 0 ? behind[e] : inFront[e]) {
           std::fill(w, w + kPointsPerFace, 0.0f);
           continue;
         }
-        pointToPolygonFormFactors4(points.data(), normals, polygons[ei], faces[ei].normal, w);
+        pointToPolygonFormFactors4(points.data(), normals, emitters[e].polygon, emitters[e].normal, w);
         for (int k = 0; k < kPointsPerFace; ++k) w[k] = std::max(w[k], 0.0f) * radiance[e];
       }
       for (int k = 0; k < kPointsPerFace; ++k) {
         const Vec3 x = points[size_t(k)], xo = x + n * offset;
-        // One shadow ray to one emitting face, picked in proportion to what it brings: the same
-        // expected light as a ray to each, for a sixteenth of the rays on a light cut into 16
-        // cells, on every face of a million-face scene.
+        // One shadow ray to one emitter, picked in proportion to what it brings: the same
+        // expected light as a ray to each, for one ray a point however many lamps there are, on
+        // every face of a million-face scene.
         float total = 0.0f;
         for (size_t e = 0; e < emitters.size(); ++e) total += weight[e * kPointsPerFace + size_t(k)];
         if (total > 0.0f) {
@@ -123,10 +128,9 @@ size_t orientFacesByLight(const Scene& scene, std::vector<SurfaceFace>& faces, f
           while (e + 1 < emitters.size() && pick >= weight[e * kPointsPerFace + size_t(k)])
             pick -= weight[e * kPointsPerFace + size_t(k)], ++e;
           while (weight[e * kPointsPerFace + size_t(k)] <= 0.0f) --e;  // rounding ran past the last lit one
-          const size_t ei = emitters[e];
           Vec3 y;
-          if (pointInFront(polygons[ei], x, n, [&] { return rng.next(); }, y)) {
-            const Vec3 yo = y + faces[ei].normal * offset;
+          if (pointInFront(emitters[e].polygon, x, n, [&] { return rng.next(); }, y)) {
+            const Vec3 yo = y + emitters[e].normal * offset;
             rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
             values.push_back(total);
             side.push_back(s);

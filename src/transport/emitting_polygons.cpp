@@ -92,8 +92,9 @@ std::optional<Polygon> convexUnion(const std::vector<const EmittingPolygon*>& pi
 
 }  // namespace
 
-std::vector<EmittingPolygon> emittingPolygons(const SurfaceSet& surfaces) {
-  std::vector<EmittingPolygon> pieces = emittingPieces(surfaces);
+std::vector<EmittingPolygon> emittingPolygons(const SurfaceSet& surfaces) { return joinLampPieces(emittingPieces(surfaces)); }
+
+std::vector<EmittingPolygon> joinLampPieces(std::vector<EmittingPolygon> pieces) {
   if (pieces.size() < 2) return pieces;
   // A lamp modelled as two triangles or as a grid of cells is one polygon to whatever samples
   // it: each piece took its own shadow rays from every point lit (16 times the rays for seed

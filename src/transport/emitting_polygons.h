@@ -20,4 +20,8 @@ struct EmittingPolygon {
 
 std::vector<EmittingPolygon> emittingPolygons(const SurfaceSet& surfaces);
 
+// `pieces` with the pieces of each lamp that tile a convex polygon of at most four corners joined
+// into it (the rule above), for a caller that has faces rather than surfaces.
+std::vector<EmittingPolygon> joinLampPieces(std::vector<EmittingPolygon> pieces);
+
 }  // namespace luxel
