@@ -4,6 +4,9 @@
 #include <cmath>
 #include <tuple>
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 namespace luxel {
 namespace {
 
@@ -29,31 +32,43 @@ CornerGroups::CornerGroups(const SurfaceSet& surfaces, float creaseCosine) {
       keys.push_back({std::llround(p.x / cell), std::llround(p.y / cell), std::llround(p.z / cell), e, c});
     }
   }
-  std::sort(keys.begin(), keys.end(), [](const CornerKey& a, const CornerKey& b) {
+  // Keys at one place are one run after sorting; ties by element keep each run's order fixed.
+  tbb::parallel_sort(keys.begin(), keys.end(), [](const CornerKey& a, const CornerKey& b) {
     return std::tie(a.x, a.y, a.z, a.element) < std::tie(b.x, b.y, b.z, b.element);
   });
+  std::vector<size_t> runs;  // where each run of keys at one place begins
+  for (size_t i = 0; i < keys.size(); ++i)
+    if (i == 0 || !keys[i].samePlace(keys[i - 1])) runs.push_back(i);
+  runs.push_back(keys.size());
 
-  // Gather, for each (element, corner) slot, the compatible elements at the same place.
-  std::vector<std::vector<uint32_t>> lists(elements.size() * 4);
-  for (size_t begin = 0; begin < keys.size();) {
-    size_t end = begin + 1;
-    while (end < keys.size() && keys[end].samePlace(keys[begin])) ++end;
-    for (size_t i = begin; i < end; ++i) {
+  // For each (element, corner) slot, the compatible elements at the same place, in a count pass
+  // and a fill pass straight into the flat arrays (a list per slot was four allocations an
+  // element, the bulk of this at a million elements). A slot belongs to one key, so the runs
+  // fill in parallel.
+  auto compatible = [&](const Element& a, const Element& b) {
+    return a.material == b.material && glm::dot(a.normal, b.normal) >= creaseCosine;
+  };
+  auto slotOf = [&](const CornerKey& k) { return size_t(k.element) * 4 + size_t(k.corner); };
+  offsets_.assign(elements.size() * 4 + 1, 0);
+  const size_t runCount = runs.size() - 1;
+  tbb::parallel_for(size_t(0), runCount, [&](size_t r) {
+    for (size_t i = runs[r]; i < runs[r + 1]; ++i) {
       const Element& a = elements[keys[i].element];
-      auto& list = lists[size_t(keys[i].element) * 4 + size_t(keys[i].corner)];
-      for (size_t j = begin; j < end; ++j) {
-        const Element& b = elements[keys[j].element];
-        if (a.material == b.material && glm::dot(a.normal, b.normal) >= creaseCosine)
-          list.push_back(keys[j].element);
-      }
+      uint32_t count = 0;
+      for (size_t j = runs[r]; j < runs[r + 1]; ++j) count += compatible(a, elements[keys[j].element]) ? 1 : 0;
+      offsets_[slotOf(keys[i]) + 1] = count;
     }
-    begin = end;
-  }
-
-  offsets_.resize(lists.size() + 1, 0);
-  for (size_t s = 0; s < lists.size(); ++s) offsets_[s + 1] = offsets_[s] + uint32_t(lists[s].size());
-  members_.reserve(offsets_.back());
-  for (const auto& list : lists) members_.insert(members_.end(), list.begin(), list.end());
+  });
+  for (size_t s = 1; s < offsets_.size(); ++s) offsets_[s] += offsets_[s - 1];
+  members_.resize(offsets_.back());
+  tbb::parallel_for(size_t(0), runCount, [&](size_t r) {
+    for (size_t i = runs[r]; i < runs[r + 1]; ++i) {
+      const Element& a = elements[keys[i].element];
+      uint32_t* out = members_.data() + offsets_[slotOf(keys[i])];
+      for (size_t j = runs[r]; j < runs[r + 1]; ++j)
+        if (compatible(a, elements[keys[j].element])) *out++ = keys[j].element;
+    }
+  });
 }
 
 }  // namespace luxel

@@ -4,6 +4,8 @@
 // material boundaries.
 #include "render/corner_values.h"
 
+#include <tbb/parallel_for.h>
+
 #include "luxel/render.h"
 
 namespace luxel {
@@ -14,7 +16,7 @@ std::vector<Rgb> elementCornerValues(const SurfaceSet& surfaces, const std::vect
 
 std::vector<Rgb> elementCornerValues(const SurfaceSet& surfaces, const CornerGroups& groups, const std::vector<Rgb>& perElement) {
   std::vector<Rgb> corners(surfaces.elements.size() * 4, Rgb(0.0f));
-  for (uint32_t e = 0; e < surfaces.elements.size(); ++e) {
+  tbb::parallel_for(uint32_t(0), uint32_t(surfaces.elements.size()), [&](uint32_t e) {
     const int count = surfaces.elements[e].polygon.count;
     for (int c = 0; c < count; ++c) {
       Rgb sum(0.0f);
@@ -25,7 +27,7 @@ std::vector<Rgb> elementCornerValues(const SurfaceSet& surfaces, const CornerGro
       }
       corners[size_t(e) * 4 + size_t(c)] = area > 0.0f ? sum / area : perElement[e];
     }
-  }
+  });
   return corners;
 }
 
