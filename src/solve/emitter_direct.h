@@ -2,8 +2,8 @@
 // the analytic lights' is (transport/cpu_transport.h) rather than through a solver's coarse
 // links. For each element and emitting polygon: the exact unoccluded form factor averaged over
 // 2 x 2 stratified points of the element (Baum et al. 1989, the SIMD form of
-// transport/form_factor.h), times the kernel-weighted share of shadow rays that arrive, as the
-// CPU transport's pairs take it: one ray a point, and 16 more where those disagree (a shadow's
+// transport/form_factor.h), times the kernel-weighted share of shadow rays that arrive: 4 x 4
+// first rays (element and emitter strata crossed), and 64 more where those disagree (a shadow's
 // edge crosses the element). The face-cluster solver starts from it, as progressive shooting
 // starts from emitters shot with dense rays (docs/algorithms.md, "Face-cluster radiosity").
 #pragma once

@@ -66,7 +66,7 @@ TEST(EmitterDirect, UnoccludedLightIsTheExactFormFactor) {
   // Four jittered points of a 0.25 m element where the factor varies over a metre: the
   // quadrature's error, measured 0.3% at worst.
   EXPECT_LT(worst, 0.01);
-  EXPECT_EQ(d.rays, 256u * 4u) << "every ray of an unoccluded element agrees: none is refined";
+  EXPECT_EQ(d.rays, 256u * 16u) << "every ray of an unoccluded element agrees: none is refined";
 }
 
 TEST(EmitterDirect, AShadowsEdgeAgreesWithPathTracing) {
@@ -90,16 +90,16 @@ TEST(EmitterDirect, AShadowsEdgeAgreesWithPathTracing) {
     const double x = d.irradiance[edge[i]].g, t = traced[i].mean.g, se = traced[i].standardError.g;
     squares += (x - t) * (x - t) - se * se, norm += t * t, difference += x - t, sum += t;
   }
-  // Each element's visible share is a ratio over 68 kernel-weighted rays (4, then 64 more where
+  // Each element's visible share is a ratio over 80 kernel-weighted rays (16, then 64 more where
   // they disagree): at a visible share V its relative standard deviation is about
-  // sqrt((1 - V) / (68 V)), 6% at half and 29% at 0.15, and these elements run from 0.15 to 0.8.
-  // Measured: RMS 12.6%, bias -1.7% (with the first 4 rays alone, about 25% RMS). Neither falls
-  // to the noise of 256 rays (11.3%, -3.1%): the mostly shadowed elements stay 10-25% high, which
-  // is not yet explained (docs/algorithms.md, "Direct light first"). The bounds hold what is
-  // measured, and catch a lost refinement or a wrong factor.
+  // sqrt((1 - V) / (80 V)) unstratified, 8% at half and 26% at 0.15, and these elements run from
+  // 0.15 to 0.8. Measured: RMS 7.7%, bias +0.3%. With 4 first rays it was 12.6% and -1.7%: an
+  // element whose 4 rays happened to agree kept all or none of the lamp (docs/algorithms.md,
+  // "Direct light first"). The bounds hold what is measured, and catch 4 first rays again, a lost
+  // refinement or a wrong factor.
   std::printf("RMS %.4f, bias %+.4f\n", std::sqrt(std::max(0.0, squares) / norm), difference / sum);
-  EXPECT_LT(std::sqrt(std::max(0.0, squares) / norm), 0.16);
-  EXPECT_LT(std::abs(difference / sum), 0.04);
+  EXPECT_LT(std::sqrt(std::max(0.0, squares) / norm), 0.11);
+  EXPECT_LT(std::abs(difference / sum), 0.03);
 }
 
 TEST(EmitterDirect, NoEmittersNoLight) {
