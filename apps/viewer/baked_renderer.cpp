@@ -96,7 +96,7 @@ BakedRenderer::BakedRenderer(const BakedGlb& glb, const std::filesystem::path& s
     d.count = GLsizei(indices.size()) - d.first;
     g.draws.push_back(d);
   }
-  std::vector<FloatAttribute> attributes = {{0, 3, offsetof(Vertex, position)}, {1, 2, offsetof(Vertex, uv0)},
+  std::vector<VertexAttribute> attributes = {{0, 3, offsetof(Vertex, position)}, {1, 2, offsetof(Vertex, uv0)},
                                             {2, 2, offsetof(Vertex, uv1)},      {3, 3, offsetof(Vertex, color)},
                                             {4, 3, offsetof(Vertex, normal)},   {5, 4, offsetof(Vertex, tangent)}};
   for (unsigned k = 0; k < 8; ++k) attributes.push_back({6 + k, 3, offsetof(Vertex, directions) + k * sizeof(Vec3)});

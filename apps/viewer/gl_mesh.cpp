@@ -7,7 +7,7 @@
 namespace luxel::viewer {
 
 IndexedMesh makeIndexedMesh(const void* vertices, size_t vertexCount, size_t stride, const std::vector<uint32_t>& indices,
-                            const std::vector<FloatAttribute>& attributes) {
+                            const std::vector<VertexAttribute>& attributes) {
   IndexedMesh m;
   // Empty buffers get a few bytes: GL refuses storage of size zero.
   glCreateBuffers(1, &m.vbo);
@@ -18,9 +18,10 @@ IndexedMesh makeIndexedMesh(const void* vertices, size_t vertexCount, size_t str
   glCreateVertexArrays(1, &m.vao);
   glVertexArrayVertexBuffer(m.vao, 0, m.vbo, 0, GLsizei(stride));
   glVertexArrayElementBuffer(m.vao, m.ibo);
-  for (const FloatAttribute& a : attributes) {
+  for (const VertexAttribute& a : attributes) {
     glEnableVertexArrayAttrib(m.vao, a.index);
-    glVertexArrayAttribFormat(m.vao, a.index, a.size, GL_FLOAT, GL_FALSE, GLuint(a.offset));
+    if (a.unsignedInt) glVertexArrayAttribIFormat(m.vao, a.index, a.size, GL_UNSIGNED_INT, GLuint(a.offset));
+    else glVertexArrayAttribFormat(m.vao, a.index, a.size, GL_FLOAT, GL_FALSE, GLuint(a.offset));
     glVertexArrayAttribBinding(m.vao, a.index, 0);
   }
   return m;

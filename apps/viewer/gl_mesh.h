@@ -9,10 +9,11 @@
 
 namespace luxel::viewer {
 
-struct FloatAttribute {
-  unsigned index;  // the shader's location
-  int size;        // floats
-  size_t offset;   // bytes into a vertex
+struct VertexAttribute {
+  unsigned index;         // the shader's location
+  int size;               // components
+  size_t offset;          // bytes into a vertex
+  bool unsignedInt = false;  // 32-bit unsigned integers (a `uint` input), not floats
 };
 
 struct IndexedMesh {
@@ -22,6 +23,6 @@ struct IndexedMesh {
 // Interleaved vertices of `stride` bytes (vertexCount of them) and 32-bit indices. Needs a current
 // OpenGL 4.5 context; the caller deletes the three objects.
 IndexedMesh makeIndexedMesh(const void* vertices, size_t vertexCount, size_t stride, const std::vector<uint32_t>& indices,
-                            const std::vector<FloatAttribute>& attributes);
+                            const std::vector<VertexAttribute>& attributes);
 
 }  // namespace luxel::viewer

@@ -21,6 +21,7 @@ struct Vertex {
   Vec3 position;
   Vec2 texel;  // texel units on its page
   float page;
+  uint32_t element;  // an element of the face + 1 (0: none), so that a click picks what it shows
 };
 
 // A chart's hue: golden-ratio steps round the colour wheel, so neighbouring chart ids differ.
@@ -68,14 +69,21 @@ struct TexelRenderer::Gl {
   }
 };
 
-TexelRenderer::TexelRenderer(const Scene& scene, const LightmapAtlas& atlas, const TexelDiagnostics& diagnostics,
-                             const std::filesystem::path& shaderDir)
+TexelRenderer::TexelRenderer(const Scene& scene, const SurfaceSet& surfaces, const LightmapAtlas& atlas,
+                             const TexelDiagnostics& diagnostics, const std::filesystem::path& shaderDir)
     : gl_(std::make_unique<Gl>()) {
   Gl& g = *gl_;
   g.program = std::make_unique<gl::ShaderProgram>("viewer texels", shaderSource("texels.vert", shaderDir),
                                                   shaderSource("texels.frag", shaderDir));
   // Each face's own corners: a quad as the triangles 0-1-2 and 0-2-3, the atlas's (and the
   // bake's) split, so the texel mapping drawn is the one baked.
+  // Each scene face's first element in the solve's surfaces (+ 1): faces with no area have none.
+  std::vector<std::vector<uint32_t>> elementOf(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m) elementOf[m].assign(scene.meshes[m].faces.size(), 0);
+  for (uint32_t e = uint32_t(surfaces.elements.size()); e-- > 0;) {
+    const SurfaceFace& face = surfaces.faces[surfaces.elements[e].face];
+    if (face.mesh < elementOf.size() && face.meshFace < elementOf[face.mesh].size()) elementOf[face.mesh][face.meshFace] = e + 1;
+  }
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -85,7 +93,7 @@ TexelRenderer::TexelRenderer(const Scene& scene, const LightmapAtlas& atlas, con
       const LightmapAtlas::FaceUv& uv = atlas.faces[m][f];
       const uint32_t base = uint32_t(vertices.size());
       for (int k = 0; k < face.vertexCount(); ++k)
-        vertices.push_back({mesh.positions[face.v[size_t(k)]], uv.texel[size_t(k)], float(uv.page)});
+        vertices.push_back({mesh.positions[face.v[size_t(k)]], uv.texel[size_t(k)], float(uv.page), elementOf[m][f]});
       indices.insert(indices.end(), {base, base + 1, base + 2});
       if (!face.isTriangle()) indices.insert(indices.end(), {base, base + 2, base + 3});
     }
@@ -93,7 +101,10 @@ TexelRenderer::TexelRenderer(const Scene& scene, const LightmapAtlas& atlas, con
   g.indexCount = GLsizei(indices.size());
   const IndexedMesh mesh = makeIndexedMesh(
       vertices.data(), vertices.size(), sizeof(Vertex), indices,
-      {{0, 3, offsetof(Vertex, position)}, {1, 2, offsetof(Vertex, texel)}, {2, 1, offsetof(Vertex, page)}});
+      {{0, 3, offsetof(Vertex, position)},
+       {1, 2, offsetof(Vertex, texel)},
+       {2, 1, offsetof(Vertex, page)},
+       {3, 1, offsetof(Vertex, element), true}});
   g.vao = mesh.vao, g.vbo = mesh.vbo, g.ibo = mesh.ibo;
 
   // One layer a page, a texel a texel: nearest, never filtered, so each texel shows whole.

@@ -4,7 +4,7 @@
 // (invalid), magenta where two faces' UVs claim it (overlap), yellow where bilinear filtering
 // reads another chart's texel (no gutter). Needs a current OpenGL 4.5 context; draws into the
 // bound HdrTarget with the SceneRenderer's conventions (reversed depth, colours times the output
-// scale, no element ids).
+// scale, element ids for picking: each face writes its first element in the solve's surfaces).
 #pragma once
 
 #include <filesystem>
@@ -14,14 +14,15 @@
 
 #include "luxel/lightmap.h"
 #include "luxel/scene.h"
+#include "luxel/surface.h"
 #include "luxel/texel_diagnostics.h"
 
 namespace luxel::viewer {
 
 class TexelRenderer {
  public:
-  TexelRenderer(const Scene& scene, const LightmapAtlas& atlas, const TexelDiagnostics& diagnostics,
-                const std::filesystem::path& shaderDir);
+  TexelRenderer(const Scene& scene, const SurfaceSet& surfaces, const LightmapAtlas& atlas,
+                const TexelDiagnostics& diagnostics, const std::filesystem::path& shaderDir);
   ~TexelRenderer();
   TexelRenderer(const TexelRenderer&) = delete;
   TexelRenderer& operator=(const TexelRenderer&) = delete;

@@ -374,18 +374,22 @@ const char* kTexelsVertex = R"(#version 450 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec2 aTexel;  // texel units on its page
 layout(location = 2) in float aPage;
+layout(location = 3) in uint aElement;  // an element of the face + 1, for picking; 0 for none
 uniform mat4 uViewProjection;
 out vec2 vTexel;
 flat out int vPage;
+flat out uint vElement;
 void main() {
   vTexel = aTexel;
   vPage = int(aPage);
+  vElement = aElement;
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }
 )";
 const char* kTexelsFragment = R"(#version 450 core
 in vec2 vTexel;
 flat in int vPage;
+flat in uint vElement;
 layout(binding = 0) uniform sampler2DArray uTexels;  // a colour per texel, per page
 uniform float uOutputScale;
 layout(location = 0) out vec4 outRadiance;
@@ -394,7 +398,7 @@ void main() {
   ivec2 size = textureSize(uTexels, 0).xy;
   ivec2 t = clamp(ivec2(floor(vTexel)), ivec2(0), size - 1);
   outRadiance = vec4(texelFetch(uTexels, ivec3(t, vPage), 0).rgb * uOutputScale, 1.0);
-  outElement = 0u;
+  outElement = vElement;
 }
 )";
 const char* kBakedVertex = R"(#version 450 core

@@ -617,7 +617,7 @@ void Viewer::buildTexelView() {
   const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
   texels_ = diagnoseTexels(scene, atlas);
   texelsPerMetreShown_ = atlas.texelsPerMetre;
-  texelRenderer_ = std::make_unique<TexelRenderer>(scene, atlas, texels_, options_.shaderDir);
+  texelRenderer_ = std::make_unique<TexelRenderer>(scene, session_->surfaces(), atlas, texels_, options_.shaderDir);
   messages_.push_back(fmt::format("texels: {} on {} page{} of {}^2 at {:.3g} texels/m: {} invalid (red), {} overlapping "
                                   "(magenta), {} next to another chart (yellow), {:.2f} s",
                                   texels_.covered, atlas.pageCount, atlas.pageCount == 1 ? "" : "s", atlas.pageSize,

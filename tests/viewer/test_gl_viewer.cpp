@@ -277,6 +277,10 @@ TEST(GlViewer, TexelsViewShowsOverlappingUvs) {
   EXPECT_GT(squares, picture.pixels.size() / 8);
   EXPECT_NEAR(share, 0.75, 0.05);
   EXPECT_EQ(invalid, 0u);
+  // A click picks what the view shows: the squares' mesh at the picture's centre, nothing in a
+  // corner, which shows the background.
+  EXPECT_EQ(rig->viewer->pick(rig->width / 2, rig->height / 2), "squares");
+  EXPECT_EQ(rig->viewer->pick(0, 0), "");
 }
 
 // Blinn-Phong highlights (Material::specular, shininess; display only) appear on the glossy
