@@ -18,6 +18,7 @@
 #include "luxel/error.h"
 #include "mesh/corner_groups.h"
 #include "scene/texture_decode.h"
+#include "shadow_casters.h"
 #include "view_shaders.h"
 
 namespace luxel::viewer {
@@ -63,8 +64,8 @@ struct SceneRenderer::Gl {
   // first drawn, by their defines.
   std::map<std::string, std::unique_ptr<gl::ShaderProgram>> scenes;
   std::unique_ptr<gl::ShaderProgram> volume;
-  GLuint casterVao = 0, casters = 0;
-  GLsizei casterVertexCount = 0;
+  GLuint casterVao = 0, casters = 0, casterIndices = 0;
+  GLsizei casterIndexCount = 0;  // six a triangle (GL_TRIANGLES_ADJACENCY)
   std::unique_ptr<gl::ShaderProgram> cubeShadow, sunShadow, line, sky;
   GLuint skyVao = 0;
   Vec3 up{0.0f, 1.0f, 0.0f};
@@ -96,6 +97,7 @@ struct SceneRenderer::Gl {
     GLuint arrays[] = {vao, lineVao, skyVao, casterVao};
     glDeleteVertexArrays(4, arrays);
     glDeleteBuffers(1, &casters);
+    glDeleteBuffers(1, &casterIndices);
     if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
     GLuint shadowTextures[] = {cubeShadows, sunShadows};
     glDeleteTextures(2, shadowTextures);
@@ -277,14 +279,13 @@ void SceneRenderer::setGeometry(const Scene& scene, const SurfaceSet& surfaces) 
     }
   upload(g.patchEdges, lines.data(), lines.size() * sizeof(Vec3));
   g.patchEdgeCount = GLsizei(lines.size());
-  // Shadow casters: the faces as triangles (coarser than the elements, the same surfaces).
-  lines.clear();
-  for (const SurfaceFace& face : surfaces.faces) {
-    lines.insert(lines.end(), {face.corners[0], face.corners[1], face.corners[2]});
-    if (!face.triangle) lines.insert(lines.end(), {face.corners[0], face.corners[2], face.corners[3]});
-  }
-  upload(g.casters, lines.data(), lines.size() * sizeof(Vec3));
-  g.casterVertexCount = GLsizei(lines.size());
+  // Shadow casters: the faces as triangles (coarser than the elements, the same surfaces), with
+  // their neighbours, so that volumes get sides along silhouettes only (shadow_casters.h).
+  const CasterMesh casters = casterMesh(surfaces);
+  upload(g.casters, casters.vertices.data(), casters.vertices.size() * sizeof(Vec3));
+  upload(g.casterIndices, casters.adjacency.data(), casters.adjacency.size() * sizeof(uint32_t));
+  g.casterIndexCount = GLsizei(casters.adjacency.size());
+  glVertexArrayElementBuffer(g.casterVao, g.casterIndices);
   glEnableVertexArrayAttrib(g.casterVao, 0);
   glVertexArrayAttribFormat(g.casterVao, 0, 3, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribBinding(g.casterVao, 0, 0);
@@ -498,7 +499,7 @@ void SceneRenderer::drawVolumes(const Frame& f, int light) {
   glUniformMatrix4fv(glGetUniformLocation(g.volume->id(), "uViewProjection"), 1, GL_FALSE, glm::value_ptr(f.viewProjection));
   glUniform4fv(glGetUniformLocation(g.volume->id(), "uLight"), 1, glm::value_ptr(l));
   glBindVertexArray(g.casterVao);
-  glDrawArrays(GL_TRIANGLES, 0, g.casterVertexCount);
+  glDrawElements(GL_TRIANGLES_ADJACENCY, g.casterIndexCount, GL_UNSIGNED_INT, nullptr);
 }
 
 void SceneRenderer::drawEdges(const Frame& f) {

@@ -291,24 +291,45 @@ void main() {
 const char* kVolumeVertex = R"(#version 450 core
 layout(location = 0) in vec3 aPosition;
 out vec3 vPosition;
-void main() { vPosition = aPosition; }
+flat out int vIndex;  // the welded corner's index (gl_VertexID of an indexed draw)
+void main() { vPosition = aPosition; vIndex = gl_VertexID; }
 )";
+// Seed 004's back-facing casters, each with its three neighbours (viewer/shadow_casters.h): the
+// caps from the caster itself, a side only along an edge whose neighbour does not also cast.
+// Whether a triangle faces the light is computed from its corners in index order, so that a
+// triangle and its neighbour's invocation agree to the bit on the edge they share; otherwise
+// rounding could leave a side drawn by neither and the volume open.
 const char* kVolumeGeometry = R"(#version 450 core
-layout(triangles) in;
+layout(triangles_adjacency) in;
 layout(triangle_strip, max_vertices = 18) out;
 in vec3 vPosition[];
+flat in int vIndex[];
 uniform mat4 uViewProjection;
 uniform vec4 uLight;  // w = 1: a point light at xyz; w = 0: a sun, light travelling along xyz
 vec4 atInfinity(vec3 p) { return uLight.w > 0.5 ? vec4(p - uLight.xyz, 0.0) : vec4(uLight.xyz, 0.0); }
 void emit(vec4 p) { gl_Position = uViewProjection * p; EmitVertex(); }
 void side(vec3 p, vec3 q) { emit(vec4(p, 1.0)); emit(vec4(q, 1.0)); emit(atInfinity(p)); emit(atInfinity(q)); EndPrimitive(); }
+// True when the triangle (vertices i, j, k of the input, in winding order) has its back to the light.
+bool casts(int i, int j, int k) {
+  // Rotate so that the smallest index comes first: the same winding, the same arithmetic.
+  int a = i, b = j, c = k;
+  if (vIndex[j] < vIndex[a] && vIndex[j] < vIndex[k]) { a = j; b = k; c = i; }
+  else if (vIndex[k] < vIndex[a] && vIndex[k] < vIndex[j]) { a = k; b = i; c = j; }
+  vec3 p = vPosition[a];
+  vec3 towardsLight = uLight.w > 0.5 ? uLight.xyz - p : -uLight.xyz;
+  precise float facing = dot(cross(vPosition[b] - p, vPosition[c] - p), towardsLight);  // no fused, reordered arithmetic
+  return facing < 0.0;
+}
 void main() {
-  vec3 a = vPosition[0], b = vPosition[1], c = vPosition[2];
-  vec3 towardsLight = uLight.w > 0.5 ? uLight.xyz - a : -uLight.xyz;
-  if (dot(cross(b - a, c - a), towardsLight) >= 0.0) return;  // lit side towards the light: not a caster
+  if (!casts(0, 2, 4)) return;  // lit side towards the light: not a caster
+  vec3 a = vPosition[0], b = vPosition[2], c = vPosition[4];
   emit(vec4(a, 1.0)); emit(vec4(c, 1.0)); emit(vec4(b, 1.0)); EndPrimitive();
   if (uLight.w > 0.5) { emit(atInfinity(a)); emit(atInfinity(b)); emit(atInfinity(c)); EndPrimitive(); }
-  side(a, b); side(b, c); side(c, a);
+  // The neighbour across a-b is (b, a, n): it shares the edge the other way round. None (n is the
+  // caster's own third corner): the side is drawn.
+  if (vIndex[1] == vIndex[4] || !casts(2, 0, 1)) side(a, b);
+  if (vIndex[3] == vIndex[0] || !casts(4, 2, 3)) side(b, c);
+  if (vIndex[5] == vIndex[2] || !casts(0, 4, 5)) side(c, a);
 }
 )";
 const char* kVolumeFragment = R"(#version 450 core
