@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <type_traits>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 #include <numbers>
 #include <numeric>
 #include <span>
+#include <type_traits>
+#ifdef __GLIBC__
+#include <malloc.h>  // malloc_trim
+#endif
 
 #include <fmt/format.h>
 
