@@ -75,8 +75,6 @@ TexelRenderer::TexelRenderer(const Scene& scene, const SurfaceSet& surfaces, con
   Gl& g = *gl_;
   g.program = std::make_unique<gl::ShaderProgram>("viewer texels", shaderSource("texels.vert", shaderDir),
                                                   shaderSource("texels.frag", shaderDir));
-  // Each face's own corners: a quad as the triangles 0-1-2 and 0-2-3, the atlas's (and the
-  // bake's) split, so the texel mapping drawn is the one baked.
   // Each scene face's first element in the solve's surfaces (+ 1): faces with no area have none.
   std::vector<std::vector<uint32_t>> elementOf(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); ++m) elementOf[m].assign(scene.meshes[m].faces.size(), 0);
@@ -84,6 +82,8 @@ TexelRenderer::TexelRenderer(const Scene& scene, const SurfaceSet& surfaces, con
     const SurfaceFace& face = surfaces.faces[surfaces.elements[e].face];
     if (face.mesh < elementOf.size() && face.meshFace < elementOf[face.mesh].size()) elementOf[face.mesh][face.meshFace] = e + 1;
   }
+  // Each face's own corners: a quad as the triangles 0-1-2 and 0-2-3, the atlas's (and the
+  // bake's) split, so the texel mapping drawn is the one baked.
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
