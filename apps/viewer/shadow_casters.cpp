@@ -1,29 +1,18 @@
 #include "shadow_casters.h"
 
 #include <array>
-#include <bit>
-#include <cstring>
 #include <unordered_map>
+
+#include "core/position_key.h"
 
 namespace luxel::viewer {
 
 CasterMesh casterMesh(const SurfaceSet& surfaces) {
   CasterMesh out;
-  struct Key {
-    uint32_t x, y, z;
-    bool operator==(const Key&) const = default;
-  };
-  struct KeyHash {
-    size_t operator()(const Key& k) const {
-      return (size_t(k.x) * 0x9E3779B97F4A7C15ull) ^ (size_t(k.y) * 0xC2B2AE3D27D4EB4Full) ^ (size_t(k.z) * 0x165667B19E3779F9ull);
-    }
-  };
-  std::unordered_map<Key, uint32_t, KeyHash> index;
+  std::unordered_map<PositionKey, uint32_t, PositionKeyHash> index;
   auto vertex = [&](Vec3 p) {
-    p += Vec3(0.0f);  // -0 and +0 alike
-    const Key k{std::bit_cast<uint32_t>(p.x), std::bit_cast<uint32_t>(p.y), std::bit_cast<uint32_t>(p.z)};
-    const auto [it, fresh] = index.try_emplace(k, uint32_t(out.vertices.size()));
-    if (fresh) out.vertices.push_back(p);
+    const auto [it, fresh] = index.try_emplace(positionKey(p), uint32_t(out.vertices.size()));
+    if (fresh) out.vertices.push_back(p + Vec3(0.0f));
     return it->second;
   };
   std::vector<std::array<uint32_t, 3>> triangles;

@@ -1,13 +1,13 @@
 #include "transport/emitting_polygons.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <numeric>
 #include <optional>
 #include <unordered_map>
 
 #include "core/convex_hull.h"
+#include "core/position_key.h"
 
 namespace luxel {
 namespace {
@@ -49,16 +49,6 @@ bool sameLamp(const EmittingPolygon& a, const EmittingPolygon& b) {
     if (std::abs(glm::dot(b.polygon.v[size_t(k)] - a.polygon.v[0], a.normal)) > 1e-6f * size) return false;
   return true;
 }
-
-struct CornerKey {
-  uint32_t x, y, z;
-  bool operator==(const CornerKey&) const = default;
-};
-struct CornerKeyHash {
-  size_t operator()(const CornerKey& k) const {
-    return (size_t(k.x) * 0x9E3779B97F4A7C15ull) ^ (size_t(k.y) * 0xC2B2AE3D27D4EB4Full) ^ (size_t(k.z) * 0x165667B19E3779F9ull);
-  }
-};
 
 // The one polygon of at most four corners that `pieces` tile exactly, if there is one: their
 // hull, when it has at most four corners and the pieces' areas add up to its area (they overlap
@@ -107,12 +97,10 @@ std::vector<EmittingPolygon> joinLampPieces(std::vector<EmittingPolygon> pieces)
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  std::unordered_map<CornerKey, uint32_t, CornerKeyHash> firstAt;
+  std::unordered_map<PositionKey, uint32_t, PositionKeyHash> firstAt;
   for (uint32_t i = 0; i < pieces.size(); ++i)
     for (int k = 0; k < pieces[i].polygon.count; ++k) {
-      const Vec3 c = pieces[i].polygon.v[size_t(k)];
-      const CornerKey key{std::bit_cast<uint32_t>(c.x), std::bit_cast<uint32_t>(c.y), std::bit_cast<uint32_t>(c.z)};
-      const auto [it, fresh] = firstAt.try_emplace(key, i);
+      const auto [it, fresh] = firstAt.try_emplace(positionKey(pieces[i].polygon.v[size_t(k)]), i);
       if (!fresh && sameLamp(pieces[it->second], pieces[i])) parent[root(i)] = root(it->second);
     }
   std::vector<std::vector<const EmittingPolygon*>> groups(pieces.size());
