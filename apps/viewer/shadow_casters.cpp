@@ -37,10 +37,9 @@ CasterMesh casterMesh(const SurfaceSet& surfaces) {
     for (int k = 0; k < 3; ++k) {
       const uint32_t p = t[size_t(k)], q = t[size_t((k + 1) % 3)], own = t[size_t((k + 2) % 3)];
       const auto back = edges.find(key(q, p));
-      const bool paired = p != q && back != edges.end() && back->second.count == 1 && edges[key(p, q)].count == 1;
+      const bool paired = p != q && back != edges.end() && back->second.count == 1 && edges.at(key(p, q)).count == 1;
       out.adjacency.push_back(p);
       out.adjacency.push_back(paired ? back->second.third : own);
-      out.silhouetteCandidates += paired ? 0 : 1;
     }
   return out;
 }

@@ -21,7 +21,6 @@ struct CasterMesh {
   // the same way, names the triangle's own third corner: that "neighbour" is the triangle turned
   // over, so the edge is always drawn, as the face on its own would draw it.
   std::vector<uint32_t> adjacency;
-  size_t silhouetteCandidates = 0;  // edges with no proper neighbour
 };
 
 // Each face of `surfaces` as triangles (a quad as 0-1-2 and 0-2-3).

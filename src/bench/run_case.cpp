@@ -162,18 +162,16 @@ CaseResult runCase(const Case& c, const Options& options) {
     result.errorNote = "reference off";
     return result;
   }
-  const bool tooLarge = !c.reference && double(s.elements) * double(s.patches) > c.maxReferencePairs;
-  const bool refined = c.solve.refine.budget > 0;
-  if (refined || (tooLarge && c.probes == 0)) {
-    result.errorNote = refined ? "no reference: refinement changes the discretisation"
-                               : fmt::format("no reference: {:.2g} element-patch pairs", double(s.elements) * double(s.patches));
+  if (c.solve.refine.budget > 0) {
+    result.errorNote = "no reference: refinement changes the discretisation";
     return result;
   }
+  const bool tooLarge = !c.reference && double(s.elements) * double(s.patches) > c.maxReferencePairs;
+  if (tooLarge) result.errorNote = fmt::format("no reference: {:.2g} element-patch pairs", double(s.elements) * double(s.patches));
+  if (tooLarge && c.probes == 0) return result;  // nothing else needs the surfaces cut again
   const SurfaceSet surfaces = discretise(scene, c.discretise);
   std::optional<Reference> ref;
-  if (tooLarge) {
-    result.errorNote = fmt::format("no reference: {:.2g} element-patch pairs", double(s.elements) * double(s.patches));
-  } else {
+  if (!tooLarge) {
     reportProgress(options.progress, c.name, 1.0, "reference");
     ref = loadOrComputeReference(scene, surfaces, options.cacheDir, options.progress, options.referenceKind,
                                  c.reference);

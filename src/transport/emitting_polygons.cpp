@@ -89,8 +89,10 @@ std::vector<EmittingPolygon> joinLampPieces(std::vector<EmittingPolygon> pieces)
   // A lamp modelled as two triangles or as a grid of cells is one polygon to whatever samples
   // it: each piece took its own shadow rays from every point lit (16 times the rays for seed
   // 002's room, whose light is 4 x 4 cells), and the pieces of one lamp see the same shadows.
-  // Pieces that share a corner and can belong to one lamp are joined (union-find), and a group
-  // that tiles a convex polygon of at most four corners becomes that polygon.
+  // Each piece is joined (union-find) to the first piece met at each of its corners when the two
+  // can belong to one lamp, and a group that tiles a convex polygon of at most four corners
+  // becomes that polygon. A corner first met on another lamp joins nothing there: pieces of one
+  // lamp share edges, so they meet at another corner, or stay apart, which costs rays, not light.
   std::vector<uint32_t> parent(pieces.size());
   std::iota(parent.begin(), parent.end(), 0u);
   auto root = [&](uint32_t i) {
