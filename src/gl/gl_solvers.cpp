@@ -6,6 +6,7 @@
 #include "gl/gather_gl.h"
 #include "gl/gl_context.h"
 #include "gl/progressive_gl.h"
+#include "luxel/scene.h"
 #include "solve/solver_registry.h"
 #include "transport/form_factor_options.h"
 
@@ -31,8 +32,11 @@ void addAll(std::vector<SolverOption>& to, std::vector<SolverOption> from) {
 
 namespace {
 
+enum class Follows { Nothing, ByIncremental, ByCrossRedistribution };
+
 // GL progressive refinement, and the same solver following moves and edits by redistribution.
-SolverEntry glProgressiveEntry(const char* method, bool followChanges, const char* description) {
+SolverEntry glProgressiveEntry(const char* method, Follows follows, const char* description) {
+  const bool followChanges = follows != Follows::Nothing, cross = follows == Follows::ByCrossRedistribution;
   const gl::GlProgressiveSettings d;
   SolverEntry e;
   e.description = {method, "gl", description, progressiveStopOptions()};
@@ -46,10 +50,18 @@ SolverEntry glProgressiveEntry(const char* method, bool followChanges, const cha
           choiceOption("hemicube-visibility", "item", {"item", "distance"},
                        "a shooter sees a point by face id (seed 001) or by depth (seed 003)")});
   if (followChanges) e.description.options.push_back(settleOption());
+  if (cross) {
+    const gl::CrossRedistributionSettings c;
+    addAll(e.description.options,
+           {integerOption("back-hemicube-resolution", c.backResolution, 4, 1024,
+                          "pixels a side of each moved patch's back hemicube, which the cross projection samples (even)"),
+            integerOption("cross-grid", c.grid, 1, 16, "g: g x g rays from a receiver through each moved patch")});
+  }
   addAll(e.description.options, analyticLightOptions());
-  e.make = [followChanges](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
+  e.make = [followChanges, cross](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
     gl::GlProgressiveSettings s;
     s.followChanges = followChanges;
+    s.crossRedistribution = cross;
     if (followChanges) s.settleThreshold = v.real("settle-unshot");
     s.resolution = hemicubeResolution(v);
     s.samplesPerSide = v.integer("hemicubes-per-side");
@@ -62,7 +74,17 @@ SolverEntry glProgressiveEntry(const char* method, bool followChanges, const cha
     s.timeBudget = v.real("time-budget");
     s.shotBudget = uint64_t(v.integer("shot-budget"));
     s.ambient = v.flag("ambient");
-    return gl::makeGlProgressiveSolver(r.system, *r.glContext, s);
+    std::vector<uint32_t> objectOfPatch;
+    if (cross) {
+      const int back = v.integer("back-hemicube-resolution");
+      if (back % 2) v.fail(fmt::format("back-hemicube-resolution {} must be even", back));
+      s.cross.backResolution = back;
+      s.cross.gatherResolution = s.resolution;
+      s.cross.grid = v.integer("cross-grid");
+      const SurfaceSet& set = r.system.surfaces;
+      for (const Patch& p : set.patches) objectOfPatch.push_back(r.scene.meshes[set.faces[p.face].mesh].object);
+    }
+    return gl::makeGlProgressiveSolver(r.system, *r.glContext, s, std::move(objectOfPatch));
   };
   e.converged.set("unshot", 1e-6);
   // Shooting hemicubes are a midpoint rule over k x k points of the shooter: coarser than the
@@ -77,14 +99,21 @@ SolverEntry glProgressiveEntry(const char* method, bool followChanges, const cha
 
 void registerGlProgressive(SolverRegistry& registry) {
   registry.add(glProgressiveEntry(
-      "progressive", false, "progressive refinement resident on the GPU: ID or depth hemicubes per shooter (seeds 001, 003)"));
+      "progressive", Follows::Nothing, "progressive refinement resident on the GPU: ID or depth hemicubes per shooter (seeds 001, 003)"));
 }
 
 void registerGlIncremental(SolverRegistry& registry) {
-  registry.add(glProgressiveEntry("incremental", true,
+  registry.add(glProgressiveEntry("incremental", Follows::ByIncremental,
                                   "dynamic: GL progressive refinement that follows moves and light edits by "
                                   "redistribution (Chen 1990; seed 001 Sec. 4.4): every patch reshoots what it shot, "
                                   "from the old and the new geometry"));
+}
+
+void registerGlCrossRedistribution(SolverRegistry& registry) {
+  registry.add(glProgressiveEntry("cross-redistribution", Follows::ByCrossRedistribution,
+                                  "dynamic: GL progressive refinement that follows moves by cross-redistribution "
+                                  "(seed 001 Sec. 3.3, 4.5): only the moved patches render hemicubes, front and back, "
+                                  "and the moved elements gather; light edits as incremental"));
 }
 
 void registerGlGather(SolverRegistry& registry) {

@@ -245,9 +245,11 @@ void LayeredHemicubes::render(int first, int count) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void LayeredHemicubes::bindTextures() const {
-  glBindTextureUnit(kItemTextureUnit, impl_->itemLayers);
-  glBindTextureUnit(kDistanceTextureUnit, impl_->distanceLayers);
+void LayeredHemicubes::bindTextures() const { bindTextures(kItemTextureUnit, kDistanceTextureUnit); }
+
+void LayeredHemicubes::bindTextures(int itemUnit, int distanceUnit) const {
+  glBindTextureUnit(GLuint(itemUnit), impl_->itemLayers);
+  glBindTextureUnit(GLuint(distanceUnit), impl_->distanceLayers);
 }
 
 }  // namespace luxel::gl

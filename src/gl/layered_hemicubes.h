@@ -35,8 +35,9 @@ class LayeredHemicubes {
   // Replaces the polygons drawn (after objects moved), keeping the targets.
   void setPolygons(std::span<const Polygon> polygons, std::span<const uint32_t> items);
   // Binds the item layers to ITEM_TEXTURE_UNIT and the distance or radiosity layers to
-  // DISTANCE_TEXTURE_UNIT.
+  // DISTANCE_TEXTURE_UNIT, or to the units given (a pass that reads two sets of hemicubes).
   void bindTextures() const;
+  void bindTextures(int itemUnit, int distanceUnit) const;
 
   int resolution() const { return resolution_; }
   int capacity() const { return capacity_; }

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "gl/cross_redistribution_gl.h"
 #include "gl/gl_context.h"
 #include "gl/gpu_system.h"
 #include "gl/hemicube_glsl.h"
@@ -176,6 +177,10 @@ layout(std430, binding = FACE_NEIGHBOUR_BINDING) readonly buffer FaceNeighbours 
 uniform uint elementCount, samples;
 uniform int resolution, visibility;  // visibility 0: item ids, 1: distances
 uniform bool redistributing;         // shots that move light already shot: no shooter's unshot is spent
+// Cross-redistribution (cross_redistribution_gl.h): the pass's shooters are moved patches, and a
+// static receiver also gains F (-crossSign) P, the light of the static patches behind them.
+uniform bool crossProjecting;
+uniform float crossSign;
 uniform float nearPlane, farPlane;
 // Directional bakes (Solver::recordIncidentSh): the SH of what each shot brings, shCount (4: L1,
 // 9: L2; 0: not recording) per element.
@@ -390,6 +395,12 @@ void main() {
     F *= 0.25;
     dh += F * s.unshot.rgb;
     dd += F * s.emission.rgb;
+    if (crossProjecting && F > 0.0 && crossPatches[el.ids.y].x == 0u) {
+      vec3 behind, emittedBehind;
+      crossProjected(k, centre, n, P, behind, emittedBehind);
+      dh -= crossSign * F * behind;
+      dd -= crossSign * F * emittedBehind;
+    }
     if (shCount > 0 && F != 0.0) {
       addPatchSh(centre, n, P, F, s.unshot.rgb, shCount, sh);
       reached = true;
@@ -450,6 +461,10 @@ layout(std430, binding = REDISTRIBUTION_LIST_BINDING) readonly buffer List { uin
 uniform uint first, count, samplesPerSide;
 uniform float sign, offset;
 uniform bool emissionOnly;  // only the direct light a first shot carried
+// Cross-redistribution: each patch's back hemicube, at its corners' mean just behind it, facing
+// the other way (cross_redistribution_gl.h).
+uniform bool crossing;
+layout(std430, binding = BACK_SHOOTER_BINDING) writeonly buffer BackShooters { GpuShooter backShooters[]; };
 void main() {
   const uint r = gl_GlobalInvocationID.x, samples = samplesPerSide * samplesPerSide;
   if (r >= count * samples) return;
@@ -466,6 +481,18 @@ void main() {
   s.ids = uvec4(p, 1u, 0u, 0u);
   shooters[r] = s;
   if (r == 0u) state.chosen = count;
+  if (crossing && j == 0u) {
+    const int corners = int(P.corners[0].w);
+    vec3 centre = vec3(0.0);
+    for (int c = 0; c < corners; ++c) centre += P.corners[c].xyz / float(corners);
+    GpuShooter b;
+    b.eye = vec4(centre - offset * P.normalArea.xyz, 0.0);
+    b.normal = vec4(-P.normalArea.xyz, hemicubeTurn(p, 0u, 0xBAC5u));
+    b.unshot = vec4(0.0);
+    b.emission = vec4(0.0);
+    b.ids = uvec4(p, 1u, 0u, 0u);
+    backShooters[k] = b;
+  }
 }
 )";
 
@@ -518,7 +545,8 @@ GLuint groups(size_t n, int size) { return GLuint((n + size_t(size) - 1) / size_
 
 class GlProgressiveSolver final : public Solver {
  public:
-  GlProgressiveSolver(const RadiositySystem& sys, Context& context, const GlProgressiveSettings& o)
+  GlProgressiveSolver(const RadiositySystem& sys, Context& context, const GlProgressiveSettings& o,
+                      std::vector<uint32_t> objectOfPatch)
       : sys_(sys), context_(context), o_(o) {
     const Stopwatch watch;
     const SurfaceSet& set = sys.surfaces;
@@ -581,7 +609,7 @@ class GlProgressiveSolver final : public Solver {
     const std::string preamble = glslPreamble() + kHemicubeGlsl + kFormFactorGlsl + kBuffersGlsl;
     power_ = std::make_unique<ShaderProgram>("patch power", preamble + kPowerCompute);
     select_ = std::make_unique<ShaderProgram>("shooter selection", preamble + kSelectCompute);
-    reconstruct_ = std::make_unique<ShaderProgram>("shot reconstruction", preamble + kReconstructCompute);
+    reconstruct_ = std::make_unique<ShaderProgram>("shot reconstruction", preamble + kCrossProjectionGlsl + kReconstructCompute);
     auto uniform = [](const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id(), name); };
     power_->use();
     glUniform1ui(uniform(*power_, "patchCount"), GLuint(np));
@@ -607,6 +635,9 @@ class GlProgressiveSolver final : public Solver {
     reconstructRedistributing_ = uniform(*reconstruct_, "redistributing");
     glUniform1i(reconstructRedistributing_, 0);
     glUniform1i(uniform(*reconstruct_, "shCount"), 0);
+    reconstructCrossProjecting_ = uniform(*reconstruct_, "crossProjecting");
+    reconstructCrossSign_ = uniform(*reconstruct_, "crossSign");
+    glUniform1i(reconstructCrossProjecting_, 0);
     if (o.followChanges) {
       amounts_ = std::make_unique<ShaderProgram>("redistribution amounts", preamble + kAmountsCompute);
       redistribute_ = std::make_unique<ShaderProgram>("redistribution shooters", preamble + kRedistributeCompute);
@@ -618,6 +649,12 @@ class GlProgressiveSolver final : public Solver {
       rebase_->use();
       glUniform1ui(uniform(*rebase_, "elementCount"), GLuint(ne));
       buf_.amounts = storageBuffer(nullptr, std::max(2 * np, 3 * ne) * sizeof(glm::vec4));
+      if (o.crossRedistribution) {
+        cross_ = std::make_unique<CrossRedistribution>(sys, std::move(objectOfPatch), o.cross, redistributionBatch_,
+                                                       hemicubes_->nearPlane(), hemicubes_->farPlane(), offset_,
+                                                       preamble);
+        cross_->setReconstructionUniforms(reconstruct_->id());
+      }
     }
     Context::check("setting up GPU progressive refinement");
     setupSeconds_ = watch.seconds();
@@ -701,7 +738,9 @@ class GlProgressiveSolver final : public Solver {
   }
 
   bool incidentSh(int count, std::span<Rgb> out) override {
-    if (count != shCount_) return false;  // none recorded, or not these: the owner gathers them
+    // None recorded, or not these, or moved by cross projection, which does not carry directions:
+    // the owner gathers them.
+    if (count != shCount_ || crossMoved_) return false;
     const size_t ne = sys_.elementCount();
     std::vector<glm::vec4> sh(size_t(count) * ne);
     glGetNamedBufferSubData(buf_.elementSh, 0, GLsizeiptr(sh.size() * sizeof(glm::vec4)), sh.data());
@@ -739,9 +778,14 @@ class GlProgressiveSolver final : public Solver {
     in.value(seconds_), in.value(done_);
   }
 
-  bool objectsMoved(std::span<const uint32_t>) override {
+  bool objectsMoved(std::span<const uint32_t> objects) override {
     if (!o_.followChanges) return false;
     const Stopwatch watch;
+    if (cross_) {
+      crossRedistribute(objects);
+      changed(watch);
+      return true;
+    }
     std::vector<uint32_t> emitters, others;
     const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
     for (uint32_t p = 0; p < sys_.patchCount(); ++p) (channelSum(emission[p]) > 0.0 ? emitters : others).push_back(p);
@@ -780,7 +824,7 @@ class GlProgressiveSolver final : public Solver {
 
   SolveStats stats() const override {
     SolveStats st;
-    st.method = o_.followChanges ? "incremental" : "progressive";
+    st.method = cross_ ? "cross-redistribution" : o_.followChanges ? "incremental" : "progressive";
     st.backend = "gl";
     st.redistributions = redistributions_;
     st.secondsRedistribution = secondsRedistributing_;
@@ -823,8 +867,10 @@ class GlProgressiveSolver final : public Solver {
 
   // Every patch in `emitters` (with the emitters' k_e x k_e hemicubes) and `others` shoots `sign`
   // times its amounts, batch by batch, without spending anyone's unshot radiosity.
+  // Crossing (cross-redistribution): the patches are the moved ones, and each pass's static
+  // receivers also take the cross projection of what the patches hide (cross_redistribution_gl.h).
   void redistribute(float sign, const std::vector<uint32_t>& emitters, const std::vector<uint32_t>& others,
-                    bool emissionOnly = false) {
+                    bool emissionOnly = false, bool crossing = false) {
     std::vector<uint32_t> list = emitters;
     list.insert(list.end(), others.begin(), others.end());
     if (list.empty()) return;
@@ -852,18 +898,50 @@ class GlProgressiveSolver final : public Solver {
         glUniform1ui(uniform(*redistribute_, "samplesPerSide"), GLuint(g.side));
         glUniform1f(uniform(*redistribute_, "sign"), sign);
         glUniform1i(uniform(*redistribute_, "emissionOnly"), emissionOnly);
+        glUniform1i(uniform(*redistribute_, "crossing"), crossing);
+        if (crossing) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBackShooterBinding, cross_->backShooters());
         glDispatchCompute(groups(size_t(count * samples), kPowerGroup), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         hemicubes_->render(0, count * samples);
+        if (crossing) {
+          cross_->renderBackHemicubes(count);
+          buf_.bind();  // the shooters' buffer again in SHOOTER_BINDING
+          glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
+          cross_->bindForReconstruction();
+        }
         hemicubes_->bindTextures();
         reconstruct_->use();
         glUniform1ui(reconstructSamples_, GLuint(samples));
         glUniform1i(reconstructRedistributing_, 1);
+        glUniform1i(reconstructCrossProjecting_, crossing);
+        glUniform1f(reconstructCrossSign_, sign);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
         glDispatchCompute(groups(sys_.elementCount(), kReconstructGroup), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         glUniform1i(reconstructRedistributing_, 0);
+        glUniform1i(reconstructCrossProjecting_, 0);
       }
     }
+  }
+
+  // Cross-redistribution after `objects` moved (cross_redistribution_gl.h): the moved patches
+  // shoot, with the cross projection of the static light they hid or uncover, and the moved
+  // elements gather the static patches' light; each from where things were (negative), then, the
+  // new geometry uploaded, from where they are.
+  void crossRedistribute(std::span<const uint32_t> objects) {
+    cross_->begin(objects);
+    const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
+    std::vector<uint32_t> emitters, others;
+    for (uint32_t p = 0; p < sys_.patchCount(); ++p)
+      if (cross_->moved(p)) (channelSum(emission[p]) > 0.0 ? emitters : others).push_back(p);
+    computeAmounts();
+    for (const float sign : {-1.0f, 1.0f}) {
+      if (sign > 0.0f) uploadGeometry(), cross_->geometryMoved();
+      redistribute(sign, emitters, others, false, /*crossing=*/true);
+      cross_->gatherMoved(sign, buf_.elements, buf_.patches, buf_.elementStates, buf_.amounts);
+    }
+    rebase();
+    crossMoved_ = true;
   }
 
   // The surfaces' current geometry, reflectance and emission into the buffers and the mesh.
@@ -955,6 +1033,9 @@ class GlProgressiveSolver final : public Solver {
   std::unique_ptr<ShaderProgram> power_, select_, reconstruct_;
   GLint selectBatch_ = -1, selectSide_ = -1, selectEmitters_ = -1, reconstructSamples_ = -1;
   GLint stopPowerUniform_ = -1, reconstructRedistributing_ = -1;
+  GLint reconstructCrossProjecting_ = -1, reconstructCrossSign_ = -1;
+  std::unique_ptr<CrossRedistribution> cross_;  // crossRedistribution only
+  bool crossMoved_ = false;
   std::unique_ptr<ShaderProgram> amounts_, redistribute_, rebase_;  // followChanges only
   float offset_ = 0.0f;
   int redistributionBatch_ = 0;
@@ -977,14 +1058,19 @@ class GlProgressiveSolver final : public Solver {
 }  // namespace
 
 std::unique_ptr<Solver> makeGlProgressiveSolver(const RadiositySystem& system, Context& context,
-                                                const GlProgressiveSettings& settings) {
+                                                const GlProgressiveSettings& settings,
+                                                std::vector<uint32_t> objectOfPatch) {
   if (settings.samplesPerSide < 1 || settings.samplesPerSide > 8) throw Error("hemicubes per shooter side must be in 1..8");
   if (settings.emitterSamplesPerSide < 0 || settings.emitterSamplesPerSide > 8)
     throw Error("hemicubes per emitter side must be in 1..8 (or 0: as other shooters)");
   if (settings.shootersPerPass < 1 || settings.shootersPerPass > kMaxShootersPerPass)
     throw Error(fmt::format("shooters per pass must be in 1..{}", kMaxShootersPerPass));
   if (settings.passesPerCheck < 1) throw Error("passes per check must be >= 1");
-  return std::make_unique<GlProgressiveSolver>(system, context, settings);
+  if (settings.crossRedistribution && !settings.followChanges)
+    throw Error("cross-redistribution follows changes: followChanges must be set with it");
+  if (settings.crossRedistribution && objectOfPatch.size() != system.patchCount())
+    throw Error("cross-redistribution needs each patch's object");
+  return std::make_unique<GlProgressiveSolver>(system, context, settings, std::move(objectOfPatch));
 }
 
 }  // namespace luxel::gl

@@ -16,8 +16,11 @@
 // move or an edit is followed by redistribution instead of a new solve (progressive_gl.cpp).
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <vector>
 
+#include "gl/cross_redistribution_settings.h"
 #include "luxel/solver.h"
 #include "solve/radiosity_system.h"
 
@@ -46,6 +49,10 @@ struct GlProgressiveSettings {
   // 001, section 4.4: every patch shoots what it has shot again, negated from where everything
   // was and from where everything is), instead of asking to be replaced.
   bool followChanges = false;
+  // With followChanges: follow moves by cross-redistribution instead (seed 001 section 4.5,
+  // cross_redistribution_gl.h): only the moved patches render hemicubes.
+  bool crossRedistribution = false;
+  CrossRedistributionSettings cross;
   // Following changes: with nothing moving, each further step goes a decade below the unshot
   // threshold, down to this (the CPU's dynamic solvers do the same).
   double settleThreshold = 1e-5;
@@ -58,8 +65,10 @@ struct GlProgressiveSettings {
 
 // A solver of `system` as the CPU's progressive solver (same stopping rules, ambient term and
 // outputs), on `context`, which must be current and outlive it. stats.hemicubes counts the
-// hemicubes of real shooters. Throws Error on settings out of range.
+// hemicubes of real shooters. Cross-redistribution needs `objectOfPatch`, each patch's scene
+// object. Throws Error on settings out of range.
 std::unique_ptr<Solver> makeGlProgressiveSolver(const RadiositySystem& system, Context& context,
-                                                const GlProgressiveSettings& settings);
+                                                const GlProgressiveSettings& settings,
+                                                std::vector<uint32_t> objectOfPatch = {});
 
 }  // namespace luxel::gl

@@ -48,6 +48,14 @@ constexpr int kRedistributionListBinding = 10;
 // vec4[4 or 9 per element]: the L1 or L2 SH of what the shots brought each element (rgb), when a directional
 // bake asked for it (Solver::recordIncidentSh).
 constexpr int kElementShBinding = 11;
+// Cross-redistribution on the GPU (cross_redistribution_gl.h): per patch, whether it moved and its
+// twin's patch (uvec2); the back hemicubes' centres (GpuShooter[]); the moved elements' gather
+// hemicubes' delta form factors (float[], top then side table); the back hemicubes' layers.
+constexpr int kCrossPatchBinding = 12;
+constexpr int kBackShooterBinding = 13;
+constexpr int kCrossDeltaBinding = 14;
+constexpr int kBackItemTextureUnit = 2;
+constexpr int kBackDistanceTextureUnit = 3;
 constexpr int kDistanceTextureUnit = 1;    // R32F distances (or RGBA32F radiosity) of layered hemicubes
 constexpr int kGatherGroup = 256;          // one work group integrates one element's hemicubes
 // GPU gathering (gather_gl.cpp) reuses the numbers its passes leave free: deltas, per-element
@@ -127,6 +135,11 @@ inline std::string glslPreamble() {
       "#define REDISTRIBUTION_AMOUNT_BINDING {}\n"
       "#define REDISTRIBUTION_LIST_BINDING {}\n"
       "#define ELEMENT_SH_BINDING {}\n"
+      "#define CROSS_PATCH_BINDING {}\n"
+      "#define BACK_SHOOTER_BINDING {}\n"
+      "#define CROSS_DELTA_BINDING {}\n"
+      "#define BACK_ITEM_TEXTURE_UNIT {}\n"
+      "#define BACK_DISTANCE_TEXTURE_UNIT {}\n"
       "#define GATHER_GROUP {}\n"
       "#define GATHER_DELTA_BINDING {}\n"
       "#define GATHER_ELEMENT_BINDING {}\n"
@@ -144,7 +157,8 @@ inline std::string glslPreamble() {
       "struct GpuGatherElement {{ vec4 emissionArea; vec4 reflectance; vec4 analytic; }};\n",
       kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup,
       kElementBinding, kPatchBinding, kPatchElementBinding, kPatchStateBinding, kShooterBinding,
-      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kElementShBinding, kGatherGroup, kGatherDeltaBinding,
+      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kElementShBinding, kCrossPatchBinding, kBackShooterBinding, kCrossDeltaBinding,
+      kBackItemTextureUnit, kBackDistanceTextureUnit, kGatherGroup, kGatherDeltaBinding,
       kGatherElementBinding, kGatherResidualBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
       kReconstructGroup, kMaxShootersPerPass);
 }

@@ -11,6 +11,7 @@ void registerCpuCrossRedistribution(SolverRegistry&);  // dynamic/redistribution
 void registerGlProgressive(SolverRegistry&);   // gl/gl_solvers.cpp
 void registerGlGather(SolverRegistry&);        // gl/gl_solvers.cpp
 void registerGlIncremental(SolverRegistry&);   // gl/gl_solvers.cpp
+void registerGlCrossRedistribution(SolverRegistry&);  // gl/gl_solvers.cpp
 
 void registerBuiltinSolvers(SolverRegistry& registry) {
   registerCpuProgressive(registry);
@@ -21,6 +22,7 @@ void registerBuiltinSolvers(SolverRegistry& registry) {
   registerGlProgressive(registry);
   registerGlGather(registry);
   registerGlIncremental(registry);
+  registerGlCrossRedistribution(registry);
 }
 
 }  // namespace luxel

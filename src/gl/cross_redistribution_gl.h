@@ -1,0 +1,112 @@
+// Cross-redistribution on the GPU: after objects move, only the moved patches render hemicubes
+// (M. van de Hoef, "Real-Time Dynamic Radiosity for High Quality Global Illumination", Utrecht
+// 2013, Sec. 3.3 and 4.5; shared/seeds/notes/001-dynamic-radiosity.md, sections 2.9, 2.11 and 3.7).
+// The incremental method (progressive_gl.cpp) has every patch shoot again from the old and the
+// new geometry; this one splits the change of H = sum_p F[e <- p] S_p by who is moved (M) and who
+// stays (C):
+//  - M -> everything: each moved patch j shoots -S_j from where it was and +S_j from where it is
+//    (its front hemicubes, as a progressive shot);
+//  - C -> M, R_g(C, M): each moved element gathers the shot radiosity of C through one hemicube,
+//    where it was (subtracted) and where it is (added);
+//  - C -> C, the cross projection R_x(C, C) (001 Eq. 3.3.1): light from C to a static receiver i
+//    changes only where it passes through a moved patch j, at one of its places. j's appearance
+//    takes away F'[i <- j] P(C, j', i) and its departure gives back F[i <- j] P(C, j, i), where
+//    P is the mean shot radiosity of C that i would see through j: rays from i through a
+//    g x g grid on j, looked up in a hemicube on j's back side (the seed's "back hemicube") that
+//    holds only the patches that stay, after 001's reprojection (the depth along the parallel ray
+//    from j's centre places the ray's hit). F comes from j's front hemicubes in the same pass as
+//    its shot, so it costs no hemicube more.
+// Choices the seed leaves open or that differ from it, each deliberate:
+//  - the moved elements' part from C is a difference of two gathers (where it was, where it is)
+//    instead of 001's overwrite by one: the solution keeps luxel's invariant H = H0 + sum F S, so
+//    a gather's mismatch with the shooting factors stays the same from frame to frame instead of
+//    entering B;
+//  - the back hemicubes hold item ids and distances, not colours: the shot radiosity and the
+//    first-shot emission (the direct light shown apart) are both looked up by patch;
+//  - P weights the g x g rays by the point kernel cos cos / r^2 (the form factor's own weight)
+//    where 001 took their plain mean;
+//  - the back hemicubes leave out every moved patch, not only j: a closed mover's far faces would
+//    otherwise hide the static surfaces behind it from its near faces' back hemicubes.
+// The cross projection is an estimate (a few rays into a low-resolution hemicube), so after many
+// moves the solution drifts from a solve at the same pose by its error; the tests bound it.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "gl/cross_redistribution_settings.h"
+#include "solve/radiosity_system.h"
+
+namespace luxel::gl {
+
+class LayeredHemicubes;
+class ShaderProgram;
+
+// GLSL for the reconstruction pass: crossProjected(k, x, n, P, shot, emitted), the mean shot
+// radiosity and first-shot emission of the static patches that point x (normal n) sees through
+// the k-th moved patch P of the pass, from back hemicube k; crossPatches[p] = (moved, twin patch).
+// Needs kHemicubeGlsl, the preamble's structs and a `patches` buffer.
+extern const char* const kCrossProjectionGlsl;
+
+// The GPU objects of the passes above that progressive shooting does not already have. Needs a
+// current OpenGL 4.5 context; the solver owns one per solve.
+class CrossRedistribution {
+ public:
+  // `objectOfPatch`: each patch's scene object. `backCapacity`: back hemicubes per shooting pass.
+  CrossRedistribution(const RadiositySystem& system, std::vector<uint32_t> objectOfPatch,
+                      const CrossRedistributionSettings& settings, int backCapacity, float nearPlane,
+                      float farPlane, float offset, const std::string& preamble);
+  ~CrossRedistribution();
+  CrossRedistribution(const CrossRedistribution&) = delete;
+  CrossRedistribution& operator=(const CrossRedistribution&) = delete;
+
+  // Before a move's passes: marks the patches of `objects` as moved, and makes the back
+  // hemicubes draw the rest (again only when the moved set changed).
+  void begin(std::span<const uint32_t> objects);
+  // After the surfaces' new geometry is in the solver's buffers: the gather hemicubes draw it.
+  void geometryMoved();
+
+  // The back hemicubes of a shooting pass: their centres are written by the pass's shooter
+  // setup into backShooters() (one per patch shot, on its back side); render draws them and
+  // binds their layers and the patch table for the reconstruction.
+  GLuint backShooters() const { return backShooters_; }
+  void renderBackHemicubes(int count);
+  void bindForReconstruction() const;
+  void setReconstructionUniforms(GLuint program) const;
+
+  // R_g(C, M): every moved element gathers the shot radiosity (`amounts`, two vec4 a patch, as
+  // the redistribution's amounts pass writes them) of the patches that stay, at the geometry now
+  // in `elements` and `patches`, and adds `sign` times it to its state (irradiance, radiosity,
+  // unshot and direct light). Leaves the bindings it used changed: the caller binds its own again.
+  void gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states, GLuint amounts);
+
+  // Hemicubes rendered so far: back ones and gathers.
+  uint64_t hemicubesRendered() const { return hemicubes_; }
+  size_t movedElements() const { return movedElements_.size(); }
+  bool moved(uint32_t patch) const { return moved_[patch] != 0; }
+
+ private:
+  void uploadPatchTable();
+
+  const RadiositySystem& sys_;
+  const std::vector<uint32_t> objectOfPatch_;
+  const CrossRedistributionSettings s_;
+  const int backCapacity_;
+  const float offset_;
+  std::vector<uint32_t> twinPatch_;  // each patch's twin on a two-sided face's other side, or ~0u
+  std::vector<uint32_t> movedObjects_;
+  std::vector<uint8_t> moved_;       // per patch
+  std::vector<uint32_t> movedElements_;
+  int gatherCapacity_ = 0;
+  std::unique_ptr<LayeredHemicubes> back_, gather_;
+  std::unique_ptr<ShaderProgram> eyes_, integrate_;
+  GLuint patchTable_ = 0, backShooters_ = 0, gatherEyes_ = 0, elementList_ = 0, deltas_ = 0;
+  uint64_t hemicubes_ = 0;
+};
+
+}  // namespace luxel::gl

@@ -1,0 +1,13 @@
+// The settings of GPU cross-redistribution (cross_redistribution_gl.h), apart from its GL
+// objects so that the solver's settings can name them without OpenGL.
+#pragma once
+
+namespace luxel::gl {
+
+struct CrossRedistributionSettings {
+  int gatherResolution = 64;  // the moved elements' gather hemicubes, pixels a side
+  int backResolution = 32;    // the back hemicubes (001: "as low as 16 x 16 per face")
+  int grid = 8;               // g: g x g rays through each moved patch (001: 4; docs/algorithms.md)
+};
+
+}  // namespace luxel::gl
