@@ -21,7 +21,9 @@ layout(binding = BACK_DISTANCE_TEXTURE_UNIT) uniform sampler2DArray backDistance
 layout(std430, binding = BACK_SHOOTER_BINDING) readonly buffer BackShooters { GpuShooter backShooters[]; };
 layout(std430, binding = CROSS_PATCH_BINDING) readonly buffer CrossPatches { uvec2 crossPatches[]; };
 layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer CrossAmounts { vec4 crossAmounts[]; };
-uniform int backResolution, crossGrid;
+layout(std430, binding = CROSS_EMITTER_BINDING) readonly buffer CrossEmitters { uint crossEmitters[]; };
+uniform int backResolution, crossGrid, crossEmitterSide;
+uniform uint crossEmitterCount;
 uniform float backNear, backFar;
 
 // The pixel of back hemicube k (frame f, centre eye) that direction r falls on; z < 0: none.
@@ -59,11 +61,20 @@ float behindBy(uint k, HemicubeFrame f, vec3 eye, vec3 r, out ivec3 pixel) {
 // a crossing deeper than the step is the ray passing behind something nearer the centre, not a
 // hit, and the march goes on; the crossing is then narrowed by bisection. ~0u: nothing.
 uint marchedPatch(uint k, HemicubeFrame f, vec3 eye, vec3 q, vec3 d) {
+  const float pixelAngle = 2.0 / float(backResolution);
+  ivec3 pixel, first = ivec3(-1);
+  // 001's step first: where the parallel ray from the centre meets a surface. When the ray from q
+  // lies on that surface there too (within a pixel's depth), that is its hit: the common case of
+  // a wall behind the patch, settled with two fetches.
+  const ivec3 parallel = backPixel(k, f, eye, d);
+  if (parallel.z < 0) return 0xFFFFFFFFu;
+  const float guess = texelFetch(backDistances, parallel, 0).r;
+  if (!(guess < backFar)) return 0xFFFFFFFFu;  // nothing behind the patch that way
+  const float off = behindBy(k, f, eye, q + guess * d - eye, pixel);
+  if (pixel.z >= 0 && abs(off) <= 2.0 * pixelAngle * length(q + guess * d - eye)) return facingPatch(pixel, d);
   const int steps = 32;
   const float tMin = 1e-4 * backFar, ratio = pow(backFar / tMin, 1.0 / float(steps));
-  const float pixelAngle = 2.0 / float(backResolution);
   float before = 0.0, t = tMin;
-  ivec3 pixel, first = ivec3(-1);
   for (int s = 0; s < steps; ++s, before = t, t *= ratio) {
     const float behind = behindBy(k, f, eye, q + t * d - eye, pixel);
     if (pixel.z < 0) return 0xFFFFFFFFu;
@@ -82,6 +93,83 @@ uint marchedPatch(uint k, HemicubeFrame f, vec3 eye, vec3 q, vec3 d) {
   return first.z < 0 ? 0xFFFFFFFFu : facingPatch(first, d);
 }
 
+// A sphere round polygon P: the corners' mean and the farthest corner's distance from it.
+void boundingSphere(GpuPatch P, out vec3 centre, out float radius) {
+  const int count = int(P.corners[0].w);
+  centre = vec3(0.0);
+  for (int i = 0; i < count; ++i) centre += P.corners[i].xyz / float(count);
+  radius = 0.0;
+  for (int i = 0; i < count; ++i) radius = max(radius, length(P.corners[i].xyz - centre));
+}
+
+// Whether the segment from x to y passes through polygon J (planar, convex).
+bool segmentCrosses(vec3 x, vec3 y, GpuPatch J) {
+  const vec3 nj = J.normalArea.xyz, d = y - x;
+  const float along = dot(nj, d);
+  if (!(abs(along) > 0.0)) return false;
+  const float t = dot(nj, J.corners[0].xyz - x) / along;
+  if (!(t > 0.0 && t < 1.0)) return false;
+  const vec3 h = x + t * d;
+  const int count = int(J.corners[0].w);
+  bool inside = true, outside = true;  // on the inner side of every edge, for either winding
+  for (int i = 0; i < count; ++i) {
+    const vec3 a = J.corners[i].xyz, b = J.corners[i + 1 == count ? 0 : i + 1].xyz;
+    const float side = dot(cross(b - a, h - a), nj);
+    inside = inside && side >= 0.0;
+    outside = outside && side <= 0.0;
+  }
+  return inside || outside;
+}
+
+// The irradiance at x (normal n) from the static emitters of the exact list that moved patch J
+// hides: each emitter's unoccluded factor times the kernel-weighted share of the points its own
+// shots were drawn from (k_e x k_e) whose segment to x crosses J. This is how its shot reached x
+// (the reconstruction's estimator) with J for the blocker, so a small bright light is not left to
+// the few rays through J that find it in the back hemicube.
+void emittersHidden(vec3 x, vec3 n, GpuPatch J, out vec3 shot, out vec3 emitted) {
+  shot = vec3(0.0);
+  emitted = vec3(0.0);
+  const float ks = float(crossEmitterSide);
+  vec3 toJ;
+  float radiusJ;
+  boundingSphere(J, toJ, radiusJ);
+  toJ -= x;
+  const float distanceJ = length(toJ);
+  for (uint i = 0u; i < crossEmitterCount; ++i) {
+    const uint l = crossEmitters[i];
+    const GpuPatch L = patches[l];
+    // Seen from x, the cones round J and round L must overlap for any segment to cross both, and
+    // L must reach beyond J.
+    vec3 toL;
+    float radiusL;
+    boundingSphere(L, toL, radiusL);
+    toL -= x;
+    const float distanceL = length(toL);
+    if (distanceL + radiusL < distanceJ - radiusJ) continue;
+    if (distanceJ > radiusJ && distanceL > radiusL &&
+        acos(clamp(dot(toJ, toL) / (distanceJ * distanceL), -1.0, 1.0)) > asin(radiusJ / distanceJ) + asin(radiusL / distanceL))
+      continue;
+    const int corners = int(L.corners[0].w);
+    const float f = pointToPolygonFormFactor(x, n, L.corners, corners, L.normalArea.xyz);
+    if (!(f > 0.0)) continue;
+    float hidden = 0.0, all = 0.0;
+    for (int j = 0; j < crossEmitterSide * crossEmitterSide; ++j) {
+      const vec3 y = polygonPoint(L.corners, corners, (float(j % crossEmitterSide) + 0.5) / ks,
+                                  (float(j / crossEmitterSide) + 0.5) / ks);
+      const vec3 d = y - x;
+      const float r2 = dot(d, d), g = max(dot(n, d), 0.0) * max(-dot(L.normalArea.xyz, d), 0.0) / (r2 * r2);
+      if (!(g > 0.0)) continue;
+      all += g;
+      if (segmentCrosses(x, y, J)) hidden += g;
+    }
+    if (!(hidden > 0.0)) continue;
+    shot += f * hidden / all * crossAmounts[2u * l].rgb;
+    emitted += f * hidden / all * crossAmounts[2u * l + 1u].rgb;
+  }
+}
+
+// The shot radiosity of the static patches (but the exactly sampled emitters) that x sees
+// through moved patch P, kernel-weighted mean over P's g x g rays; and their first-shot emission.
 void crossProjected(uint k, vec3 x, vec3 n, GpuPatch P, out vec3 shot, out vec3 emitted) {
   shot = vec3(0.0);
   emitted = vec3(0.0);
@@ -113,10 +201,11 @@ void crossProjected(uint k, vec3 x, vec3 n, GpuPatch P, out vec3 shot, out vec3 
 namespace {
 
 // Centres of the moved elements' gather hemicubes, from the elements as the GPU holds them (the
-// old geometry before the move's upload, the new after it): the reconstruction's 2 x 2 midpoint
-// rule over each element, so that the gather and the shots that lit the element before estimate
-// the same mean (one hemicube at the centre left the box's elements under the Cornell light 6%
-// from the shots' figure).
+// old geometry before the move's upload, the new after it): one at the element's centre, or, for
+// elements large beside their distance to a light (kNearLight), the reconstruction's 2 x 2
+// midpoint rule, so that the gather and the shots that lit the element before estimate the same
+// mean (one hemicube at the centre left the box's elements 2 cm under the Cornell light 5% from
+// the shots' figure; at the bench scenes' sizes the two agree to 2e-4).
 const char* kGatherEyesCompute = R"(
 layout(local_size_x = POWER_GROUP) in;
 layout(std430, binding = REDISTRIBUTION_LIST_BINDING) readonly buffer List { uint list[]; };
@@ -127,7 +216,12 @@ void main() {
   if (i >= count * GATHER_SAMPLES) return;
   const uint e = list[first + i / GATHER_SAMPLES], q = i % GATHER_SAMPLES;
   const GpuElement el = elements[e];
+#if GATHER_SAMPLES == 1
+  vec3 x = vec3(0.0);
+  for (int c = 0; c < int(el.corners[0].w); ++c) x += el.corners[c].xyz / el.corners[0].w;
+#else
   const vec3 x = polygonPoint(el.corners, int(el.corners[0].w), 0.25 + 0.5 * float(q & 1u), 0.25 + 0.5 * float(q >> 1));
+#endif
   GpuShooter s;
   s.eye = vec4(x + offset * el.normalArea.xyz, 0.0);
   s.normal = vec4(el.normalArea.xyz, hemicubeTurn(e, q, 0x5EEDu));
@@ -191,7 +285,7 @@ void main() {
     const vec3 w = fwd + ndc.x * s + ndc.y * u;
     uint p = item - 1u;
     if (dot(patches[p].normalArea.xyz, w) >= 0.0) p = crossPatches[p].y;
-    if (p == 0xFFFFFFFFu || crossPatches[p].x != 0u) continue;
+    if (p == 0xFFFFFFFFu || (crossPatches[p].x & 1u) != 0u) continue;
     shot += deltas[d] * amounts[2u * p].rgb;
     emitted += deltas[d] * amounts[2u * p + 1u].rgb;
   }
@@ -209,8 +303,13 @@ void main() {
 )";
 
 // Gather hemicubes per moved element (the 2 x 2 rule above).
-constexpr int kGatherSamples = 4;
-const std::string kGatherSamplesGlsl = fmt::format("#define GATHER_SAMPLES {}\n", kGatherSamples);
+// An element is near a light, and gathers with 2 x 2 hemicubes, when it is wider than this share
+// of its distance to the nearest emitting patch (from its centre to the patch's bounding sphere).
+constexpr float kNearLight = 1.0f;
+
+// Up to this many static emitting patches are sampled exactly behind each moved patch
+// (emittersHidden); with more, all of them are left to the back hemicubes.
+constexpr size_t kMaxSampledEmitters = 64;
 
 GLuint groupsOf(size_t n, int size) { return GLuint((n + size_t(size) - 1) / size_t(size)); }
 
@@ -250,17 +349,17 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system, std::vec
     }
   }
   moved_.assign(np, 0);
+  sampledEmitter_.assign(np, 0);
 
   GLint maxLayers = 0;
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  gatherCapacity_ = std::clamp(int(maxLayers) / (5 * kGatherSamples), 1, 32);  // elements a batch
+  gatherCapacity_ = std::clamp(int(maxLayers) / 5, 1, 128);  // hemicubes a batch
   std::vector<Polygon> polygons;
   std::vector<uint32_t> items;
   for (uint32_t p = 0; p < np; ++p)
     if (drawn(set, p)) polygons.push_back(set.patches[p].polygon), items.push_back(p + 1);
   gather_ = std::make_unique<LayeredHemicubes>(polygons, items, LayeredHemicubes::Content::ItemsAndDistances,
-                                               s_.gatherResolution, gatherCapacity_ * kGatherSamples, nearPlane,
-                                               farPlane);
+                                               s_.gatherResolution, gatherCapacity_, nearPlane, farPlane);
   back_ = std::make_unique<LayeredHemicubes>(polygons, items, LayeredHemicubes::Content::ItemsAndDistances,
                                              s_.backResolution, std::max(backCapacity_, 1), nearPlane, farPlane);
   const DeltaFormFactors deltas(s_.gatherResolution);
@@ -268,29 +367,30 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system, std::vec
   table.insert(table.end(), deltas.side.begin(), deltas.side.end());
   deltas_ = storageBuffer(table.data(), table.size() * sizeof(float));
   backShooters_ = storageBuffer(nullptr, size_t(std::max(backCapacity_, 1)) * sizeof(GpuShooter));
-  gatherEyes_ = storageBuffer(nullptr, size_t(gatherCapacity_ * kGatherSamples) * sizeof(GpuShooter));
+  gatherEyes_ = storageBuffer(nullptr, size_t(gatherCapacity_) * sizeof(GpuShooter));
   patchTable_ = storageBuffer(nullptr, std::max<size_t>(np, 1) * sizeof(glm::uvec2));
   uploadPatchTable();
 
-  eyes_ = std::make_unique<ShaderProgram>("cross-redistribution gather centres",
-                                          preamble + kGatherSamplesGlsl + kGatherEyesCompute);
-  integrate_ = std::make_unique<ShaderProgram>("cross-redistribution gather",
-                                               preamble + kGatherSamplesGlsl + kGatherIntegrateCompute);
-  eyes_->use();
-  glUniform1f(glGetUniformLocation(eyes_->id(), "offset"), offset_);
-  integrate_->use();
-  glUniform1i(glGetUniformLocation(integrate_->id(), "resolution"), s_.gatherResolution);
+  for (GatherRule& rule : rules_) {
+    const std::string samples = fmt::format("#define GATHER_SAMPLES {}\n", rule.samples);
+    rule.eyes = std::make_unique<ShaderProgram>("cross-redistribution gather centres", preamble + samples + kGatherEyesCompute);
+    rule.integrate = std::make_unique<ShaderProgram>("cross-redistribution gather", preamble + samples + kGatherIntegrateCompute);
+    rule.eyes->use();
+    glUniform1f(glGetUniformLocation(rule.eyes->id(), "offset"), offset_);
+    rule.integrate->use();
+    glUniform1i(glGetUniformLocation(rule.integrate->id(), "resolution"), s_.gatherResolution);
+  }
   Context::check("setting up GPU cross-redistribution");
 }
 
 CrossRedistribution::~CrossRedistribution() {
-  const GLuint all[] = {patchTable_, backShooters_, gatherEyes_, elementList_, deltas_};
+  const GLuint all[] = {patchTable_, backShooters_, gatherEyes_, deltas_, emitterList_, rules_[0].list, rules_[1].list};
   glDeleteBuffers(GLsizei(std::size(all)), all);
 }
 
 void CrossRedistribution::uploadPatchTable() {
   std::vector<glm::uvec2> table(moved_.size());
-  for (size_t p = 0; p < table.size(); ++p) table[p] = glm::uvec2(moved_[p], twinPatch_[p]);
+  for (size_t p = 0; p < table.size(); ++p) table[p] = glm::uvec2(moved_[p] | (sampledEmitter_[p] << 1), twinPatch_[p]);
   if (!table.empty()) glNamedBufferSubData(patchTable_, 0, GLsizeiptr(table.size() * sizeof(glm::uvec2)), table.data());
 }
 
@@ -302,12 +402,44 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
   const SurfaceSet& set = sys_.surfaces;
   for (size_t p = 0; p < moved_.size(); ++p)
     moved_[p] = std::binary_search(movedObjects_.begin(), movedObjects_.end(), objectOfPatch_[p]) ? 1 : 0;
+  const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
+  std::vector<uint32_t> emitters;
+  for (uint32_t p = 0; p < moved_.size(); ++p)
+    if (!moved_[p] && channelSum(emission[p]) > 0.0) emitters.push_back(p);
+  if (emitters.size() > kMaxSampledEmitters) emitters.clear();
+  std::fill(sampledEmitter_.begin(), sampledEmitter_.end(), 0);
+  for (uint32_t p : emitters) sampledEmitter_[p] = 1;
+  glDeleteBuffers(1, &emitterList_);
+  emitterList_ = storageBuffer(emitters.data(), std::max<size_t>(emitters.size(), 1) * sizeof(uint32_t));
+  glUseProgram(reconstruction_);
+  glUniform1ui(glGetUniformLocation(reconstruction_, "crossEmitterCount"), GLuint(emitters.size()));
   uploadPatchTable();
-  movedElements_.clear();
-  for (uint32_t e = 0; e < set.elements.size(); ++e)
-    if (moved_[set.elements[e].patch]) movedElements_.push_back(e);
-  glDeleteBuffers(1, &elementList_);
-  elementList_ = storageBuffer(movedElements_.data(), std::max<size_t>(movedElements_.size(), 1) * sizeof(uint32_t));
+  // The emitting patches' bounding spheres, for the rule that picks each moved element's gather.
+  std::vector<glm::vec4> lights;
+  for (size_t p = 0; p < set.patches.size(); ++p) {
+    if (!(channelSum(emission[p]) > 0.0)) continue;
+    const Patch& patch = set.patches[p];
+    float radius = 0.0f;
+    for (int c = 0; c < patch.polygon.count; ++c)
+      radius = std::max(radius, glm::length(patch.polygon.v[size_t(c)] - patch.centroid));
+    lights.emplace_back(patch.centroid, radius);
+  }
+  movedElements_ = 0;
+  for (GatherRule& rule : rules_) rule.elements.clear();
+  for (uint32_t e = 0; e < set.elements.size(); ++e) {
+    if (!moved_[set.elements[e].patch]) continue;
+    const Element& el = set.elements[e];
+    const Vec3 centre = el.polygon.centroid();
+    float width = 0.0f, distance = std::numeric_limits<float>::max();
+    for (int c = 0; c < el.polygon.count; ++c) width = std::max(width, 2.0f * glm::length(el.polygon.v[size_t(c)] - centre));
+    for (const glm::vec4& l : lights) distance = std::min(distance, std::max(glm::length(Vec3(l) - centre) - l.w, 0.0f));
+    rules_[width > kNearLight * distance ? 1 : 0].elements.push_back(e);
+    ++movedElements_;
+  }
+  for (GatherRule& rule : rules_) {
+    glDeleteBuffers(1, &rule.list);
+    rule.list = storageBuffer(rule.elements.data(), std::max<size_t>(rule.elements.size(), 1) * sizeof(uint32_t));
+  }
   // The back hemicubes show the patches that stay: those do not move, so once per moved set.
   std::vector<Polygon> polygons;
   std::vector<uint32_t> items;
@@ -336,10 +468,14 @@ void CrossRedistribution::bindForReconstruction() const {
   back_->bindTextures(kBackItemTextureUnit, kBackDistanceTextureUnit);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossPatchBinding, patchTable_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBackShooterBinding, backShooters_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossEmitterBinding, emitterList_);
 }
 
-void CrossRedistribution::setReconstructionUniforms(GLuint program) const {
+void CrossRedistribution::setReconstructionUniforms(GLuint program, int emitterSide) {
+  reconstruction_ = program;
   glUseProgram(program);
+  glUniform1i(glGetUniformLocation(program, "crossEmitterSide"), emitterSide);
+  glUniform1ui(glGetUniformLocation(program, "crossEmitterCount"), 0u);
   glUniform1i(glGetUniformLocation(program, "backResolution"), s_.backResolution);
   glUniform1i(glGetUniformLocation(program, "crossGrid"), s_.grid);
   glUniform1f(glGetUniformLocation(program, "backNear"), back_->nearPlane());
@@ -351,26 +487,29 @@ void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patche
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchBinding, patches);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, states);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, amounts);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionListBinding, elementList_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossPatchBinding, patchTable_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossDeltaBinding, deltas_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, gatherEyes_);
-  for (size_t first = 0; first < movedElements_.size(); first += size_t(gatherCapacity_)) {
-    const int count = int(std::min(size_t(gatherCapacity_), movedElements_.size() - first));
-    eyes_->use();
-    glUniform1ui(glGetUniformLocation(eyes_->id(), "first"), GLuint(first));
-    glUniform1ui(glGetUniformLocation(eyes_->id(), "count"), GLuint(count));
-    glDispatchCompute(groupsOf(size_t(count * kGatherSamples), kPowerGroup), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    gather_->render(0, count * kGatherSamples);
-    gather_->bindTextures();
-    integrate_->use();
-    glUniform1ui(glGetUniformLocation(integrate_->id(), "first"), GLuint(first));
-    glUniform1f(glGetUniformLocation(integrate_->id(), "sign"), sign);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    glDispatchCompute(GLuint(count), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    hemicubes_ += uint64_t(count * kGatherSamples);
+  for (const GatherRule& rule : rules_) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionListBinding, rule.list);
+    const size_t perBatch = size_t(std::max(gatherCapacity_ / rule.samples, 1));
+    for (size_t first = 0; first < rule.elements.size(); first += perBatch) {
+      const int count = int(std::min(perBatch, rule.elements.size() - first));
+      rule.eyes->use();
+      glUniform1ui(glGetUniformLocation(rule.eyes->id(), "first"), GLuint(first));
+      glUniform1ui(glGetUniformLocation(rule.eyes->id(), "count"), GLuint(count));
+      glDispatchCompute(groupsOf(size_t(count * rule.samples), kPowerGroup), 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      gather_->render(0, count * rule.samples);
+      gather_->bindTextures();
+      rule.integrate->use();
+      glUniform1ui(glGetUniformLocation(rule.integrate->id(), "first"), GLuint(first));
+      glUniform1f(glGetUniformLocation(rule.integrate->id(), "sign"), sign);
+      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+      glDispatchCompute(GLuint(count), 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      hemicubes_ += uint64_t(count * rule.samples);
+    }
   }
   Context::check("GPU cross-redistribution: the moved elements' gather");
 }

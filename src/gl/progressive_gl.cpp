@@ -373,6 +373,10 @@ void main() {
     GpuPatch P = patches[p];
     if (P.ids.z == el.ids.z) continue;  // no face lights itself
     float F = 0.0;
+    // Cross projection (cross_redistribution_gl.h): what each receiver point sees behind the moved
+    // shooter, weighted by its part of F; a static receiver's only.
+    const bool crossing = crossProjecting && crossPatches[el.ids.y].x == 0u;
+    vec3 behind = vec3(0.0), emittedBehind = vec3(0.0);
     for (int q = 0; q < 4; ++q) {
       float f = pointToPolygonFormFactor(x[q], n, P.corners, int(P.corners[0].w), P.normalArea.xyz);
       if (f <= 0.0) continue;
@@ -390,17 +394,21 @@ void main() {
         all += g;
         seen += g * seenBy(h, x[q], n, el.ids.x, el.ids.z);
       }
-      F += all > 0.0 ? f * seen / all : 0.0;
+      const float Fq = all > 0.0 ? f * seen / all : 0.0;
+      F += Fq;
+      if (crossing && Fq > 0.0) {
+        vec3 shotHere, emittedHere;
+        crossProjected(k, x[q], n, P, shotHere, emittedHere);  // mean radiosity behind P
+        behind += Fq * shotHere, emittedBehind += Fq * emittedHere;
+        emittersHidden(x[q], n, P, shotHere, emittedHere);  // irradiance P hides, were all of P seen
+        behind += (Fq / f) * shotHere, emittedBehind += (Fq / f) * emittedHere;
+      }
     }
     F *= 0.25;
     dh += F * s.unshot.rgb;
     dd += F * s.emission.rgb;
-    if (crossProjecting && F > 0.0 && crossPatches[el.ids.y].x == 0u) {
-      vec3 behind, emittedBehind;
-      crossProjected(k, centre, n, P, behind, emittedBehind);
-      dh -= crossSign * F * behind;
-      dd -= crossSign * F * emittedBehind;
-    }
+    dh -= crossSign * 0.25 * behind;
+    dd -= crossSign * 0.25 * emittedBehind;
     if (shCount > 0 && F != 0.0) {
       addPatchSh(centre, n, P, F, s.unshot.rgb, shCount, sh);
       reached = true;
@@ -571,7 +579,12 @@ class GlProgressiveSolver final : public Solver {
     // Following changes, every shot of a patch uses the same hemicubes (same number, same turns),
     // which a redistribution draws again: an emitter's first shot with more of them than its later
     // shots would leave the difference behind at every move.
-    emitterSide_ = o.emitterSamplesPerSide > 0 && !o.followChanges ? o.emitterSamplesPerSide : o.samplesPerSide;
+    // Cross-redistribution never shoots a static emitter again after a move, and a light edit
+    // shoots again only the emission its first shot carried, with the same hemicubes; a moving
+    // emitter shoots what it has shot with its emitters' hemicubes, which leaves its later shots'
+    // difference between the two (small: they carry reflected light only).
+    const bool ownEmitterHemicubes = !o.followChanges || o.crossRedistribution;
+    emitterSide_ = o.emitterSamplesPerSide > 0 && ownEmitterHemicubes ? o.emitterSamplesPerSide : o.samplesPerSide;
     emitterSamples_ = emitterSide_ * emitterSide_;
     emitterBatch_ = std::clamp(batch_ * samples_ / emitterSamples_, 1, batch_);
     for (const GpuPatch& p : patches.patches) emitters_ += p.emission.r + p.emission.g + p.emission.b > 0.0f ? 1 : 0;
@@ -653,7 +666,7 @@ class GlProgressiveSolver final : public Solver {
         cross_ = std::make_unique<CrossRedistribution>(sys, std::move(objectOfPatch), o.cross, redistributionBatch_,
                                                        hemicubes_->nearPlane(), hemicubes_->farPlane(), offset_,
                                                        preamble);
-        cross_->setReconstructionUniforms(reconstruct_->id());
+        cross_->setReconstructionUniforms(reconstruct_->id(), emitterSide_);
       }
     }
     Context::check("setting up GPU progressive refinement");

@@ -54,6 +54,7 @@ constexpr int kElementShBinding = 11;
 constexpr int kCrossPatchBinding = 12;
 constexpr int kBackShooterBinding = 13;
 constexpr int kCrossDeltaBinding = 14;
+constexpr int kCrossEmitterBinding = 15;  // uint[]: the static emitting patches sampled exactly
 constexpr int kBackItemTextureUnit = 2;
 constexpr int kBackDistanceTextureUnit = 3;
 constexpr int kDistanceTextureUnit = 1;    // R32F distances (or RGBA32F radiosity) of layered hemicubes
@@ -138,6 +139,7 @@ inline std::string glslPreamble() {
       "#define CROSS_PATCH_BINDING {}\n"
       "#define BACK_SHOOTER_BINDING {}\n"
       "#define CROSS_DELTA_BINDING {}\n"
+      "#define CROSS_EMITTER_BINDING {}\n"
       "#define BACK_ITEM_TEXTURE_UNIT {}\n"
       "#define BACK_DISTANCE_TEXTURE_UNIT {}\n"
       "#define GATHER_GROUP {}\n"
@@ -157,7 +159,7 @@ inline std::string glslPreamble() {
       "struct GpuGatherElement {{ vec4 emissionArea; vec4 reflectance; vec4 analytic; }};\n",
       kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup,
       kElementBinding, kPatchBinding, kPatchElementBinding, kPatchStateBinding, kShooterBinding,
-      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kElementShBinding, kCrossPatchBinding, kBackShooterBinding, kCrossDeltaBinding,
+      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kElementShBinding, kCrossPatchBinding, kBackShooterBinding, kCrossDeltaBinding, kCrossEmitterBinding,
       kBackItemTextureUnit, kBackDistanceTextureUnit, kGatherGroup, kGatherDeltaBinding,
       kGatherElementBinding, kGatherResidualBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
       kReconstructGroup, kMaxShootersPerPass);

@@ -85,9 +85,10 @@ TEST(GlDynamic, AMoveEndsNearWhereAFreshGlSolveEnds) {
 
 // Cross-redistribution (cross_redistribution_gl.h): only the moved box renders hemicubes; the
 // static light it hid or uncovers is estimated by cross projection through its back hemicubes,
-// so the result is near, not equal to, a fresh solve at the new pose. The move lifts the box's
-// top to 2 cm under the light, where the light seen past the box changes fastest: the case that
-// a single reprojection step got 70% wrong on the static receivers' direct light.
+// and the light's own points, so the result is near, not equal to, a fresh solve at the new pose.
+// The move lifts the box's top to 2 cm under the light, where the light seen past the box changes
+// fastest: 001's single reprojection step got the static receivers' direct light 70% wrong here,
+// and the box's elements came out 5% off with one gather hemicube each.
 TEST(GlDynamic, CrossRedistributionEndsNearWhereAFreshGlSolveEnds) {
   std::string why;
   if (!test::glContextOr(why)) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
@@ -128,11 +129,12 @@ TEST(GlDynamic, CrossRedistributionEndsNearWhereAFreshGlSolveEnds) {
   EXPECT_EQ(after.stats.method, "cross-redistribution");
   EXPECT_EQ(after.stats.redistributions, 2u);
   EXPECT_LT(identity, 1e-5);
-  // Measured 0.021 overall, 0.0045 on the box (its gather against the shots it replaces) and
-  // 0.013 elsewhere (the cross projection's 8 x 8 rays); one reprojection step gave 0.082.
-  EXPECT_LT(error, 0.04);
-  EXPECT_LT(onBox, 0.01);
-  EXPECT_LT(elsewhere, 0.025);
+  // Measured 0.0042 overall, 0.0025 on the box (its gather against the shots it replaces) and
+  // 0.0038 elsewhere; 0.034 with the light left to the back hemicubes' rays, 0.082 with 001's one
+  // reprojection step.
+  EXPECT_LT(error, 0.01);
+  EXPECT_LT(onBox, 0.006);
+  EXPECT_LT(elsewhere, 0.008);
 
   // Back where it started: the passes at each place cancel up to the cross projection's
   // difference in the light shot meanwhile.
@@ -140,7 +142,7 @@ TEST(GlDynamic, CrossRedistributionEndsNearWhereAFreshGlSolveEnds) {
   const Solution back = dynamic.solve();
   const double returned = bench::normalisedRmsError(set, back.radiosity, first.radiosity);
   std::printf("GL cross-redistribution: there and back, NRMSE %.2e against the first solution\n", returned);
-  EXPECT_LT(returned, 0.01);
+  EXPECT_LT(returned, 0.006);  // measured 0.0031
 }
 
 TEST(GlDynamic, ALightTurnedUpEndsNearWhereAFreshGlSolveEnds) {
