@@ -469,6 +469,7 @@ layout(std430, binding = REDISTRIBUTION_LIST_BINDING) readonly buffer List { uin
 uniform uint first, count, samplesPerSide;
 uniform float sign, offset;
 uniform bool emissionOnly;  // only the direct light a first shot carried
+uniform bool emissionAsLight;  // with emissionOnly: that emission is shot as light too
 // Cross-redistribution: each patch's back hemicube, at its corners' mean just behind it, facing
 // the other way (cross_redistribution_gl.h).
 uniform bool crossing;
@@ -484,7 +485,7 @@ void main() {
   GpuShooter s;
   s.eye = vec4(x + offset * P.normalArea.xyz, 0.0);
   s.normal = vec4(P.normalArea.xyz, hemicubeTurn(p, j, 0x5EEDu));
-  s.unshot = vec4(emissionOnly ? vec3(0.0) : sign * amounts[2u * p].rgb, 0.0);
+  s.unshot = vec4(emissionOnly ? (emissionAsLight ? sign * amounts[2u * p + 1u].rgb : vec3(0.0)) : sign * amounts[2u * p].rgb, 0.0);
   s.emission = vec4(sign * amounts[2u * p + 1u].rgb, 0.0);
   s.ids = uvec4(p, 1u, 0u, 0u);
   shooters[r] = s;
@@ -505,16 +506,20 @@ void main() {
 )";
 
 // c. Rebase: each element's irradiance moves by the analytic light's change, and its radiosity
-// becomes E + rho H with the (new) emission and reflectance; the difference is unshot.
+// becomes E + rho H with the (new) emission and reflectance; the difference is unshot. An
+// emission change that a redistribution has already shot as light (emissionAsLight) is not
+// unshot again: it is added to the radiosity first.
 const char* kRebaseCompute = R"(
 layout(local_size_x = RECONSTRUCT_GROUP) in;
-layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer Inputs { vec4 inputs[]; };  // E', rho', dH0
+layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer Inputs { vec4 inputs[]; };  // E', rho', dH0, dE
 uniform uint elementCount;
+uniform bool emissionShot;
 void main() {
   const uint e = gl_GlobalInvocationID.x;
   if (e >= elementCount) return;
   GpuElementState st = states[e];
-  const vec3 emission = inputs[3u * e].rgb, reflectance = inputs[3u * e + 1u].rgb, dh = inputs[3u * e + 2u].rgb;
+  const vec3 emission = inputs[4u * e].rgb, reflectance = inputs[4u * e + 1u].rgb, dh = inputs[4u * e + 2u].rgb;
+  if (emissionShot && patchStates[elements[e].ids.y].shot != 0u) st.radiosity.rgb += inputs[4u * e + 3u].rgb;
   st.irradiance.rgb += dh;
   st.direct.rgb += dh;
   const vec3 b = emission + reflectance * st.irradiance.rgb;
@@ -568,6 +573,7 @@ class GlProgressiveSolver final : public Solver {
       states[e] = {glm::vec4(b, 0.0f), glm::vec4(b, 0.0f), glm::vec4(sys.analytic[e], 0.0f), glm::vec4(sys.analytic[e], 0.0f)};
     }
     analyticUsed_ = sys.analytic;
+    emissionUsed_ = sys.emission;
     patchEmissionUsed_ = sys.patchMeans(sys.emission);
     const GpuPatches patches = gpuPatches(sys);
 
@@ -579,10 +585,10 @@ class GlProgressiveSolver final : public Solver {
     // Following changes, every shot of a patch uses the same hemicubes (same number, same turns),
     // which a redistribution draws again: an emitter's first shot with more of them than its later
     // shots would leave the difference behind at every move.
-    // Cross-redistribution never shoots a static emitter again after a move, and a light edit
-    // shoots again only the emission its first shot carried, with the same hemicubes; a moving
-    // emitter shoots what it has shot with its emitters' hemicubes, which leaves its later shots'
-    // difference between the two (small: they carry reflected light only).
+    // Cross-redistribution keeps the emitters' own: it never shoots a static emitter's light
+    // again after a move, and a light edit shoots the emission's change as light with them
+    // (sourcesChanged). A moving emitter shoots all it has shot with them, which leaves its later
+    // shots' difference between the two hemicube sets (small: they carry reflected light only).
     const bool ownEmitterHemicubes = !o.followChanges || o.crossRedistribution;
     emitterSide_ = o.emitterSamplesPerSide > 0 && ownEmitterHemicubes ? o.emitterSamplesPerSide : o.samplesPerSide;
     emitterSamples_ = emitterSide_ * emitterSide_;
@@ -661,7 +667,7 @@ class GlProgressiveSolver final : public Solver {
       glUniform1f(uniform(*redistribute_, "offset"), offset_);
       rebase_->use();
       glUniform1ui(uniform(*rebase_, "elementCount"), GLuint(ne));
-      buf_.amounts = storageBuffer(nullptr, std::max(2 * np, 3 * ne) * sizeof(glm::vec4));
+      buf_.amounts = storageBuffer(nullptr, std::max(2 * np, 4 * ne) * sizeof(glm::vec4));
       if (o.crossRedistribution) {
         cross_ = std::make_unique<CrossRedistribution>(sys, std::move(objectOfPatch), o.cross, redistributionBatch_,
                                                        hemicubes_->nearPlane(), hemicubes_->farPlane(), offset_,
@@ -816,21 +822,24 @@ class GlProgressiveSolver final : public Solver {
     const Stopwatch watch;
     // The direct light of emitters that have shot and whose emission changed: what their first
     // shot carried, moved from the old emission to the new (the scattered light follows by
-    // rebase and shooting, as for any change).
+    // rebase and shooting, as for any change). Where emitters shoot first with hemicubes of
+    // their own, the change is shot as light with them here too, as a fresh solve's first shot
+    // would, not left to the later shots' hemicubes.
+    const bool asLight = emitterSide_ != o_.samplesPerSide;
     const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
     std::vector<uint32_t> changedEmitters;
     for (uint32_t p = 0; p < sys_.patchCount(); ++p)
       if (emission[p] != patchEmissionUsed_[p]) changedEmitters.push_back(p);
     if (!changedEmitters.empty()) {
       computeAmounts();
-      redistribute(-1.0f, changedEmitters, {}, /*emissionOnly=*/true);
+      redistribute(-1.0f, changedEmitters, {}, /*emissionOnly=*/true, false, asLight);
     }
     uploadGeometry();
     if (!changedEmitters.empty()) {
       computeAmounts();
-      redistribute(1.0f, changedEmitters, {}, /*emissionOnly=*/true);
+      redistribute(1.0f, changedEmitters, {}, /*emissionOnly=*/true, false, asLight);
     }
-    rebase();
+    rebase(asLight);
     changed(watch);
     return true;
   }
@@ -883,7 +892,7 @@ class GlProgressiveSolver final : public Solver {
   // Crossing (cross-redistribution): the patches are the moved ones, and each pass's static
   // receivers also take the cross projection of what the patches hide (cross_redistribution_gl.h).
   void redistribute(float sign, const std::vector<uint32_t>& emitters, const std::vector<uint32_t>& others,
-                    bool emissionOnly = false, bool crossing = false) {
+                    bool emissionOnly = false, bool crossing = false, bool emissionAsLight = false) {
     std::vector<uint32_t> list = emitters;
     list.insert(list.end(), others.begin(), others.end());
     if (list.empty()) return;
@@ -911,6 +920,7 @@ class GlProgressiveSolver final : public Solver {
         glUniform1ui(uniform(*redistribute_, "samplesPerSide"), GLuint(g.side));
         glUniform1f(uniform(*redistribute_, "sign"), sign);
         glUniform1i(uniform(*redistribute_, "emissionOnly"), emissionOnly);
+        glUniform1i(uniform(*redistribute_, "emissionAsLight"), emissionAsLight);
         glUniform1i(uniform(*redistribute_, "crossing"), crossing);
         if (crossing) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBackShooterBinding, cross_->backShooters());
         glDispatchCompute(groups(size_t(count * samples), kPowerGroup), 1, 1);
@@ -973,16 +983,20 @@ class GlProgressiveSolver final : public Solver {
   }
 
   // Irradiance by the analytic light's change, radiosity to E + rho H, the difference unshot.
-  void rebase() {
+  // `emissionShot`: the emission's change since the last update was shot as light already, by the
+  // emitters that have shot.
+  void rebase(bool emissionShot = false) {
     const size_t ne = sys_.elementCount();
-    std::vector<glm::vec4> inputs(3 * ne);
+    std::vector<glm::vec4> inputs(4 * ne);
     for (size_t e = 0; e < ne; ++e)
-      inputs[3 * e] = glm::vec4(sys_.emission[e], 0.0f), inputs[3 * e + 1] = glm::vec4(sys_.reflectance[e], 0.0f),
-      inputs[3 * e + 2] = glm::vec4(sys_.analytic[e] - analyticUsed_[e], 0.0f);
+      inputs[4 * e] = glm::vec4(sys_.emission[e], 0.0f), inputs[4 * e + 1] = glm::vec4(sys_.reflectance[e], 0.0f),
+      inputs[4 * e + 2] = glm::vec4(sys_.analytic[e] - analyticUsed_[e], 0.0f),
+      inputs[4 * e + 3] = glm::vec4(sys_.emission[e] - emissionUsed_[e], 0.0f);
     glNamedBufferSubData(buf_.amounts, 0, GLsizeiptr(inputs.size() * sizeof(glm::vec4)), inputs.data());
     buf_.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
     rebase_->use();
+    glUniform1i(glGetUniformLocation(rebase_->id(), "emissionShot"), emissionShot);
     glDispatchCompute(groups(ne, kReconstructGroup), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -990,6 +1004,7 @@ class GlProgressiveSolver final : public Solver {
   // After a redistribution: new stopping power, and shooting goes on.
   void changed(const Stopwatch& watch) {
     analyticUsed_ = sys_.analytic;
+    emissionUsed_ = sys_.emission;
     patchEmissionUsed_ = sys_.patchMeans(sys_.emission);
     sourcePower_ = sys_.sourcePower();
     setThreshold(o_.unshotThreshold);
@@ -1054,7 +1069,7 @@ class GlProgressiveSolver final : public Solver {
   int redistributionBatch_ = 0;
   double threshold_ = o_.unshotThreshold;
   size_t listCapacity_ = 0;
-  std::vector<Rgb> analyticUsed_, patchEmissionUsed_;
+  std::vector<Rgb> analyticUsed_, emissionUsed_, patchEmissionUsed_;
   uint64_t redistributions_ = 0;
   double secondsRedistributing_ = 0.0;
   int samples_ = 0, batch_ = 0, emitterSide_ = 0, emitterSamples_ = 0, emitterBatch_ = 0;

@@ -145,29 +145,40 @@ TEST(GlDynamic, CrossRedistributionEndsNearWhereAFreshGlSolveEnds) {
   EXPECT_LT(returned, 0.006);  // measured 0.0031
 }
 
-TEST(GlDynamic, ALightTurnedUpEndsNearWhereAFreshGlSolveEnds) {
+// A light edit shoots again only the emission the emitters' first shots carried, with the same
+// hemicubes, in both dynamic methods (cross-redistribution's emitters have their own k_e x k_e).
+class GlDynamicLightEdit : public testing::TestWithParam<const char*> {};
+
+TEST_P(GlDynamicLightEdit, ALightTurnedUpEndsNearWhereAFreshGlSolveEnds) {
   std::string why;
   if (!test::glContextOr(why)) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  const char* method = GetParam();
   Scene scene = coarseCornellLow();
   const int light = scene.findMaterial("light");
   ASSERT_GE(light, 0);
   const Material m = scene.materials[size_t(light)];
-  Session dynamic(scene, coarse(), gl("incremental"));
+  Session dynamic(scene, coarse(), gl(method));
   const Solution before = dynamic.solve();
   dynamic.setMaterial(uint32_t(light), m.reflectance, 2.0f * m.emission);
   const Solution after = dynamic.solve();
   scene.materials[size_t(light)].emission = 2.0f * m.emission;
-  Session fresh(scene, coarse(), gl("incremental"));
+  Session fresh(scene, coarse(), gl(method));
   const Solution expected = fresh.solve();
   // A doubled light doubles everything: the same hemicubes, so float rounding and the stop only.
   const double error = bench::normalisedRmsError(dynamic.surfaces(), after.radiosity, expected.radiosity);
-  std::printf("GL incremental, light doubled: NRMSE %.2e against a fresh GL solve\n", error);
+  std::printf("GL %s, light doubled: NRMSE %.2e against a fresh GL solve\n", method, error);
+  EXPECT_EQ(after.stats.method, method);
   EXPECT_LT(error, 1e-3);
   EXPECT_GT(bench::normalisedRmsError(dynamic.surfaces(), before.radiosity, expected.radiosity), 0.3);
   for (size_t e = 0; e < after.directIrradiance.size(); ++e)
     ASSERT_NEAR(after.directIrradiance[e].g, expected.directIrradiance[e].g, 1e-3f * (1.0f + expected.directIrradiance[e].g))
         << "direct light of element " << e;
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, GlDynamicLightEdit, testing::Values("incremental", "cross-redistribution"),
+                         [](const testing::TestParamInfo<const char*>& i) {
+                           return std::string(i.param[0] == 'i' ? "incremental" : "cross_redistribution");
+                         });
 
 }  // namespace
 }  // namespace luxel
