@@ -159,7 +159,7 @@ struct DynamicCase {
 };
 
 // Per scene: progressive on the CPU first (the speed-ups are against it), then incremental and
-// cross-redistribution on the CPU, then progressive and incremental on GL.
+// cross-redistribution on the CPU, then progressive, incremental and cross-redistribution on GL.
 const std::vector<DynamicCase>& dynamicCases();
 inline constexpr double kDynamicFramesPerSecond = 30.0;
 // The world transform of the scene's first dynamic object at frame k: its animation at time

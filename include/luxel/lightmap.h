@@ -171,8 +171,16 @@ constexpr double kMaxLightmapTexels = 1e8;
 constexpr float kGameTexelsPerMetre = 5.0f;
 // Small scenes get more: the density of about this many texels, a short solve.
 constexpr size_t kSmallSceneTexels = 10000;
-// max(kGameTexelsPerMetre, the density of kSmallSceneTexels texels over the scene's faces).
+// The default density makes at most this many texels (~0.6 GB to solve). Faces over 80,000 m^2
+// at 5 per metre are a vast level or, more often, a file not in metres (the conference room's
+// OBJ, in units of 3 mm, claims 2.4e7 m^2); a default must not fail or take an hour.
+constexpr double kDefaultMaxTexels = 2e6;
+// max(kGameTexelsPerMetre, the density of kSmallSceneTexels texels over the scene's faces), but
+// no more than the density of kDefaultMaxTexels texels.
 float defaultTexelsPerMetre(const Scene& scene);
+// Why the default density is lower than a game's for this scene, naming its area and what to do
+// (scale the file to metres, or give a density); empty when it is not.
+std::string defaultDensityWarning(const Scene& scene);
 struct BakedLightmaps {
   LightmapAtlas atlas;
   LightmapBake bake;

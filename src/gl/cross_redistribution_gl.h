@@ -77,8 +77,9 @@ class CrossRedistribution {
   CrossRedistribution(const CrossRedistribution&) = delete;
   CrossRedistribution& operator=(const CrossRedistribution&) = delete;
 
-  // Before a move's passes: marks the patches of `objects` as moved, and makes the back
-  // hemicubes draw the rest (again only when the moved set changed).
+  // Before a move's passes: marks the patches of `objects` as moved and lists the static emitters
+  // to sample; when the moved set changed, makes the back hemicubes draw the rest and picks each
+  // moved element's gather.
   void begin(std::span<const uint32_t> objects);
   // After the surfaces' new geometry is in the solver's buffers: the gather hemicubes draw it.
   void geometryMoved();
@@ -103,6 +104,11 @@ class CrossRedistribution {
   uint64_t hemicubesRendered() const { return hemicubes_; }
   size_t movedElements() const { return movedElements_; }
   bool moved(uint32_t patch) const { return moved_[patch] != 0; }
+  // Whether the moved set, as begin() last saw it, shows no one-sided face's back outside (every
+  // edge of such a face shared within the set): a closed object, or two-sided sheets. The cross
+  // projection follows light past the moved patches' fronts only, so an open one-sided mover (a
+  // lamp panel) needs the incremental redistribution instead.
+  bool closedToOutside() const { return closed_; }
 
  private:
   void uploadPatchTable();
@@ -118,6 +124,7 @@ class CrossRedistribution {
   std::vector<uint8_t> sampledEmitter_;  // per patch: a static emitter sampled exactly (emittersHidden)
   GLuint reconstruction_ = 0, emitterList_ = 0;
   size_t movedElements_ = 0;
+  bool closed_ = true;
   // The moved elements that gather with one hemicube at their centre, and those near a light
   // that gather with 2 x 2 (the .cpp's kNearLight): their list and their passes.
   struct GatherRule {

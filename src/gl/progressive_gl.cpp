@@ -375,7 +375,7 @@ void main() {
     float F = 0.0;
     // Cross projection (cross_redistribution_gl.h): what each receiver point sees behind the moved
     // shooter, weighted by its part of F; a static receiver's only.
-    const bool crossing = crossProjecting && crossPatches[el.ids.y].x == 0u;
+    const bool crossing = crossProjecting && (crossPatches[el.ids.y].x & 1u) == 0u;
     vec3 behind = vec3(0.0), emittedBehind = vec3(0.0);
     for (int q = 0; q < 4; ++q) {
       float f = pointToPolygonFormFactor(x[q], n, P.corners, int(P.corners[0].w), P.normalArea.xyz);
@@ -801,9 +801,18 @@ class GlProgressiveSolver final : public Solver {
     if (!o_.followChanges) return false;
     const Stopwatch watch;
     if (cross_) {
-      crossRedistribute(objects);
-      changed(watch);
-      return true;
+      cross_->begin(objects);
+      if (cross_->closedToOutside()) {
+        crossRedistribute();
+        changed(watch);
+        return true;
+      }
+      if (!openMoverWarned_) {
+        openMoverWarned_ = true;
+        warnings_.push_back("cross-redistribution: a moved object has one-sided faces whose backs can be seen (an open "
+                            "mesh), which the cross projection cannot follow: its moves are redistributed as by "
+                            "incremental, every patch shooting again");
+      }
     }
     std::vector<uint32_t> emitters, others;
     const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
@@ -811,6 +820,7 @@ class GlProgressiveSolver final : public Solver {
     computeAmounts();
     redistribute(-1.0f, emitters, others);  // from where everything was: the buffers and mesh still say so
     uploadGeometry();
+    if (cross_) cross_->geometryMoved();
     redistribute(1.0f, emitters, others);   // from where everything is
     rebase();
     changed(watch);
@@ -847,6 +857,7 @@ class GlProgressiveSolver final : public Solver {
   SolveStats stats() const override {
     SolveStats st;
     st.method = cross_ ? "cross-redistribution" : o_.followChanges ? "incremental" : "progressive";
+    st.warnings = warnings_;
     st.backend = "gl";
     st.redistributions = redistributions_;
     st.secondsRedistribution = secondsRedistributing_;
@@ -951,8 +962,7 @@ class GlProgressiveSolver final : public Solver {
   // shoot, with the cross projection of the static light they hid or uncover, and the moved
   // elements gather the static patches' light; each from where things were (negative), then, the
   // new geometry uploaded, from where they are.
-  void crossRedistribute(std::span<const uint32_t> objects) {
-    cross_->begin(objects);
+  void crossRedistribute() {
     const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
     std::vector<uint32_t> emitters, others;
     for (uint32_t p = 0; p < sys_.patchCount(); ++p)
@@ -1063,7 +1073,8 @@ class GlProgressiveSolver final : public Solver {
   GLint stopPowerUniform_ = -1, reconstructRedistributing_ = -1;
   GLint reconstructCrossProjecting_ = -1, reconstructCrossSign_ = -1;
   std::unique_ptr<CrossRedistribution> cross_;  // crossRedistribution only
-  bool crossMoved_ = false;
+  bool crossMoved_ = false, openMoverWarned_ = false;
+  std::vector<std::string> warnings_;
   std::unique_ptr<ShaderProgram> amounts_, redistribute_, rebase_;  // followChanges only
   float offset_ = 0.0f;
   int redistributionBatch_ = 0;

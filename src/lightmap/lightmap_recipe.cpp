@@ -44,6 +44,8 @@ BakedLightmaps bakeLightmaps(const Scene& scene, const LightmapRecipe& recipe, c
   // Shown with the solve's warnings, where every caller already looks.
   auto& warnings = out.bake.solution.stats.warnings;
   warnings.insert(warnings.begin(), out.atlas.warnings.begin(), out.atlas.warnings.end());
+  if (recipe.texelsPerMetre <= 0.0f && recipe.texelBudget == 0)
+    if (std::string why = defaultDensityWarning(scene); !why.empty()) warnings.insert(warnings.begin(), std::move(why));
   return out;
 }
 

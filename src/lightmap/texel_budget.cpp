@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "luxel/lightmap.h"
 
 namespace luxel {
@@ -24,7 +26,20 @@ float texelsPerMetreForBudget(const Scene& scene, size_t texels) {
 }
 
 float defaultTexelsPerMetre(const Scene& scene) {
-  return std::max(kGameTexelsPerMetre, texelsPerMetreForBudget(scene, kSmallSceneTexels));
+  const float wanted = std::max(kGameTexelsPerMetre, texelsPerMetreForBudget(scene, kSmallSceneTexels));
+  const float most = texelsPerMetreForBudget(scene, size_t(kDefaultMaxTexels));
+  return most > 0.0f ? std::min(wanted, most) : wanted;
+}
+
+std::string defaultDensityWarning(const Scene& scene) {
+  const float density = defaultTexelsPerMetre(scene);
+  if (!(density < kGameTexelsPerMetre)) return {};
+  const double area = sceneFaceArea(scene);
+  return fmt::format("scene '{}': its faces cover {:.3g} m2, where {:g} texels per metre would make {:.3g} lightmap "
+                     "texels; the default is {:.3g} texels per metre ({:.3g} texels). If the file is not in metres, "
+                     "scale it in a scene JSON (\"scale\", docs/scene-format.md); or give --texels-per-metre",
+                     scene.name, area, kGameTexelsPerMetre, area * kGameTexelsPerMetre * kGameTexelsPerMetre, density,
+                     kDefaultMaxTexels);
 }
 
 }  // namespace luxel

@@ -18,7 +18,7 @@ inline constexpr const char* kAutoMethods[] = {"progressive", "hierarchical", "c
 // `method` itself unless it is "auto"; then progressive on the GL backend (the hierarchy runs on
 // the CPU only) or at most kHierarchicalPatches patches, hierarchical above. For a session that
 // will follow moves and edits (`followsChanges`: an animation, a viewer), the dynamic solver in
-// progressive's place: cross-redistribution on the CPU, incremental on GL.
+// progressive's place: cross-redistribution, on either backend.
 std::string chooseMethod(const std::string& method, const std::string& backend, size_t patches,
                          bool followsChanges = false);
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
@@ -57,6 +58,28 @@ TEST(LightmapDefaults, ALevelGetsAGamesDensity) {
   EXPECT_EQ(atlas.pageSize, 1024);
   EXPECT_EQ(atlas.pageCount, 2);
   EXPECT_FLOAT_EQ(atlas.texelsPerMetre, 5.0f);
+}
+
+// A default must not fail: a scene too large for 5 texels per metre within kMaxLightmapTexels (a
+// file in millimetres, say) gets the density of kDefaultMaxTexels and a warning that says why
+// and what to do; a given density over the limit is still refused.
+TEST(LightmapDefaults, AHugeSceneGetsAWarningNotAFailure) {
+  const luxel::Scene huge = tiledFloor(60, 400.0f);  // 5.76e8 m^2: 1.4e10 texels at 5 per metre
+  const float density = luxel::defaultTexelsPerMetre(huge);
+  EXPECT_NEAR(double(density), std::sqrt(luxel::kDefaultMaxTexels / faceArea(huge)), 1e-4 * density);
+  luxel::AtlasOptions o;
+  EXPECT_NO_THROW(o = luxel::lightmapAtlasOptions(huge, luxel::LightmapRecipe{}));
+  EXPECT_FLOAT_EQ(o.texelsPerMetre, density);
+  const std::string why = luxel::defaultDensityWarning(huge);
+  EXPECT_NE(why.find("'tiles'"), std::string::npos) << why;
+  EXPECT_NE(why.find("5.76e+08 m2"), std::string::npos) << why;
+  EXPECT_NE(why.find("not in metres"), std::string::npos) << why;
+  EXPECT_NE(why.find("--texels-per-metre"), std::string::npos) << why;
+  // A level at the game density says nothing.
+  EXPECT_EQ(luxel::defaultDensityWarning(tiledFloor(60, 4.0f)), "");
+  luxel::LightmapRecipe given;
+  given.texelsPerMetre = 5.0f;
+  EXPECT_THROW(luxel::lightmapAtlasOptions(huge, given), luxel::Error);
 }
 
 TEST(LightmapDefaults, ASmallSceneGetsAboutTenThousandTexels) {

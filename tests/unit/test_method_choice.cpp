@@ -21,7 +21,7 @@ TEST(MethodChoice, TheRuleIsByPatchesAndBackend) {
   EXPECT_EQ(chooseMethod("gather", "cpu", kHierarchicalPatches + 1), "gather");
   // Sessions that will follow moves (luxel animate) get the dynamic solver in progressive's place.
   EXPECT_EQ(chooseMethod("auto", "cpu", kHierarchicalPatches, true), "cross-redistribution");
-  EXPECT_EQ(chooseMethod("auto", "gl", kHierarchicalPatches + 1, true), "incremental");
+  EXPECT_EQ(chooseMethod("auto", "gl", kHierarchicalPatches + 1, true), "cross-redistribution");
   EXPECT_EQ(chooseMethod("auto", "cpu", kHierarchicalPatches + 1, true), "hierarchical");
   EXPECT_EQ(chooseMethod("progressive", "cpu", 10, true), "progressive");
 }
