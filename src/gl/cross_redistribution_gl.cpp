@@ -9,6 +9,7 @@
 #include "gl/gl_context.h"
 #include "gl/gpu_system.h"
 #include "gl/hemicube.h"
+#include "gl/hemicube_glsl.h"
 #include "gl/layered_hemicubes.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
@@ -58,8 +59,8 @@ float behindBy(uint k, HemicubeFrame f, vec3 eye, vec3 r, out ivec3 pixel) {
 // eye): the hemicube's centre is not q, so the ray's hit is where its points pass from in front
 // of the surface the hemicube shows to behind it. 001 took one step (the depth the parallel ray
 // from the centre meets placed the hit); that is off by the patch's size where depth changes
-// across it, as from a box's side face to a light just above the box (the GPU test's scene:
-// static direct light 70% off). Steps grow geometrically from near the patch to the far plane;
+// across it, as from a box's side face to a light just above the box (docs/algorithms.md,
+// "Dynamic radiosity", has the figures). Steps grow geometrically from near the patch to the far plane;
 // a crossing deeper than the step is the ray passing behind something nearer the centre, not a
 // hit, and the march goes on; the crossing is then narrowed by bisection. ~0u: nothing.
 uint marchedPatch(uint k, HemicubeFrame f, vec3 eye, vec3 q, vec3 d) {
@@ -206,8 +207,7 @@ namespace {
 // old geometry before the move's upload, the new after it): one at the element's centre, or, for
 // elements large beside their distance to a light (kNearLight), the reconstruction's 2 x 2
 // midpoint rule, so that the gather and the shots that lit the element before estimate the same
-// mean (one hemicube at the centre left the box's elements 2 cm under the Cornell light 5% from
-// the shots' figure; at the bench scenes' sizes the two agree to 2e-4).
+// mean: near a light the irradiance is far from linear over the element.
 const char* kGatherEyesCompute = R"(
 layout(local_size_x = POWER_GROUP) in;
 layout(std430, binding = REDISTRIBUTION_LIST_BINDING) readonly buffer List { uint list[]; };
@@ -247,44 +247,20 @@ layout(std430, binding = CROSS_PATCH_BINDING) readonly buffer CrossPatches { uve
 uniform uint first;
 uniform int resolution;
 uniform float sign;
-shared vec3 partial[GATHER_GROUP];
-
-vec3 groupSum(vec3 value, uint tid) {
-  barrier();
-  partial[tid] = value;
-  barrier();
-  for (uint w = GATHER_GROUP / 2; w > 0u; w >>= 1) {
-    if (tid < w) partial[tid] += partial[tid + w];
-    barrier();
-  }
-  return partial[0];
-}
 
 void main() {
   const uint local = gl_WorkGroupID.x, tid = gl_LocalInvocationIndex, e = list[first + local];
-  const int half_ = resolution / 2, top = resolution * resolution, side = resolution * half_;
+  const int perHemicube = 3 * resolution * resolution;  // the top, and four upper halves
   vec3 shot = vec3(0.0), emitted = vec3(0.0);
-  for (int i = int(tid); i < GATHER_SAMPLES * (top + 4 * side); i += GATHER_GROUP) {
-    const int h = i / (top + 4 * side), k = i % (top + 4 * side);
+  for (int i = int(tid); i < GATHER_SAMPLES * perHemicube; i += GATHER_GROUP) {
+    const int h = i / perHemicube;
     const GpuShooter eye = shooters[local * GATHER_SAMPLES + uint(h)];
-    const HemicubeFrame f = hemicubeFrame(eye.normal.xyz, eye.normal.w);
     int face, x, y, d;
-    if (k < top) {
-      face = 0; x = k % resolution; y = k / resolution; d = k;
-    } else {  // the upper half of a side face: rows half_ .. resolution-1
-      const int j = k - top, r = j % side;
-      face = 1 + j / side; x = r % resolution; y = half_ + r / resolution; d = top + r;
-    }
+    hemicubePixel(i % perHemicube, resolution, face, x, y, d);
     const uint item = texelFetch(items, ivec3(x, y, (int(local) * GATHER_SAMPLES + h) * 5 + face), 0).r;
     if (item == 0u) continue;
-    // The pixel centre's direction (hemicubeClip's conventions inverted), to tell which side of
-    // the patch it shows.
-    vec3 fwd, up;
-    if (face == 0) { fwd = f.n; up = f.b; }
-    else { up = f.n; fwd = face == 1 ? f.t : face == 2 ? -f.t : face == 3 ? f.b : -f.b; }
-    const vec3 s = normalize(cross(fwd, up)), u = cross(s, fwd);
-    const vec2 ndc = (vec2(x, y) + 0.5) / float(resolution) * 2.0 - 1.0;
-    const vec3 w = fwd + ndc.x * s + ndc.y * u;
+    // Which side of the patch the pixel shows.
+    const vec3 w = hemicubePixelDirection(hemicubeFrame(eye.normal.xyz, eye.normal.w), face, x, y, resolution);
     uint p = item - 1u;
     if (dot(patches[p].normalArea.xyz, w) >= 0.0) p = crossPatches[p].y;
     if (p == 0xFFFFFFFFu || (crossPatches[p].x & 1u) != 0u) continue;
@@ -306,8 +282,8 @@ void main() {
 
 // An element is near a light, and gathers with 2 x 2 hemicubes, when it is wider than this share
 // of its distance to the nearest emitting patch (from its centre to the patch's bounding sphere):
-// the GPU test's box 2 cm under the lamp is; seed 001's boxes 8 cm under it are not, and gather
-// as well with one hemicube as with four.
+// the GPU test's box 2 cm under the lamp is; seed 001's boxes 8 cm under it are not, and there one
+// hemicube gathers as well as four.
 constexpr float kNearLight = 1.0f;
 
 // Up to this many static emitting patches are sampled exactly behind each moved patch
@@ -406,7 +382,7 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system, std::vec
   for (GatherRule& rule : rules_) {
     const std::string samples = fmt::format("#define GATHER_SAMPLES {}\n", rule.samples);
     rule.eyes = std::make_unique<ShaderProgram>("cross-redistribution gather centres", preamble + samples + kGatherEyesCompute);
-    rule.integrate = std::make_unique<ShaderProgram>("cross-redistribution gather", preamble + samples + kGatherIntegrateCompute);
+    rule.integrate = std::make_unique<ShaderProgram>("cross-redistribution gather", preamble + samples + kGroupSumGlsl + kGatherIntegrateCompute);
     rule.eyes->use();
     glUniform1f(glGetUniformLocation(rule.eyes->id(), "offset"), offset_);
     rule.integrate->use();

@@ -21,9 +21,7 @@
 //  - static emitters are not left to the back hemicube's rays: the light a moved patch hides of
 //    each is its exact unoccluded factor times the share of the points the emitter's own shots
 //    came from whose segment to i crosses j. 001's known weakness, small bright lights
-//    undersampled by the rays (notes 3.7), was most of the error: 0.034 against 0.0042 NRMSE
-//    after the GPU test's move, and a drift to 0.05 over six one-degree frames of cornell-low
-//    against 0.0084;
+//    undersampled by the rays (notes 3.7), was most of the error;
 //  - P is evaluated at each of the receiver's 2 x 2 points with that point's share of F, not once
 //    per element;
 //  - rays are marched through the back hemicube (the seed's single reprojection step, depth along

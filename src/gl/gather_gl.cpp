@@ -45,46 +45,22 @@ uniform int shCount;
 uniform uint firstElement, samples;
 uniform int resolution;
 uniform bool firstIteration;
-shared vec3 partial[GATHER_GROUP];
-
-// The group's sum of every thread's `value`, in a fixed order (the same answer every run).
-vec3 groupSum(vec3 value, uint tid) {
-  barrier();
-  partial[tid] = value;
-  barrier();
-  for (uint w = GATHER_GROUP / 2; w > 0u; w >>= 1) {
-    if (tid < w) partial[tid] += partial[tid + w];
-    barrier();
-  }
-  return partial[0];
-}
 void main() {
   const uint local = gl_WorkGroupID.x, e = firstElement + local, tid = gl_LocalInvocationIndex;
-  const int half_ = resolution / 2, top = resolution * resolution, side = resolution * half_;
-  const int perHemicube = top + 4 * side;
+  const int perHemicube = 3 * resolution * resolution;  // the top, and four upper halves
   vec3 sum = vec3(0.0), sh[9];
   for (int i = 0; i < 9; ++i) sh[i] = vec3(0.0);
   for (int i = int(tid); i < int(samples) * perHemicube; i += GATHER_GROUP) {
-    const int h = i / perHemicube, k = i % perHemicube;
+    const int h = i / perHemicube;
     int face, x, y, d;
-    if (k < top) {
-      face = 0; x = k % resolution; y = k / resolution; d = k;
-    } else {  // the upper half of a side face: rows half_ .. resolution-1
-      const int j = k - top, r = j % side;
-      face = 1 + j / side; x = r % resolution; y = half_ + r / resolution; d = top + r;
-    }
+    hemicubePixel(i % perHemicube, resolution, face, x, y, d);
     const vec3 b = texelFetch(radiosityLayers, ivec3(x, y, (int(local * samples) + h) * 5 + face), 0).rgb;
     sum += deltas[d] * b;
     if (shCount > 0) {
-      // The pixel centre's direction, by hemicubeClip's conventions inverted: d + x s + y u.
+      // The pixel centre's direction.
       const GpuShooter eye = eyes[e * samples + uint(h)];
       const HemicubeFrame f = hemicubeFrame(eye.normal.xyz, eye.normal.w);
-      vec3 fwd, up;
-      if (face == 0) { fwd = f.n; up = f.b; }
-      else { up = f.n; fwd = face == 1 ? f.t : face == 2 ? -f.t : face == 3 ? f.b : -f.b; }
-      const vec3 s = normalize(cross(fwd, up)), u = cross(s, fwd);
-      const vec2 ndc = (vec2(x, y) + 0.5) / float(resolution) * 2.0 - 1.0;
-      const vec3 w = normalize(fwd + ndc.x * s + ndc.y * u);
+      const vec3 w = normalize(hemicubePixelDirection(f, face, x, y, resolution));
       // Radiance b / pi over the pixel's solid angle, pi delta / cos: b delta / cos.
       const vec3 weight = deltas[d] / max(dot(w, f.n), 1e-3) * b;
       // The real SH basis of core/spherical_harmonics.h, bands 0 to 2.
@@ -236,7 +212,7 @@ class GlGatherSolver final : public Solver {
 
     const std::string preamble = glslPreamble();
     integrate_ = std::make_unique<ShaderProgram>("radiosity hemicube integration",
-                                                 preamble + kHemicubeGlsl + kIntegrateCompute);
+                                                 preamble + kHemicubeGlsl + kGroupSumGlsl + kIntegrateCompute);
     patchMean_ = std::make_unique<ShaderProgram>("patch mean radiosity", preamble + kPatchMeanCompute);
     integrate_->use();
     glUniform1ui(glGetUniformLocation(integrate_->id(), "samples"), GLuint(samples_));

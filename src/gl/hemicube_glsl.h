@@ -46,6 +46,46 @@ vec4 hemicubeClip(vec3 w, vec3 eye, HemicubeFrame f, int face, float near, float
   float zv = -dot(d, r);
   return vec4(dot(s, r), dot(u, r), (-(far + near) * zv - 2.0 * far * near) / (far - near), -zv);
 }
+
+// Pixel k of those a hemicube integrates, the top face's then the upper halves of the four
+// sides': its face, column x, row y and index d into the delta form factors (top table, then
+// the side table, row 0 at the base of the upper half).
+void hemicubePixel(int k, int resolution, out int face, out int x, out int y, out int d) {
+  const int half_ = resolution / 2, top = resolution * resolution, side = resolution * half_;
+  if (k < top) {
+    face = 0; x = k % resolution; y = k / resolution; d = k;
+  } else {
+    const int j = k - top, r = j % side;
+    face = 1 + j / side; x = r % resolution; y = half_ + r / resolution; d = top + r;
+  }
+}
+
+// The direction through the centre of pixel (x, y) of face `face`: hemicubeClip's conventions
+// inverted, fwd + x s + y u (not unit).
+vec3 hemicubePixelDirection(HemicubeFrame f, int face, int x, int y, int resolution) {
+  vec3 fwd, up;
+  if (face == 0) { fwd = f.n; up = f.b; }
+  else { up = f.n; fwd = face == 1 ? f.t : face == 2 ? -f.t : face == 3 ? f.b : -f.b; }
+  const vec3 s = normalize(cross(fwd, up)), u = cross(s, fwd);
+  const vec2 ndc = (vec2(x, y) + 0.5) / float(resolution) * 2.0 - 1.0;
+  return fwd + ndc.x * s + ndc.y * u;
+}
+)";
+
+// A compute pass's sum over its work group (GATHER_GROUP threads) of every thread's value, in a
+// fixed order: the same answer every run.
+inline constexpr const char* kGroupSumGlsl = R"(
+shared vec3 partial[GATHER_GROUP];
+vec3 groupSum(vec3 value, uint tid) {
+  barrier();
+  partial[tid] = value;
+  barrier();
+  for (uint w = GATHER_GROUP / 2; w > 0u; w >>= 1) {
+    if (tid < w) partial[tid] += partial[tid + w];
+    barrier();
+  }
+  return partial[0];
+}
 )";
 
 // The exact point-to-polygon form factor (Lambert's contour integral, as
