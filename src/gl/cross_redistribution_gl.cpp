@@ -1,11 +1,12 @@
 #include "gl/cross_redistribution_gl.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <limits>
 #include <unordered_map>
 
-#include <fmt/format.h>
-
+#include "core/position_key.h"
 #include "gl/gl_context.h"
 #include "gl/gpu_system.h"
 #include "gl/hemicube.h"
@@ -13,7 +14,6 @@
 #include "gl/layered_hemicubes.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
-#include "core/position_key.h"
 #include "luxel/error.h"
 
 namespace luxel::gl {
@@ -300,7 +300,9 @@ bool faceSetClosed(const SurfaceSet& set, const std::vector<uint32_t>& faces) {
     bool operator==(const EdgeKey&) const = default;
   };
   struct EdgeHash {
-    size_t operator()(const EdgeKey& e) const { return PositionKeyHash{}(e.a) * 31u ^ PositionKeyHash{}(e.b); }
+    size_t operator()(const EdgeKey& e) const {
+      return PositionKeyHash{}(e.a) * 31u ^ PositionKeyHash {}(e.b);
+    }
   };
   auto edge = [](Vec3 p, Vec3 q) {
     PositionKey a = positionKey(p), b = positionKey(q);
@@ -309,13 +311,15 @@ bool faceSetClosed(const SurfaceSet& set, const std::vector<uint32_t>& faces) {
   };
   auto forEachEdge = [&](const SurfaceFace& f, auto&& use) {
     const int count = f.triangle ? 3 : 4;
-    for (int i = 0; i < count; ++i) use(edge(f.corners[size_t(i)], f.corners[size_t((i + 1) % count)]));
+    for (int i = 0; i < count; ++i)
+      use(edge(f.corners[size_t(i)], f.corners[size_t((i + 1) % count)]));
   };
   std::unordered_map<EdgeKey, int, EdgeHash> uses;
   for (uint32_t f : faces) forEachEdge(set.faces[f], [&](const EdgeKey& e) { ++uses[e]; });
   bool closed = true;
   for (uint32_t f : faces)
-    if (set.faces[f].twin < 0) forEachEdge(set.faces[f], [&](const EdgeKey& e) { closed = closed && uses[e] > 1; });
+    if (set.faces[f].twin < 0)
+      forEachEdge(set.faces[f], [&](const EdgeKey& e) { closed = closed && uses[e] > 1; });
   return closed;
 }
 
@@ -330,18 +334,27 @@ bool drawn(const SurfaceSet& set, uint32_t patch) {
 
 }  // namespace
 
-CrossRedistribution::CrossRedistribution(const RadiositySystem& system, std::vector<uint32_t> objectOfPatch,
-                                         const CrossRedistributionSettings& settings, int backCapacity,
-                                         float nearPlane, float farPlane, float offset, const std::string& preamble)
-    : sys_(system), objectOfPatch_(std::move(objectOfPatch)), s_(settings), backCapacity_(backCapacity),
+CrossRedistribution::CrossRedistribution(const RadiositySystem& system,
+                                         std::vector<uint32_t> objectOfPatch,
+                                         const CrossRedistributionSettings& settings,
+                                         int backCapacity, float nearPlane, float farPlane,
+                                         float offset, const std::string& preamble)
+    : sys_(system),
+      objectOfPatch_(std::move(objectOfPatch)),
+      s_(settings),
+      backCapacity_(backCapacity),
       offset_(offset) {
   const SurfaceSet& set = sys_.surfaces;
   const size_t np = set.patches.size();
-  if (objectOfPatch_.size() != np) throw Error("cross-redistribution: an object for every patch is needed");
-  if (s_.gatherResolution < 8 || s_.gatherResolution % 2 || s_.backResolution < 4 || s_.backResolution % 2)
-    throw Error(fmt::format("cross-redistribution: hemicube resolutions {} and {} must be even and at least 8 and 4",
-                            s_.gatherResolution, s_.backResolution));
-  if (s_.grid < 1 || s_.grid > 16) throw Error(fmt::format("cross-redistribution: grid {} must be in 1..16", s_.grid));
+  if (objectOfPatch_.size() != np)
+    throw Error("cross-redistribution: an object for every patch is needed");
+  if (s_.gatherResolution < 8 || s_.gatherResolution % 2 || s_.backResolution < 4 ||
+      s_.backResolution % 2)
+    throw Error(fmt::format(
+        "cross-redistribution: hemicube resolutions {} and {} must be even and at least 8 and 4",
+        s_.gatherResolution, s_.backResolution));
+  if (s_.grid < 1 || s_.grid > 16)
+    throw Error(fmt::format("cross-redistribution: grid {} must be in 1..16", s_.grid));
   // Twin patches: the discretiser gives a two-sided face's back the front's grid (discretise.cpp,
   // addTwinFaces), so each patch has one at its centroid on the other face.
   twinPatch_.assign(np, ~0u);
@@ -366,10 +379,12 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system, std::vec
   std::vector<uint32_t> items;
   for (uint32_t p = 0; p < np; ++p)
     if (drawn(set, p)) polygons.push_back(set.patches[p].polygon), items.push_back(p + 1);
-  gather_ = std::make_unique<LayeredHemicubes>(polygons, items, LayeredHemicubes::Content::ItemsAndDistances,
-                                               s_.gatherResolution, gatherCapacity_, nearPlane, farPlane);
-  back_ = std::make_unique<LayeredHemicubes>(polygons, items, LayeredHemicubes::Content::ItemsAndDistances,
-                                             s_.backResolution, std::max(backCapacity_, 1), nearPlane, farPlane);
+  gather_ = std::make_unique<LayeredHemicubes>(
+      polygons, items, LayeredHemicubes::Content::ItemsAndDistances, s_.gatherResolution,
+      gatherCapacity_, nearPlane, farPlane);
+  back_ = std::make_unique<LayeredHemicubes>(
+      polygons, items, LayeredHemicubes::Content::ItemsAndDistances, s_.backResolution,
+      std::max(backCapacity_, 1), nearPlane, farPlane);
   const DeltaFormFactors deltas(s_.gatherResolution);
   std::vector<float> table(deltas.top);
   table.insert(table.end(), deltas.side.begin(), deltas.side.end());
@@ -381,8 +396,11 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system, std::vec
 
   for (GatherRule& rule : rules_) {
     const std::string samples = fmt::format("#define GATHER_SAMPLES {}\n", rule.samples);
-    rule.eyes = std::make_unique<ShaderProgram>("cross-redistribution gather centres", preamble + samples + kGatherEyesCompute);
-    rule.integrate = std::make_unique<ShaderProgram>("cross-redistribution gather", preamble + samples + kGroupSumGlsl + kGatherIntegrateCompute);
+    rule.eyes = std::make_unique<ShaderProgram>("cross-redistribution gather centres",
+                                                preamble + samples + kGatherEyesCompute);
+    rule.integrate = std::make_unique<ShaderProgram>(
+        "cross-redistribution gather",
+        preamble + samples + kGroupSumGlsl + kGatherIntegrateCompute);
     rule.eyes->use();
     glUniform1f(glGetUniformLocation(rule.eyes->id(), "offset"), offset_);
     rule.integrate->use();
@@ -392,14 +410,18 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system, std::vec
 }
 
 CrossRedistribution::~CrossRedistribution() {
-  const GLuint all[] = {patchTable_, backShooters_, gatherEyes_, deltas_, emitterList_, rules_[0].list, rules_[1].list};
+  const GLuint all[] = {patchTable_,  backShooters_,  gatherEyes_,   deltas_,
+                        emitterList_, rules_[0].list, rules_[1].list};
   glDeleteBuffers(GLsizei(std::size(all)), all);
 }
 
 void CrossRedistribution::uploadPatchTable() {
   std::vector<glm::uvec2> table(moved_.size());
-  for (size_t p = 0; p < table.size(); ++p) table[p] = glm::uvec2(moved_[p] | (sampledEmitter_[p] << 1), twinPatch_[p]);
-  if (!table.empty()) glNamedBufferSubData(patchTable_, 0, GLsizeiptr(table.size() * sizeof(glm::uvec2)), table.data());
+  for (size_t p = 0; p < table.size(); ++p)
+    table[p] = glm::uvec2(moved_[p] | (sampledEmitter_[p] << 1), twinPatch_[p]);
+  if (!table.empty())
+    glNamedBufferSubData(patchTable_, 0, GLsizeiptr(table.size() * sizeof(glm::uvec2)),
+                         table.data());
 }
 
 void CrossRedistribution::begin(std::span<const uint32_t> objects) {
@@ -409,7 +431,8 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
   movedObjects_ = std::move(sorted);
   const SurfaceSet& set = sys_.surfaces;
   for (size_t p = 0; p < moved_.size(); ++p)
-    moved_[p] = std::binary_search(movedObjects_.begin(), movedObjects_.end(), objectOfPatch_[p]) ? 1 : 0;
+    moved_[p] =
+        std::binary_search(movedObjects_.begin(), movedObjects_.end(), objectOfPatch_[p]) ? 1 : 0;
   // The static emitters sampled exactly: every move, as a light edit may have lit or put out one.
   const std::vector<Rgb> emission = sys_.patchMeans(sys_.emission);
   std::vector<uint32_t> emitters;
@@ -419,7 +442,8 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
   std::fill(sampledEmitter_.begin(), sampledEmitter_.end(), 0);
   for (uint32_t p : emitters) sampledEmitter_[p] = 1;
   glDeleteBuffers(1, &emitterList_);
-  emitterList_ = storageBuffer(emitters.data(), std::max<size_t>(emitters.size(), 1) * sizeof(uint32_t));
+  emitterList_ =
+      storageBuffer(emitters.data(), std::max<size_t>(emitters.size(), 1) * sizeof(uint32_t));
   glUseProgram(reconstruction_);
   glUniform1ui(glGetUniformLocation(reconstruction_, "crossEmitterCount"), GLuint(emitters.size()));
   uploadPatchTable();
@@ -447,20 +471,24 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
     const Element& el = set.elements[e];
     const Vec3 centre = el.polygon.centroid();
     float width = 0.0f, distance = std::numeric_limits<float>::max();
-    for (int c = 0; c < el.polygon.count; ++c) width = std::max(width, 2.0f * glm::length(el.polygon.v[size_t(c)] - centre));
-    for (const glm::vec4& l : lights) distance = std::min(distance, std::max(glm::length(Vec3(l) - centre) - l.w, 0.0f));
+    for (int c = 0; c < el.polygon.count; ++c)
+      width = std::max(width, 2.0f * glm::length(el.polygon.v[size_t(c)] - centre));
+    for (const glm::vec4& l : lights)
+      distance = std::min(distance, std::max(glm::length(Vec3(l) - centre) - l.w, 0.0f));
     rules_[width > kNearLight * distance ? 1 : 0].elements.push_back(e);
     ++movedElements_;
   }
   for (GatherRule& rule : rules_) {
     glDeleteBuffers(1, &rule.list);
-    rule.list = storageBuffer(rule.elements.data(), std::max<size_t>(rule.elements.size(), 1) * sizeof(uint32_t));
+    rule.list = storageBuffer(rule.elements.data(),
+                              std::max<size_t>(rule.elements.size(), 1) * sizeof(uint32_t));
   }
   // The back hemicubes show the patches that stay: those do not move, so once per moved set.
   std::vector<Polygon> polygons;
   std::vector<uint32_t> items;
   for (uint32_t p = 0; p < moved_.size(); ++p)
-    if (!moved_[p] && drawn(set, p)) polygons.push_back(set.patches[p].polygon), items.push_back(p + 1);
+    if (!moved_[p] && drawn(set, p))
+      polygons.push_back(set.patches[p].polygon), items.push_back(p + 1);
   back_->setPolygons(polygons, items);
   Context::check("GPU cross-redistribution: the moved set");
 }
@@ -498,7 +526,8 @@ void CrossRedistribution::setReconstructionUniforms(GLuint program, int emitterS
   glUniform1f(glGetUniformLocation(program, "backFar"), back_->farPlane());
 }
 
-void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states, GLuint amounts) {
+void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states,
+                                      GLuint amounts) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementBinding, elements);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchBinding, patches);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, states);

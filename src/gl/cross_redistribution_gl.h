@@ -69,8 +69,8 @@ class CrossRedistribution {
  public:
   // `objectOfPatch`: each patch's scene object. `backCapacity`: back hemicubes per shooting pass.
   CrossRedistribution(const RadiositySystem& system, std::vector<uint32_t> objectOfPatch,
-                      const CrossRedistributionSettings& settings, int backCapacity, float nearPlane,
-                      float farPlane, float offset, const std::string& preamble);
+                      const CrossRedistributionSettings& settings, int backCapacity,
+                      float nearPlane, float farPlane, float offset, const std::string& preamble);
   ~CrossRedistribution();
   CrossRedistribution(const CrossRedistribution&) = delete;
   CrossRedistribution& operator=(const CrossRedistribution&) = delete;
@@ -118,8 +118,8 @@ class CrossRedistribution {
   const float offset_;
   std::vector<uint32_t> twinPatch_;  // each patch's twin on a two-sided face's other side, or ~0u
   std::vector<uint32_t> movedObjects_;
-  std::vector<uint8_t> moved_;       // per patch
-  std::vector<uint8_t> sampledEmitter_;  // per patch: a static emitter sampled exactly (emittersHidden)
+  std::vector<uint8_t> moved_;           // per patch
+  std::vector<uint8_t> sampledEmitter_;  // per patch: sampled exactly (emittersHidden)
   GLuint reconstruction_ = 0, emitterList_ = 0;
   size_t movedElements_ = 0;
   bool closed_ = true;

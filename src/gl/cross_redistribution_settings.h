@@ -7,7 +7,7 @@ namespace luxel::gl {
 struct CrossRedistributionSettings {
   int gatherResolution = 64;  // the moved elements' gather hemicubes, pixels a side
   int backResolution = 32;    // the back hemicubes (001: "as low as 16 x 16 per face")
-  int grid = 4;               // g: g x g rays from each receiver point through each moved patch (001: 4)
+  int grid = 4;               // g x g rays from a receiver point through a moved patch
 };
 
 }  // namespace luxel::gl
