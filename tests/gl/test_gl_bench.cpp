@@ -75,7 +75,7 @@ TEST(GlBench, TheGlSuiteHasOnlyGlCases) {
 }
 
 // `luxel bench dynamic`'s GL cases: progressive restarted in one session's context every frame,
-// and incremental following the box. On a software rasteriser they run only when asked for
+// and incremental and cross-redistribution following the box. On a software rasteriser they run only when asked for
 // frames (seconds a frame), and say why otherwise; a GPU machine runs them unchanged, every frame.
 TEST(GlBench, DynamicCasesFollowTheBoxOnGl) {
   std::string why;
@@ -87,6 +87,7 @@ TEST(GlBench, DynamicCasesFollowTheBoxOnGl) {
   o.cacheDir = (std::filesystem::temp_directory_path() / "luxel-gl-dynamic-refs").string();
   const luxel::bench::DynamicCase progressive{"cornell-low", "progressive", "gl", 49, 0.0149107};
   const luxel::bench::DynamicCase incremental{"cornell-low", "incremental", "gl", 14, 0.0197874};
+  const luxel::bench::DynamicCase cross{"cornell-low", "cross-redistribution", "gl", 7, 0.0147345};
   if (!context) {
     EXPECT_THROW(luxel::bench::runDynamicCase(progressive, o), luxel::Error);
     GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
@@ -102,7 +103,7 @@ TEST(GlBench, DynamicCasesFollowTheBoxOnGl) {
     }
     o.glFrames = 2;
   }
-  for (const luxel::bench::DynamicCase& c : {progressive, incremental}) {
+  for (const luxel::bench::DynamicCase& c : {progressive, incremental, cross}) {
     SCOPED_TRACE(c.name());
     const luxel::bench::DynamicResult r = luxel::bench::runDynamicCase(c, o);
     EXPECT_EQ(r.device, renderer);
