@@ -244,9 +244,53 @@ layout(std430, binding = CROSS_DELTA_BINDING) readonly buffer Deltas { float del
 layout(std430, binding = REDISTRIBUTION_LIST_BINDING) readonly buffer List { uint list[]; };
 layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer Amounts { vec4 amounts[]; };
 layout(std430, binding = CROSS_PATCH_BINDING) readonly buffer CrossPatches { uvec2 crossPatches[]; };
-uniform uint first;
-uniform int resolution;
-uniform float sign;
+layout(std430, binding = CROSS_EMITTER_BINDING) readonly buffer CrossEmitters { uint crossEmitters[]; };
+layout(binding = DISTANCE_TEXTURE_UNIT) uniform sampler2DArray distances;
+uniform uint first, crossEmitterCount;
+uniform int resolution, crossEmitterSide;
+uniform float sign, nearPlane, farPlane, offset;
+
+// What the sampled static emitters give point x (normal n), seen through gather hemicube h
+// (centre eye): as the shots' reconstruction estimates it, each emitter's exact unoccluded factor
+// times the kernel-weighted share of its shooting points (k_e x k_e) that the hemicube sees
+// (the pixel shows the emitter, or nothing nearer than the point). The pixels of those emitters
+// are left out of the hemicube's sum: a small lamp in a few pixels of it is coarser than the
+// shots that lit the element, and that difference would not cancel from one pose to the next.
+void emittersSeen(uint h, vec3 x, vec3 n, GpuShooter eye, out vec3 shot, out vec3 emitted) {
+  shot = vec3(0.0);
+  emitted = vec3(0.0);
+  const HemicubeFrame f = hemicubeFrame(eye.normal.xyz, eye.normal.w);
+  const float ks = float(crossEmitterSide);
+  for (uint i = 0u; i < crossEmitterCount; ++i) {
+    const uint l = crossEmitters[i];
+    const GpuPatch L = patches[l];
+    const int corners = int(L.corners[0].w);
+    const float factor = pointToPolygonFormFactor(x, n, L.corners, corners, L.normalArea.xyz);
+    if (!(factor > 0.0)) continue;
+    float seen = 0.0, all = 0.0;
+    for (int j = 0; j < crossEmitterSide * crossEmitterSide; ++j) {
+      const vec3 y = polygonPoint(L.corners, corners, (float(j % crossEmitterSide) + 0.5) / ks,
+                                  (float(j / crossEmitterSide) + 0.5) / ks);
+      const vec3 d = y - x;
+      const float r2 = dot(d, d);
+      const float g = max(dot(n, d), 0.0) * max(-dot(L.normalArea.xyz, d), 0.0) / (r2 * r2);
+      if (!(g > 0.0)) continue;
+      all += g;
+      const vec3 r = y - eye.eye.xyz;
+      const int face = hemicubeFace(r, f);
+      const vec4 c = hemicubeClip(y, eye.eye.xyz, f, face, nearPlane, farPlane);
+      if (!(c.w > 0.0)) continue;
+      const vec2 pixel = (c.xy / c.w * 0.5 + 0.5) * float(resolution);
+      const ivec3 q = ivec3(clamp(ivec2(floor(pixel)), ivec2(0), ivec2(resolution - 1)), int(h) * 5 + face);
+      const uint item = texelFetch(items, q, 0).r;
+      const bool shows = item != 0u && (item - 1u == l || crossPatches[item - 1u].y == l);
+      if (shows || texelFetch(distances, q, 0).r > length(r) * (1.0 - 1.0 / float(resolution))) seen += g;
+    }
+    if (!(seen > 0.0)) continue;
+    shot += factor * seen / all * amounts[2u * l].rgb;
+    emitted += factor * seen / all * amounts[2u * l + 1u].rgb;
+  }
+}
 
 void main() {
   const uint local = gl_WorkGroupID.x, tid = gl_LocalInvocationIndex, e = list[first + local];
@@ -263,9 +307,17 @@ void main() {
     const vec3 w = hemicubePixelDirection(hemicubeFrame(eye.normal.xyz, eye.normal.w), face, x, y, resolution);
     uint p = item - 1u;
     if (dot(patches[p].normalArea.xyz, w) >= 0.0) p = crossPatches[p].y;
-    if (p == 0xFFFFFFFFu || (crossPatches[p].x & 1u) != 0u) continue;
+    if (p == 0xFFFFFFFFu || crossPatches[p].x != 0u) continue;  // moved, or an emitter sampled below
     shot += deltas[d] * amounts[2u * p].rgb;
     emitted += deltas[d] * amounts[2u * p + 1u].rgb;
+  }
+  if (tid < uint(GATHER_SAMPLES)) {
+    const GpuShooter eye = shooters[local * GATHER_SAMPLES + tid];
+    const GpuElement el = elements[e];
+    vec3 shotHere, emittedHere;
+    emittersSeen(local * GATHER_SAMPLES + tid, eye.eye.xyz - offset * el.normalArea.xyz, el.normalArea.xyz, eye,
+                 shotHere, emittedHere);
+    shot += shotHere, emitted += emittedHere;
   }
   shot = groupSum(shot, tid) / float(GATHER_SAMPLES);
   emitted = groupSum(emitted, tid) / float(GATHER_SAMPLES);
@@ -405,6 +457,9 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system,
     glUniform1f(glGetUniformLocation(rule.eyes->id(), "offset"), offset_);
     rule.integrate->use();
     glUniform1i(glGetUniformLocation(rule.integrate->id(), "resolution"), s_.gatherResolution);
+    glUniform1f(glGetUniformLocation(rule.integrate->id(), "nearPlane"), gather_->nearPlane());
+    glUniform1f(glGetUniformLocation(rule.integrate->id(), "farPlane"), gather_->farPlane());
+    glUniform1f(glGetUniformLocation(rule.integrate->id(), "offset"), offset_);
   }
   Context::check("setting up GPU cross-redistribution");
 }
@@ -444,8 +499,10 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
   glDeleteBuffers(1, &emitterList_);
   emitterList_ =
       storageBuffer(emitters.data(), std::max<size_t>(emitters.size(), 1) * sizeof(uint32_t));
-  glUseProgram(reconstruction_);
-  glUniform1ui(glGetUniformLocation(reconstruction_, "crossEmitterCount"), GLuint(emitters.size()));
+  for (const GLuint program : {reconstruction_, rules_[0].integrate->id(), rules_[1].integrate->id()}) {
+    glUseProgram(program);
+    glUniform1ui(glGetUniformLocation(program, "crossEmitterCount"), GLuint(emitters.size()));
+  }
   uploadPatchTable();
   if (sameSet) return;
   std::vector<uint32_t> movedFaces;
@@ -524,6 +581,11 @@ void CrossRedistribution::setReconstructionUniforms(GLuint program, int emitterS
   glUniform1i(glGetUniformLocation(program, "crossGrid"), s_.grid);
   glUniform1f(glGetUniformLocation(program, "backNear"), back_->nearPlane());
   glUniform1f(glGetUniformLocation(program, "backFar"), back_->farPlane());
+  for (const GatherRule& rule : rules_) {
+    rule.integrate->use();
+    glUniform1i(glGetUniformLocation(rule.integrate->id(), "crossEmitterSide"), emitterSide);
+    glUniform1ui(glGetUniformLocation(rule.integrate->id(), "crossEmitterCount"), 0u);
+  }
 }
 
 void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states,
@@ -535,6 +597,7 @@ void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patche
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossPatchBinding, patchTable_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossDeltaBinding, deltas_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, gatherEyes_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossEmitterBinding, emitterList_);
   for (const GatherRule& rule : rules_) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionListBinding, rule.list);
     const size_t perBatch = size_t(std::max(gatherCapacity_ / rule.samples, 1));

@@ -89,7 +89,7 @@ class CrossRedistribution {
   void renderBackHemicubes(int count);
   void bindForReconstruction() const;
   // The reconstruction program's fixed uniforms; `emitterSide`: k_e, the emitters' hemicubes a
-  // side (their shots' points, which emittersHidden samples again).
+  // side (their shots' points, which emittersHidden and the moved elements' gather sample again).
   void setReconstructionUniforms(GLuint program, int emitterSide);
 
   // R_g(C, M): every moved element gathers the shot radiosity (`amounts`, two vec4 a patch, as
