@@ -499,7 +499,8 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
   glDeleteBuffers(1, &emitterList_);
   emitterList_ =
       storageBuffer(emitters.data(), std::max<size_t>(emitters.size(), 1) * sizeof(uint32_t));
-  for (const GLuint program : {reconstruction_, rules_[0].integrate->id(), rules_[1].integrate->id()}) {
+  for (const GLuint program :
+       {reconstruction_, rules_[0].integrate->id(), rules_[1].integrate->id()}) {
     glUseProgram(program);
     glUniform1ui(glGetUniformLocation(program, "crossEmitterCount"), GLuint(emitters.size()));
   }

@@ -8,7 +8,8 @@
 //    (its front hemicubes, as a progressive shot);
 //  - C -> M, R_g(C, M): each moved element gathers the shot radiosity of C through a hemicube at
 //    its centre (2 x 2 hemicubes, the reconstruction's rule, for elements wide beside their
-//    distance to a light), where it was (subtracted) and where it is (added);
+//    distance to a light), where it was (subtracted) and where it is (added); the static
+//    emitters not from their pixels but as their shots reached it (below);
 //  - C -> C, the cross projection R_x(C, C) (001 Eq. 3.3.1): light from C to a static receiver i
 //    changes only where it passes through a moved patch j, at one of its places. j's appearance
 //    takes away F'[i <- j] P(C, j', i) and its departure gives back F[i <- j] P(C, j, i), where
@@ -21,7 +22,8 @@
 //  - static emitters are not left to the back hemicube's rays: the light a moved patch hides of
 //    each is its exact unoccluded factor times the share of the points the emitter's own shots
 //    came from whose segment to i crosses j. 001's known weakness, small bright lights
-//    undersampled by the rays (notes 3.7), was most of the error;
+//    undersampled by the rays (notes 3.7), was most of the error. The moved elements' gathers
+//    take them the same way, with the gather hemicube for the visibility of each point;
 //  - P is evaluated at each of the receiver's 2 x 2 points with that point's share of F, not once
 //    per element;
 //  - rays are marched through the back hemicube (the seed's single reprojection step, depth along
