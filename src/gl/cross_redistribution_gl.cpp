@@ -18,15 +18,32 @@
 
 namespace luxel::gl {
 
-const char* const kCrossProjectionGlsl = R"(
+namespace {
+
+// Point j of the k_e x k_e that a static emitter L's shots were drawn from (its hemicubes'
+// centres, less their lift), and its weight seen from x (normal n): the point kernel
+// cos cos / r^2, as the reconstruction weighs a shooter's hemicubes.
+const char* kShootingPointsGlsl = R"(
+layout(std430, binding = CROSS_EMITTER_BINDING) readonly buffer CrossEmitters { uint crossEmitters[]; };
+uniform int crossEmitterSide;
+uniform uint crossEmitterCount;
+float shootingPoint(GpuPatch L, int j, vec3 x, vec3 n, out vec3 y) {
+  const float ks = float(crossEmitterSide);
+  y = polygonPoint(L.corners, int(L.corners[0].w), (float(j % crossEmitterSide) + 0.5) / ks,
+                   (float(j / crossEmitterSide) + 0.5) / ks);
+  const vec3 d = y - x;
+  const float r2 = dot(d, d);
+  return max(dot(n, d), 0.0) * max(-dot(L.normalArea.xyz, d), 0.0) / (r2 * r2);
+}
+)";
+
+const char* kCrossProjectionCode = R"(
 layout(binding = BACK_ITEM_TEXTURE_UNIT) uniform usampler2DArray backItems;
 layout(binding = BACK_DISTANCE_TEXTURE_UNIT) uniform sampler2DArray backDistances;
 layout(std430, binding = BACK_SHOOTER_BINDING) readonly buffer BackShooters { GpuShooter backShooters[]; };
 layout(std430, binding = CROSS_PATCH_BINDING) readonly buffer CrossPatches { uvec2 crossPatches[]; };
 layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer CrossAmounts { vec4 crossAmounts[]; };
-layout(std430, binding = CROSS_EMITTER_BINDING) readonly buffer CrossEmitters { uint crossEmitters[]; };
-uniform int backResolution, crossGrid, crossEmitterSide;
-uniform uint crossEmitterCount;
+uniform int backResolution, crossGrid;
 uniform float backNear, backFar;
 
 // The pixel of back hemicube k (frame f, centre eye) that direction r falls on; z < 0: none.
@@ -132,7 +149,6 @@ bool segmentCrosses(vec3 x, vec3 y, GpuPatch J) {
 void emittersHidden(vec3 x, vec3 n, GpuPatch J, out vec3 shot, out vec3 emitted) {
   shot = vec3(0.0);
   emitted = vec3(0.0);
-  const float ks = float(crossEmitterSide);
   vec3 toJ;
   float radiusJ;
   boundingSphere(J, toJ, radiusJ);
@@ -157,10 +173,8 @@ void emittersHidden(vec3 x, vec3 n, GpuPatch J, out vec3 shot, out vec3 emitted)
     if (!(f > 0.0)) continue;
     float hidden = 0.0, all = 0.0;
     for (int j = 0; j < crossEmitterSide * crossEmitterSide; ++j) {
-      const vec3 y = polygonPoint(L.corners, corners, (float(j % crossEmitterSide) + 0.5) / ks,
-                                  (float(j / crossEmitterSide) + 0.5) / ks);
-      const vec3 d = y - x;
-      const float r2 = dot(d, d), g = max(dot(n, d), 0.0) * max(-dot(L.normalArea.xyz, d), 0.0) / (r2 * r2);
+      vec3 y;
+      const float g = shootingPoint(L, j, x, n, y);
       if (!(g > 0.0)) continue;
       all += g;
       if (segmentCrosses(x, y, J)) hidden += g;
@@ -200,6 +214,12 @@ void crossProjected(uint k, vec3 x, vec3 n, GpuPatch P, out vec3 shot, out vec3 
   if (weight > 0.0) shot /= weight, emitted /= weight;
 }
 )";
+
+}  // namespace
+
+std::string crossProjectionGlsl() {
+  return std::string(kShootingPointsGlsl) + kCrossProjectionCode;
+}
 
 namespace {
 
@@ -244,10 +264,9 @@ layout(std430, binding = CROSS_DELTA_BINDING) readonly buffer Deltas { float del
 layout(std430, binding = REDISTRIBUTION_LIST_BINDING) readonly buffer List { uint list[]; };
 layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer Amounts { vec4 amounts[]; };
 layout(std430, binding = CROSS_PATCH_BINDING) readonly buffer CrossPatches { uvec2 crossPatches[]; };
-layout(std430, binding = CROSS_EMITTER_BINDING) readonly buffer CrossEmitters { uint crossEmitters[]; };
 layout(binding = DISTANCE_TEXTURE_UNIT) uniform sampler2DArray distances;
-uniform uint first, crossEmitterCount;
-uniform int resolution, crossEmitterSide;
+uniform uint first;
+uniform int resolution;
 uniform float sign, nearPlane, farPlane, offset;
 
 // What the sampled static emitters give point x (normal n), seen through gather hemicube h
@@ -260,7 +279,6 @@ void emittersSeen(uint h, vec3 x, vec3 n, GpuShooter eye, out vec3 shot, out vec
   shot = vec3(0.0);
   emitted = vec3(0.0);
   const HemicubeFrame f = hemicubeFrame(eye.normal.xyz, eye.normal.w);
-  const float ks = float(crossEmitterSide);
   for (uint i = 0u; i < crossEmitterCount; ++i) {
     const uint l = crossEmitters[i];
     const GpuPatch L = patches[l];
@@ -269,11 +287,8 @@ void emittersSeen(uint h, vec3 x, vec3 n, GpuShooter eye, out vec3 shot, out vec
     if (!(factor > 0.0)) continue;
     float seen = 0.0, all = 0.0;
     for (int j = 0; j < crossEmitterSide * crossEmitterSide; ++j) {
-      const vec3 y = polygonPoint(L.corners, corners, (float(j % crossEmitterSide) + 0.5) / ks,
-                                  (float(j / crossEmitterSide) + 0.5) / ks);
-      const vec3 d = y - x;
-      const float r2 = dot(d, d);
-      const float g = max(dot(n, d), 0.0) * max(-dot(L.normalArea.xyz, d), 0.0) / (r2 * r2);
+      vec3 y;
+      const float g = shootingPoint(L, j, x, n, y);
       if (!(g > 0.0)) continue;
       all += g;
       const vec3 r = y - eye.eye.xyz;
@@ -452,7 +467,7 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system,
                                                 preamble + samples + kGatherEyesCompute);
     rule.integrate = std::make_unique<ShaderProgram>(
         "cross-redistribution gather",
-        preamble + samples + kGroupSumGlsl + kGatherIntegrateCompute);
+        preamble + samples + kGroupSumGlsl + kShootingPointsGlsl + kGatherIntegrateCompute);
     rule.eyes->use();
     glUniform1f(glGetUniformLocation(rule.eyes->id(), "offset"), offset_);
     rule.integrate->use();

@@ -60,10 +60,12 @@ class LayeredHemicubes;
 class ShaderProgram;
 
 // GLSL for the reconstruction pass: crossProjected(k, x, n, P, shot, emitted), the mean shot
-// radiosity and first-shot emission of the static patches that point x (normal n) sees through
-// the k-th moved patch P of the pass, from back hemicube k; crossPatches[p] = (moved, twin patch).
-// Needs kHemicubeGlsl, the preamble's structs and a `patches` buffer.
-extern const char* const kCrossProjectionGlsl;
+// radiosity and first-shot emission of the static patches (but the sampled emitters) that point x
+// (normal n) sees through the k-th moved patch P of the pass, from back hemicube k; and
+// emittersHidden(x, n, P, shot, emitted), the sampled emitters' irradiance P hides;
+// crossPatches[p] = (moved | sampled emitter << 1, twin patch). Needs kHemicubeGlsl,
+// kFormFactorGlsl, the preamble's structs and a `patches` buffer.
+std::string crossProjectionGlsl();
 
 // The GPU objects of the passes above that progressive shooting does not already have. Needs a
 // current OpenGL 4.5 context; the solver owns one per solve.

@@ -628,7 +628,7 @@ class GlProgressiveSolver final : public Solver {
     const std::string preamble = glslPreamble() + kHemicubeGlsl + kFormFactorGlsl + kBuffersGlsl;
     power_ = std::make_unique<ShaderProgram>("patch power", preamble + kPowerCompute);
     select_ = std::make_unique<ShaderProgram>("shooter selection", preamble + kSelectCompute);
-    reconstruct_ = std::make_unique<ShaderProgram>("shot reconstruction", preamble + kCrossProjectionGlsl + kReconstructCompute);
+    reconstruct_ = std::make_unique<ShaderProgram>("shot reconstruction", preamble + crossProjectionGlsl() + kReconstructCompute);
     auto uniform = [](const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id(), name); };
     power_->use();
     glUniform1ui(uniform(*power_, "patchCount"), GLuint(np));
