@@ -48,11 +48,7 @@ uniform float backNear, backFar;
 
 // The pixel of back hemicube k (frame f, centre eye) that direction r falls on; z < 0: none.
 ivec3 backPixel(uint k, HemicubeFrame f, vec3 eye, vec3 r) {
-  const int face = hemicubeFace(r, f);
-  const vec4 c = hemicubeClip(eye + r, eye, f, face, backNear, backFar);
-  if (!(c.w > 0.0)) return ivec3(-1);
-  const vec2 pixel = (c.xy / c.w * 0.5 + 0.5) * float(backResolution);
-  return ivec3(clamp(ivec2(floor(pixel)), ivec2(0), ivec2(backResolution - 1)), int(k) * 5 + face);
+  return hemicubePixelAt(eye + r, eye, f, backNear, backFar, backResolution, int(k));
 }
 
 // The patch of the static surface a back hemicube shows at `q` that faces the viewer looking
@@ -86,10 +82,13 @@ uint marchedPatch(uint k, HemicubeFrame f, vec3 eye, vec3 q, vec3 d) {
   // 001's step first: where the parallel ray from the centre meets a surface. When the ray from q
   // lies on that surface there too (within a pixel's depth), that is its hit: the common case of
   // a wall behind the patch, settled with two fetches.
+  // Where the parallel ray meets nothing (an opening to the sky), the ray from q is taken to
+  // meet nothing either, as 001 did: marching those rays as well costs several times the pass
+  // and changes little (docs/algorithms.md, "Dynamic radiosity").
   const ivec3 parallel = backPixel(k, f, eye, d);
   if (parallel.z < 0) return 0xFFFFFFFFu;
   const float guess = texelFetch(backDistances, parallel, 0).r;
-  if (!(guess < backFar)) return 0xFFFFFFFFu;  // nothing behind the patch that way
+  if (!(guess < backFar)) return 0xFFFFFFFFu;
   const float off = behindBy(k, f, eye, q + guess * d - eye, pixel);
   if (pixel.z >= 0 && abs(off) <= 2.0 * pixelAngle * length(q + guess * d - eye)) return facingPatch(pixel, d);
   const int steps = 32;
@@ -244,13 +243,8 @@ void main() {
 #else
   const vec3 x = polygonPoint(el.corners, int(el.corners[0].w), 0.25 + 0.5 * float(q & 1u), 0.25 + 0.5 * float(q >> 1));
 #endif
-  GpuShooter s;
-  s.eye = vec4(x + offset * el.normalArea.xyz, 0.0);
-  s.normal = vec4(el.normalArea.xyz, hemicubeTurn(e, q, 0x5EEDu));
-  s.unshot = vec4(0.0);
-  s.emission = vec4(0.0);
-  s.ids = uvec4(e, 1u, 0u, 0u);
-  shooters[i] = s;
+  shooters[i] = GpuShooter(vec4(x + offset * el.normalArea.xyz, 0.0), vec4(el.normalArea.xyz, hemicubeTurn(e, q, 0x5EEDu)),
+                           vec4(0.0), vec4(0.0), uvec4(e, 1u, 0u, 0u));
 }
 )";
 
@@ -291,15 +285,11 @@ void emittersSeen(uint h, vec3 x, vec3 n, GpuShooter eye, out vec3 shot, out vec
       const float g = shootingPoint(L, j, x, n, y);
       if (!(g > 0.0)) continue;
       all += g;
-      const vec3 r = y - eye.eye.xyz;
-      const int face = hemicubeFace(r, f);
-      const vec4 c = hemicubeClip(y, eye.eye.xyz, f, face, nearPlane, farPlane);
-      if (!(c.w > 0.0)) continue;
-      const vec2 pixel = (c.xy / c.w * 0.5 + 0.5) * float(resolution);
-      const ivec3 q = ivec3(clamp(ivec2(floor(pixel)), ivec2(0), ivec2(resolution - 1)), int(h) * 5 + face);
+      const ivec3 q = hemicubePixelAt(y, eye.eye.xyz, f, nearPlane, farPlane, resolution, int(h));
+      if (q.z < 0) continue;
       const uint item = texelFetch(items, q, 0).r;
       const bool shows = item != 0u && (item - 1u == l || crossPatches[item - 1u].y == l);
-      if (shows || texelFetch(distances, q, 0).r > length(r) * (1.0 - 1.0 / float(resolution))) seen += g;
+      if (shows || texelFetch(distances, q, 0).r > length(y - eye.eye.xyz) * (1.0 - 1.0 / float(resolution))) seen += g;
     }
     if (!(seen > 0.0)) continue;
     shot += factor * seen / all * amounts[2u * l].rgb;
@@ -350,7 +340,8 @@ void main() {
 // An element is near a light, and gathers with 2 x 2 hemicubes, when it is wider than this share
 // of its distance to the nearest emitting patch (from its centre to the patch's bounding sphere):
 // the GPU test's box 2 cm under the lamp is; seed 001's boxes 8 cm under it are not, and there one
-// hemicube gathers as well as four.
+// hemicube gathers as well as four. Decided where the set stands when it first moves: an element
+// keeps its gather's hemicubes from move to move, so that each move's two gathers still cancel.
 constexpr float kNearLight = 1.0f;
 
 // Up to this many static emitting patches are sampled exactly behind each moved patch
@@ -537,7 +528,6 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
       radius = std::max(radius, glm::length(patch.polygon.v[size_t(c)] - patch.centroid));
     lights.emplace_back(patch.centroid, radius);
   }
-  movedElements_ = 0;
   for (GatherRule& rule : rules_) rule.elements.clear();
   for (uint32_t e = 0; e < set.elements.size(); ++e) {
     if (!moved_[set.elements[e].patch]) continue;
@@ -549,7 +539,6 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
     for (const glm::vec4& l : lights)
       distance = std::min(distance, std::max(glm::length(Vec3(l) - centre) - l.w, 0.0f));
     rules_[width > kNearLight * distance ? 1 : 0].elements.push_back(e);
-    ++movedElements_;
   }
   for (GatherRule& rule : rules_) {
     glDeleteBuffers(1, &rule.list);
@@ -578,7 +567,6 @@ void CrossRedistribution::geometryMoved() {
 void CrossRedistribution::renderBackHemicubes(int count) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, backShooters_);
   back_->render(0, count);
-  hemicubes_ += uint64_t(count);
 }
 
 void CrossRedistribution::bindForReconstruction() const {
@@ -632,7 +620,6 @@ void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patche
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
       glDispatchCompute(GLuint(count), 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-      hemicubes_ += uint64_t(count * rule.samples);
     }
   }
   Context::check("GPU cross-redistribution: the moved elements' gather");

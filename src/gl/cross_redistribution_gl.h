@@ -102,9 +102,6 @@ class CrossRedistribution {
   // unshot and direct light). Leaves the bindings it used changed: the caller binds its own again.
   void gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states, GLuint amounts);
 
-  // Hemicubes rendered so far: back ones and gathers.
-  uint64_t hemicubesRendered() const { return hemicubes_; }
-  size_t movedElements() const { return movedElements_; }
   bool moved(uint32_t patch) const { return moved_[patch] != 0; }
   // Whether the moved set, as begin() last saw it, shows no one-sided face's back outside (every
   // edge of such a face shared within the set): a closed object, or two-sided sheets. The cross
@@ -125,7 +122,6 @@ class CrossRedistribution {
   std::vector<uint8_t> moved_;           // per patch
   std::vector<uint8_t> sampledEmitter_;  // per patch: sampled exactly (emittersHidden)
   GLuint reconstruction_ = 0, emitterList_ = 0;
-  size_t movedElements_ = 0;
   bool closed_ = true;
   // The moved elements that gather with one hemicube at their centre, and those near a light
   // that gather with 2 x 2 (the .cpp's kNearLight): their list and their passes.
@@ -139,7 +135,6 @@ class CrossRedistribution {
   int gatherCapacity_ = 0;  // hemicubes a gather batch
   std::unique_ptr<LayeredHemicubes> back_, gather_;
   GLuint patchTable_ = 0, backShooters_ = 0, gatherEyes_ = 0, deltas_ = 0;
-  uint64_t hemicubes_ = 0;
 };
 
 }  // namespace luxel::gl

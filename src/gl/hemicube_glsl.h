@@ -47,6 +47,17 @@ vec4 hemicubeClip(vec3 w, vec3 eye, HemicubeFrame f, int face, float near, float
   return vec4(dot(s, r), dot(u, r), (-(far + near) * zv - 2.0 * far * near) / (far - near), -zv);
 }
 
+// The pixel of hemicube `hemicube` (its layers 5 hemicube .. 5 hemicube + 4; centre eye, frame f,
+// `resolution` pixels a side) that world point w falls on: the one nearest the projection. z < 0
+// when w lies behind every face's plane.
+ivec3 hemicubePixelAt(vec3 w, vec3 eye, HemicubeFrame f, float near, float far, int resolution, int hemicube) {
+  const int face = hemicubeFace(w - eye, f);
+  const vec4 c = hemicubeClip(w, eye, f, face, near, far);
+  if (!(c.w > 0.0)) return ivec3(-1);
+  const vec2 pixel = (c.xy / c.w * 0.5 + 0.5) * float(resolution);
+  return ivec3(clamp(ivec2(floor(pixel)), ivec2(0), ivec2(resolution - 1)), hemicube * 5 + face);
+}
+
 // Pixel k of those a hemicube integrates, the top face's then the upper halves of the four
 // sides': its face, column x, row y and index d into the delta form factors (top table, then
 // the side table, row 0 at the base of the upper half).

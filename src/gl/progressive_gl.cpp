@@ -314,16 +314,13 @@ float seenBy(uint h, vec3 x, vec3 n, uint item, uint ownFace) {
   GpuShooter s = shooters[h];
   HemicubeFrame f = hemicubeFrame(s.normal.xyz, s.normal.w);
   vec3 r = x - s.eye.xyz;
-  int face = hemicubeFace(r, f);
-  vec4 c = hemicubeClip(x, s.eye.xyz, f, face, nearPlane, farPlane);
-  if (c.w <= 0.0) return 0.0;
   // The pixel nearest the projection decides. Any of the four nearest (001's rule) shrinks every
   // shadow by up to a pixel: the Cornell box's floor came out 10% bright at 64 pixels, and even
   // kept to surfaces steeper than 45 degrees it left the indirect-light room 20% bright. A
   // bilinear share of the four measured about the same as the nearest (Cornell 0.0185 against
   // 0.0200, the indirect-light room as dark).
-  vec2 pixel = (c.xy / c.w * 0.5 + 0.5) * float(resolution);
-  ivec3 q = ivec3(clamp(ivec2(floor(pixel)), ivec2(0), ivec2(resolution - 1)), int(h) * 5 + face);
+  const ivec3 q = hemicubePixelAt(x, s.eye.xyz, f, nearPlane, farPlane, resolution, int(h));
+  if (q.z < 0) return 0.0;
   float d = length(r);
   float seenAt = texelFetch(distances, q, 0).r;
   // Depth (003): the pixel's centre ray meets x's plane up to about a pixel's angle times the
@@ -482,25 +479,17 @@ void main() {
   const float ks = float(samplesPerSide);
   vec3 x = polygonPoint(P.corners, int(P.corners[0].w), (float(j % samplesPerSide) + 0.5) / ks,
                         (float(j / samplesPerSide) + 0.5) / ks);
-  GpuShooter s;
-  s.eye = vec4(x + offset * P.normalArea.xyz, 0.0);
-  s.normal = vec4(P.normalArea.xyz, hemicubeTurn(p, j, 0x5EEDu));
-  s.unshot = vec4(emissionOnly ? (emissionAsLight ? sign * amounts[2u * p + 1u].rgb : vec3(0.0)) : sign * amounts[2u * p].rgb, 0.0);
-  s.emission = vec4(sign * amounts[2u * p + 1u].rgb, 0.0);
-  s.ids = uvec4(p, 1u, 0u, 0u);
-  shooters[r] = s;
+  const vec3 shot = emissionOnly ? (emissionAsLight ? amounts[2u * p + 1u].rgb : vec3(0.0)) : amounts[2u * p].rgb;
+  shooters[r] = GpuShooter(vec4(x + offset * P.normalArea.xyz, 0.0), vec4(P.normalArea.xyz, hemicubeTurn(p, j, 0x5EEDu)),
+                           vec4(sign * shot, 0.0), vec4(sign * amounts[2u * p + 1u].rgb, 0.0), uvec4(p, 1u, 0u, 0u));
   if (r == 0u) state.chosen = count;
   if (crossing && j == 0u) {
     const int corners = int(P.corners[0].w);
     vec3 centre = vec3(0.0);
     for (int c = 0; c < corners; ++c) centre += P.corners[c].xyz / float(corners);
-    GpuShooter b;
-    b.eye = vec4(centre - offset * P.normalArea.xyz, 0.0);
-    b.normal = vec4(-P.normalArea.xyz, hemicubeTurn(p, 0u, 0xBAC5u));
-    b.unshot = vec4(0.0);
-    b.emission = vec4(0.0);
-    b.ids = uvec4(p, 1u, 0u, 0u);
-    backShooters[k] = b;
+    backShooters[k] = GpuShooter(vec4(centre - offset * P.normalArea.xyz, 0.0),
+                                 vec4(-P.normalArea.xyz, hemicubeTurn(p, 0u, 0xBAC5u)), vec4(0.0), vec4(0.0),
+                                 uvec4(p, 1u, 0u, 0u));
   }
 }
 )";
