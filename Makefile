@@ -29,11 +29,11 @@ asan: deps
 	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLUXEL_SANITIZE=ON $(CMAKE_ARGS)
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow -E '^Gl'
+	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow -E '(^|/)Gl'
 	# Mesa's GL driver is unloaded at exit holding allocations LeakSanitizer can only attribute to
 	# an "unknown module", so the GL tests run with leak detection off and every other check on.
 	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow -R '^Gl'
+	  ctest --test-dir $(BUILD_ASAN) --output-on-failure -j $(JOBS) -LE slow -R '(^|/)Gl'
 
 # libFuzzer harnesses (fuzz/) built with clang, ASan and UBSan, each run FUZZ_SECONDS (docs/fuzzing.md).
 fuzz: deps
