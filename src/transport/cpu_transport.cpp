@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -179,12 +180,13 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
   for (int k = 0; k < 2; ++k) movedLo_[k] = lo[k], movedHi_[k] = hi[k];
   movedSolids_.clear();
   for (uint32_t o : objects) {
-    std::vector<Polygon> was;
+    std::vector<Polygon> was, now;
     float moved = 0.0f;
     for (uint32_t f = 0, k = 0; f < surfaces_.faces.size(); ++f) {
       if (!movedFace(f)) continue;
       if (scene_.meshes[surfaces_.faces[f].mesh].object == o) {
         was.push_back(before[k]);
+        now.push_back(after[k]);
         for (int c = 0; c < before[k].count; ++c)
           moved = std::max(moved, glm::length(after[k].v[size_t(c)] - before[k].v[size_t(c)]));
       }
@@ -193,12 +195,12 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
     // The faces lie within the tolerance of the solid's planes; Embree's verdicts are sure a few
     // ray offsets away from them.
     const float tolerance = rayOffset_;
-    ConvexSolid solid = ConvexSolid::fromPolygons(was, tolerance);
-    if (!solid.valid()) {
+    ConvexSolid solidWas = ConvexSolid::fromPolygons(was, tolerance), solidNow = ConvexSolid::fromPolygons(now, tolerance);
+    if (!solidWas.valid() || !solidNow.valid()) {
       movedSolids_.clear();
       break;
     }
-    movedSolids_.push_back({std::move(solid), moved, tolerance + 10.0f * rayOffset_});
+    movedSolids_.push_back({std::move(solidWas), std::move(solidNow), moved, tolerance + 10.0f * rayOffset_});
   }
   for (uint32_t p = 0; p < surfaces_.patches.size(); ++p)
     if (movedFace(surfaces_.patches[p].face))
@@ -405,7 +407,12 @@ void CpuTransport::forEachPairRay(uint32_t element, uint32_t patch, Visit&& visi
     const float cosE = glm::dot(e.normal, d), cosP = -glm::dot(p.normal, d);
     if (cosE <= 0.0f || cosP <= 0.0f) continue;
     const float r2 = glm::dot(d, d);
-    visit(x + e.normal * rayOffset_, y + p.normal * rayOffset_, cosE * cosP / (r2 * r2));
+    // A visitor that returns false has seen enough of this pair.
+    if constexpr (std::is_same_v<std::invoke_result_t<Visit&, Vec3, Vec3, float>, bool>) {
+      if (!visit(x + e.normal * rayOffset_, y + p.normal * rayOffset_, cosE * cosP / (r2 * r2))) return;
+    } else {
+      visit(x + e.normal * rayOffset_, y + p.normal * rayOffset_, cosE * cosP / (r2 * r2));
+    }
   }
 }
 
@@ -474,17 +481,40 @@ void CpuTransport::computePairs(std::span<const Pair> pairs) {
 }
 
 bool CpuTransport::movedRaySettled(Vec3 a, Vec3 b, float reach) const {
-  // Closed convex movers settle most rays without tracing: a ray that misses the solid grown by
-  // the distance its corners moved misses it at both places, and one that passes deeper than
-  // that meets it at both. The rest, which graze it, are traced against the moved faces.
+  // A ray that misses the solid grown by `reach` misses it wherever it stands within reach, and
+  // one that passes deeper than that meets it everywhere.
   if (movedSolids_.empty()) return false;
   bool clear = true;
   for (const MovedSolid& m : movedSolids_) {
-    const ConvexSolid::Segment s = m.was.classify(a, b, (reach < 0.0f ? m.moved : reach) + m.pad);
+    const ConvexSolid::Segment s = m.was.classify(a, b, reach + m.pad);
     if (s == ConvexSolid::Segment::Crosses) return true;
     clear &= s == ConvexSolid::Segment::Clear;
   }
   return clear;
+}
+
+CpuTransport::MoveVerdict CpuTransport::moveVerdict(Vec3 a, Vec3 b) const {
+  // Closed convex movers decide most rays without tracing, at each place on its own: a ray that
+  // crosses one solid is blocked there, one that misses every solid (grown by the rounding pad)
+  // is clear. Only rays that graze a solid, at either place, are traced against the moved faces.
+  // (Classifying against the old place grown by the whole move, as certificates do, leaves every
+  // ray within that distance of the surface unsure: half of a 10-degree turn's rays.)
+  if (movedSolids_.empty()) return MoveVerdict::Unsure;
+  using Segment = ConvexSolid::Segment;
+  auto at = [&](const ConvexSolid MovedSolid::*place) {
+    Segment verdict = Segment::Clear;
+    for (const MovedSolid& m : movedSolids_) {
+      const Segment s = (m.*place).classify(a, b, m.pad);
+      if (s == Segment::Crosses) return s;
+      if (s == Segment::Unsure) verdict = s;
+    }
+    return verdict;
+  };
+  const Segment was = at(&MovedSolid::was);
+  if (was == Segment::Unsure) return MoveVerdict::Unsure;
+  const Segment now = at(&MovedSolid::now);
+  if (now == Segment::Unsure) return MoveVerdict::Unsure;
+  return was == now ? MoveVerdict::Same : MoveVerdict::Changed;
 }
 
 void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, std::span<uint8_t> changed, float certify,
@@ -509,6 +539,7 @@ void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, 
     std::vector<RTCRay>& before = ws.rays;
     std::vector<RTCRay>& after = ws.movedRays;
     uint32_t first[kPairsPerBatch + 1];
+    uint8_t preset[kPairsPerBatch];  // pairs whose change the solids proved
     for (size_t begin = r.begin(); begin < r.end(); begin += kPairsPerBatch) {
       const size_t count = std::min(kPairsPerBatch, r.end() - begin);
       before.clear();
@@ -517,10 +548,19 @@ void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, 
         // The widest reach every ray so far is settled for: certified levels are tried from the
         // widest down, and a ray settled for none of them is settled (or traced) for this move.
         int level = certifying ? kCertificateLevels : 0;
+        bool differs = false;
         forEachPairRay(pairs[begin + i].element, pairs[begin + i].patch, [&](Vec3 a, Vec3 b, float) {
           while (level > 0 && !movedRaySettled(a, b, std::ldexp(certify, level - 1))) --level;
-          if (level == 0 && !movedRaySettled(a, b)) before.push_back(makeRay(a, b - a, 0.0f, 1.0f));
+          if (level > 0) return true;
+          switch (moveVerdict(a, b)) {
+            case MoveVerdict::Same: return true;
+            case MoveVerdict::Changed: return !(differs = true);  // the pair is recomputed: stop
+            case MoveVerdict::Unsure: before.push_back(makeRay(a, b - a, 0.0f, 1.0f)); return true;
+          }
+          return true;
         });
+        if (differs) before.resize(first[i]);  // no need to trace what is already known
+        preset[i] = differs;
         if (certifying) certified[begin + i] = uint8_t(level);
       }
       first[count] = uint32_t(before.size());
@@ -528,7 +568,7 @@ void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, 
       movedBefore_->occluded(before);
       movedAfter_->occluded(after);
       for (size_t i = 0; i < count; ++i) {
-        uint8_t differs = 0;
+        uint8_t differs = preset[i];
         for (uint32_t j = first[i]; j < first[i + 1] && !differs; ++j)
           differs = isOccluded(before[j]) != isOccluded(after[j]);
         changed[begin + i] = differs;
@@ -728,8 +768,14 @@ size_t CpuTransport::updateLightIrradianceAfterMove(std::span<const uint32_t> li
         const Vec3 a(ray.org_x, ray.org_y, ray.org_z), d(ray.dir_x, ray.dir_y, ray.dir_z);
         const float length = glm::length(d) * ray.tfar;
         const Vec3 b = a + d * (std::min(length, reach) / glm::length(d));
-        if (!movedRaySettled(a, b)) before.push_back(ray);
+        const MoveVerdict verdict = moveVerdict(a, b);
+        if (verdict == MoveVerdict::Changed) {
+          again[ei] = 1;
+          break;
+        }
+        if (verdict == MoveVerdict::Unsure) before.push_back(ray);
       }
+      if (again[ei]) continue;
       after = before;
       movedBefore_->occluded(before);
       movedAfter_->occluded(after);

@@ -102,9 +102,12 @@ class CpuTransport final : public Transport {
   // that a move's update checks the finer samples' verdicts too.
   std::vector<std::vector<uint8_t>> refinedLight_;
   // Whether the segment's verdict against the last move's objects is the same wherever they stand
-  // within `reach` of where they were (< 0: within how far each moved in the last move), proved
-  // against their solids without tracing.
-  bool movedRaySettled(Vec3 a, Vec3 b, float reach = -1.0f) const;
+  // within `reach` of where they were, proved against their solids without tracing (certificates).
+  bool movedRaySettled(Vec3 a, Vec3 b, float reach) const;
+  // What the last move did to the segment's verdict against the moved faces, proved against the
+  // movers' solids where they were and where they are; Unsure when it must be traced.
+  enum class MoveVerdict { Same, Changed, Unsure };
+  MoveVerdict moveVerdict(Vec3 a, Vec3 b) const;
   PairVisibility classify(uint32_t receiverPatch, uint32_t sourcePatch);
   // The unoccluded factor A of each pair, by each receiver element's midpoint rule.
   void computeAnalytic(std::span<const Pair> pairs, float* out) const;
@@ -132,10 +135,10 @@ class CpuTransport final : public Transport {
   // Whether any of each patch's elements emits (such pairs take emitterRaysPerPair rays).
   void findEmitters(std::vector<uint8_t>& emits) const;
   std::unique_ptr<RayTracer> movedBefore_, movedAfter_;  // the last move's faces, before and after it
-  // When every object the last move moved is a closed convex solid: each one where it was, how
-  // far its farthest corner moved, and the padding for rounding its verdicts need.
+  // When every object the last move moved is a closed convex solid: each one where it was and
+  // where it is, how far its farthest corner moved, and the padding for rounding its verdicts need.
   struct MovedSolid {
-    ConvexSolid was;
+    ConvexSolid was, now;
     float moved, pad;
   };
   std::vector<MovedSolid> movedSolids_;
@@ -143,7 +146,8 @@ class CpuTransport final : public Transport {
   Vec3 movedLo_[2], movedHi_[2];         // the bounds of their faces before and after it
   uint64_t movedRays_ = 0;                                // rays earlier moves' tracers traced
   // Calls visit(from, to, kernel) for each visibility ray of one pair, deterministic per pair
-  // (computePairs and visibilityChangedByMove cast the same ones), with its point-to-point kernel.
+  // (computePairs and visibilityChangedByMove cast the same ones), with its point-to-point kernel;
+  // a visitor returning bool stops the pair's rays when it returns false.
   template <typename Visit>
   void forEachPairRay(uint32_t element, uint32_t patch, Visit&& visit) const;
   struct ThreadLocal;
