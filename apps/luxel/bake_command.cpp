@@ -21,6 +21,8 @@
 #include "luxel/session.h"
 #include "luxel/solve.h"
 #include "luxel/transfer_lightmap.h"
+#include "baked_glb.h"
+#include "glb_lightmap_pages.h"
 #include "html_page.h"
 #include "out_of_memory.h"
 #include "output_paths.h"
@@ -52,6 +54,20 @@ std::vector<uint8_t> meshesMatching(const Scene& scene, const std::vector<std::s
     }
   }
   return flags;
+}
+
+// Baking a glb that `luxel bake` wrote with lightmaps again keeps its layout: meshes stay on the
+// pages they shared, at the pages' size unless --lightmap-size says otherwise (each mesh's given
+// UVs would otherwise fill a page of its own).
+void keepGlbPages(const std::string& path, const Scene& scene, LightmapRecipe& recipe) {
+  const std::string extension = fs::path(path).extension().string();
+  if (extension != ".glb" && extension != ".gltf") return;
+  const viewer::BakedGlb glb = viewer::readBakedGlb(path);
+  if (!glb.hasLightmaps) return;
+  const viewer::GlbLightmapPages pages = viewer::glbLightmapPages(glb, scene);
+  if (pages.pageSize <= 0) return;
+  recipe.givenUvPages = pages.meshPage;
+  if (recipe.pageSize == 0) recipe.pageSize = pages.pageSize;
 }
 
 }  // namespace
@@ -114,6 +130,7 @@ int runBake(const BakeArgs& a) {
     recipe.texelsPerMetre = a.texelsPerMetre;
     recipe.texelBudget = size_t(a.solve.elements);
     recipe.pageSize = a.lightmapSize;
+    keepGlbPages(a.scene, scene, recipe);
     recipe.solve = so;
     recipe.directional = parseDirectionalMode(a.directional);
     // A transfer bake (--transfer): the transfer, and its lightmaps relit by the scene's distant lights.
@@ -152,9 +169,12 @@ int runBake(const BakeArgs& a) {
     bar.writeTrace();
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!a.quiet) {
-      std::cout << fmt::format("luxel: lightmaps — {} pages of {}², {:.1f} texels per metre, {} texels in {} patches, "
+      // Given UVs (a glb baked before) set their own density; luxel's charts have the atlas's.
+      const std::string density =
+          atlas.texelsPerMetre > 0.0f ? fmt::format("{:.1f} texels per metre", atlas.texelsPerMetre) : "given uvs";
+      std::cout << fmt::format("luxel: lightmaps — {} pages of {}², {}, {} texels in {} patches, "
                                "{} invalid, {} dilated, seams {:.3g} -> {:.3g} ({} edges, {:.3f} s); total {:.3f} s\n",
-                               bake.pages.size(), atlas.pageSize, atlas.texelsPerMetre, bake.texels,
+                               bake.pages.size(), atlas.pageSize, density, bake.texels,
                                bake.surfaces.surfaces.patches.size(), bake.invalidTexels, bake.dilatedTexels,
                                bake.seamMaxBefore, bake.seamMaxAfter, bake.seamEdges, bake.secondsSeams, total);
       if (bake.directional != DirectionalMode::None)

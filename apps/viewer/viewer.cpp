@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 
+#include "glb_lightmap_pages.h"
 #include "luxel/error.h"
 #include "luxel/lightmap.h"
 #include "luxel/render.h"
@@ -614,14 +615,30 @@ void Viewer::buildTexelView() {
   recipe.texelsPerMetre = options_.texelsPerMetre;
   AtlasOptions ao = lightmapAtlasOptions(scene, recipe);
   ao.keepOverlappingUvs = true;
+  // A baked glb's lightmap UVs address its own pages: shown on those, at their size.
+  std::string pagesFrom;
+  if (options_.baked && options_.baked->hasLightmaps) {
+    const GlbLightmapPages pages = glbLightmapPages(*options_.baked, scene);
+    if (pages.pageSize > 0) {
+      ao.givenUvPages = pages.meshPage;
+      ao.pageSize = pages.pageSize;
+      pagesFrom = " (the glb's pages)";
+    } else {
+      messages_.push_back("texels: the glb's lightmap pages differ in size or are not square: each mesh's UVs shown "
+                          "on a page of its own");
+    }
+  }
   const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);
   texels_ = diagnoseTexels(scene, atlas);
   texelsPerMetreShown_ = atlas.texelsPerMetre;
   texelRenderer_ = std::make_unique<TexelRenderer>(scene, session_->surfaces(), atlas, texels_, options_.shaderDir);
-  messages_.push_back(fmt::format("texels: {} on {} page{} of {}^2 at {:.3g} texels/m: {} invalid (red), {} overlapping "
+  // Given UVs set their own density; luxel's charts have the atlas's.
+  const std::string density =
+      atlas.texelsPerMetre > 0.0f ? fmt::format(" at {:.3g} texels/m", atlas.texelsPerMetre) : " from given UVs";
+  messages_.push_back(fmt::format("texels: {} on {} page{} of {}^2{}{}: {} invalid (red), {} overlapping "
                                   "(magenta), {} next to another chart (yellow), {:.2f} s",
                                   texels_.covered, atlas.pageCount, atlas.pageCount == 1 ? "" : "s", atlas.pageSize,
-                                  atlas.texelsPerMetre, texels_.invalid, texels_.overlapping, texels_.bleeding,
+                                  pagesFrom, density, texels_.invalid, texels_.overlapping, texels_.bleeding,
                                   texels_.seconds));
   for (const std::string& w : atlas.warnings) messages_.push_back(w);
 }

@@ -35,6 +35,11 @@ struct AtlasOptions {
   // Given UVs that overlap are kept as they are instead of an error, for diagnostics
   // (luxel/texel_diagnostics.h, luxel view's texels view): a bake of them mixes the faces' light.
   bool keepOverlappingUvs = false;
+  // Meshes whose given UVs address one shared page (an engine's lightmap atlas, or the pages of a
+  // glb that `luxel bake` wrote): per mesh, the page its UVs are on; meshes with the same number
+  // share a page, checked together for overlaps and gutters. Empty, or a negative number: the
+  // mesh's UVs fill a page of their own.
+  std::vector<int> givenUvPages;
 };
 
 struct LightmapAtlas {
@@ -157,6 +162,7 @@ struct LightmapRecipe {
   float texelsPerMetre = 0.0f;
   size_t texelBudget = 0;
   int pageSize = 0;
+  std::vector<int> givenUvPages;  // AtlasOptions::givenUvPages: meshes whose given UVs share pages
   SolveOptions solve;
   DirectionalMode directional = DirectionalMode::None;  // LightmapBakeOptions::directional
 };

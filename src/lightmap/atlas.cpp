@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 
 #include "lightmap/atlas_internal.h"
@@ -51,6 +52,9 @@ float fitDensity(const std::vector<lightmap::Chart>& charts, double area, const 
 LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options) {
   checkOptions(options);
   scene.validate();
+  if (!options.givenUvPages.empty() && options.givenUvPages.size() != scene.meshes.size())
+    throw Error(fmt::format("lightmap atlas: {} shared pages given for the {} meshes of scene '{}'",
+                            options.givenUvPages.size(), scene.meshes.size(), scene.name));
   AtlasOptions o = options;  // with the page size chosen below
   LightmapAtlas atlas;
   atlas.faces.resize(scene.meshes.size());
@@ -95,14 +99,24 @@ LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options
   }
   atlas.pageSize = o.pageSize;
 
-  // Meshes with their own UVs: a page each, as given, first.
-  uint32_t page = 0;
+  // Meshes with their own UVs first, as given: a page each, or the pages they say they share.
+  std::vector<std::vector<uint32_t>> givenPages;
+  std::map<int, size_t> sharedPage;  // a shared page's number -> its place in givenPages
   for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
     if (!given[m]) continue;
-    atlas.chartCount +=
-        lightmap::useExistingUvs(scene, m, o.pageSize, page++, uint32_t(atlas.chartCount),
-                                  options.keepOverlappingUvs, atlas);
+    const int shared = m < options.givenUvPages.size() ? options.givenUvPages[m] : -1;
+    if (shared < 0) {
+      givenPages.push_back({m});
+      continue;
+    }
+    const auto [at, added] = sharedPage.emplace(shared, givenPages.size());
+    if (added) givenPages.emplace_back();
+    givenPages[at->second].push_back(m);
   }
+  uint32_t page = 0;
+  for (const std::vector<uint32_t>& meshes : givenPages)
+    atlas.chartCount += lightmap::useExistingUvs(scene, meshes, o.pageSize, page++, uint32_t(atlas.chartCount),
+                                                 options.keepOverlappingUvs, atlas);
   if (!charts.empty()) {
     float density = o.texelsPerMetre > 0.0f ? o.texelsPerMetre : fitDensity(charts, area, o);
     auto packed = lightmap::packCharts(charts, density, o, page, uint32_t(atlas.chartCount), &atlas);

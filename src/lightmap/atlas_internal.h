@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -87,11 +88,12 @@ std::vector<uint8_t> nextToAnotherChart(const std::vector<uint32_t>& chart, int 
 // warning. Returns that warning, or "" when the UVs are usable.
 std::string degenerateGivenUvs(const Scene& scene, uint32_t meshIndex);
 
-// Checks a mesh's lightmapUvs (in [0,1], no two faces claiming a texel at pageSize unless
-// keepOverlaps) and writes them to atlas.faces[meshIndex] on `page`, one chart per UV-connected
-// component, numbered from firstChart; charts with no gutter between them add a warning to
-// atlas.warnings. Returns the number of charts. Throws Error naming the mesh.
-size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint32_t page,
+// Checks the lightmapUvs of meshes that share one page (in [0,1], no two faces claiming a texel at
+// pageSize unless keepOverlaps) and writes them to atlas.faces[mesh] on `page`, one chart per
+// UV-connected component of a mesh, numbered from firstChart; charts with no gutter between them
+// add a warning to atlas.warnings. Returns the number of charts. Throws Error naming the mesh or
+// meshes.
+size_t useExistingUvs(const Scene& scene, std::span<const uint32_t> meshes, int pageSize, uint32_t page,
                       uint32_t firstChart, bool keepOverlaps, LightmapAtlas& atlas);
 
 }  // namespace luxel::lightmap

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,63 +47,77 @@ std::string degenerateGivenUvs(const Scene& scene, uint32_t meshIndex) {
                      scene.name, mesh.name, collapsed, mesh.faces.size(), 100.0 * collapsedArea / total, totalUv);
 }
 
-size_t useExistingUvs(const Scene& scene, uint32_t meshIndex, int pageSize, uint32_t page,
+size_t useExistingUvs(const Scene& scene, std::span<const uint32_t> meshes, int pageSize, uint32_t page,
                       uint32_t firstChart, bool keepOverlaps, LightmapAtlas& atlas) {
-  const Mesh& mesh = scene.meshes[meshIndex];
-  const auto& uv = mesh.lightmapUvs;
-  for (size_t i = 0; i < uv.size(); ++i)
-    if (!(uv[i].x >= 0.0f && uv[i].x <= 1.0f && uv[i].y >= 0.0f && uv[i].y <= 1.0f))
-      throw Error(fmt::format("scene '{}': mesh '{}': lightmap uv {} ({}, {}) is outside [0,1]",
-                              scene.name, mesh.name, i, uv[i].x, uv[i].y));
-
-  // Charts: faces joined by shared UV vertices.
-  std::vector<uint32_t> parent(uv.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (const Face& f : mesh.faces)
-    for (int k = 1; k < f.vertexCount(); ++k) parent[find(f.v[size_t(k)])] = find(f.v[0]);
-  std::vector<int64_t> chartOfRoot(uv.size(), -1);
+  // Every face of the page's meshes rasterised at the page size: a texel centre inside two faces
+  // is an overlap, within a mesh or between meshes that share the page.
+  constexpr uint64_t kFree = UINT64_MAX;
+  std::vector<uint64_t> owner(size_t(pageSize) * size_t(pageSize), kFree);  // mesh << 32 | face
   size_t charts = 0;
+  for (uint32_t meshIndex : meshes) {
+    const Mesh& mesh = scene.meshes[meshIndex];
+    const auto& uv = mesh.lightmapUvs;
+    for (size_t i = 0; i < uv.size(); ++i)
+      if (!(uv[i].x >= 0.0f && uv[i].x <= 1.0f && uv[i].y >= 0.0f && uv[i].y <= 1.0f))
+        throw Error(fmt::format("scene '{}': mesh '{}': lightmap uv {} ({}, {}) is outside [0,1]",
+                                scene.name, mesh.name, i, uv[i].x, uv[i].y));
 
-  // Every face rasterised at the page size: a texel centre inside two faces is an overlap.
-  std::vector<uint32_t> owner(size_t(pageSize) * size_t(pageSize), UINT32_MAX);
-  auto& out = atlas.faces[meshIndex];
-  for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
-    const Face& face = mesh.faces[f];
-    int64_t& chart = chartOfRoot[find(face.v[0])];
-    if (chart < 0) chart = int64_t(charts++);
-    out[f].page = page;
-    out[f].chart = firstChart + uint32_t(chart);
-    for (int k = 0; k < 4; ++k) out[f].texel[size_t(k)] = uv[face.v[size_t(k)]] * float(pageSize);
-    auto claim = [&](int x, int y) {
-      uint32_t& o = owner[size_t(y) * size_t(pageSize) + size_t(x)];
-      if (o != UINT32_MAX && o != f && keepOverlaps) return;  // the first face keeps it, as the bake does
-      if (o != UINT32_MAX && o != f)
-        throw Error(fmt::format(
-            "scene '{}': mesh '{}': lightmap uvs of faces {} and {} overlap (texel {}, {} of {})",
-            scene.name, mesh.name, o, f, x, y, pageSize));
-      o = f;
+    // Charts: faces joined by shared UV vertices.
+    std::vector<uint32_t> parent(uv.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](uint32_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
     };
-    const auto& t = out[f].texel;
-    rasteriseTriangle(t[0], t[1], t[2], pageSize, claim);
-    if (!face.isTriangle()) rasteriseTriangle(t[0], t[2], t[3], pageSize, claim);
+    for (const Face& f : mesh.faces)
+      for (int k = 1; k < f.vertexCount(); ++k) parent[find(f.v[size_t(k)])] = find(f.v[0]);
+    std::vector<int64_t> chartOfRoot(uv.size(), -1);
+
+    auto& out = atlas.faces[meshIndex];
+    for (uint32_t f = 0; f < mesh.faces.size(); ++f) {
+      const Face& face = mesh.faces[f];
+      int64_t& chart = chartOfRoot[find(face.v[0])];
+      if (chart < 0) chart = int64_t(charts++);
+      out[f].page = page;
+      out[f].chart = firstChart + uint32_t(chart);
+      for (int k = 0; k < 4; ++k) out[f].texel[size_t(k)] = uv[face.v[size_t(k)]] * float(pageSize);
+      const uint64_t self = uint64_t(meshIndex) << 32 | f;
+      auto claim = [&](int x, int y) {
+        uint64_t& o = owner[size_t(y) * size_t(pageSize) + size_t(x)];
+        if (o != kFree && o != self && keepOverlaps) return;  // the first face keeps it, as the bake does
+        if (o != kFree && o != self) {
+          const uint32_t otherMesh = uint32_t(o >> 32), otherFace = uint32_t(o);
+          if (otherMesh == meshIndex)
+            throw Error(fmt::format(
+                "scene '{}': mesh '{}': lightmap uvs of faces {} and {} overlap (texel {}, {} of {})",
+                scene.name, mesh.name, otherFace, f, x, y, pageSize));
+          throw Error(fmt::format("scene '{}': lightmap uvs of mesh '{}' face {} and mesh '{}' face {} overlap on "
+                                  "their shared page (texel {}, {} of {})",
+                                  scene.name, scene.meshes[otherMesh].name, otherFace, mesh.name, f, x, y, pageSize));
+        }
+        o = self;
+      };
+      const auto& t = out[f].texel;
+      rasteriseTriangle(t[0], t[1], t[2], pageSize, claim);
+      if (!face.isTriangle()) rasteriseTriangle(t[0], t[2], t[3], pageSize, claim);
+    }
   }
 
   // Charts with no gutter between them: their light mixes under bilinear filtering.
   std::vector<uint32_t> chartOf(owner.size(), kNoChart);
   for (size_t i = 0; i < owner.size(); ++i)
-    if (owner[i] != UINT32_MAX) chartOf[i] = out[owner[i]].chart;
+    if (owner[i] != kFree) chartOf[i] = atlas.faces[size_t(owner[i] >> 32)][uint32_t(owner[i])].chart;
   const std::vector<uint8_t> next = nextToAnotherChart(chartOf, pageSize);
   const auto bleeding = size_t(std::count(next.begin(), next.end(), uint8_t(1)));
-  if (bleeding > 0)
+  if (bleeding > 0) {
+    std::string names;
+    for (uint32_t m : meshes) names += (names.empty() ? "'" : ", '") + scene.meshes[m].name + "'";
     atlas.warnings.push_back(fmt::format(
-        "scene '{}': mesh '{}': {} texels of its lightmap uvs lie next to another chart's with no gutter at {} texels a "
+        "scene '{}': {} {}: {} texels of its lightmap uvs lie next to another chart's with no gutter at {} texels a "
         "side: bilinear filtering mixes the two charts' light there (leave a texel or two between charts; luxel view's "
         "texels view shows where)",
-        scene.name, mesh.name, bleeding, pageSize));
+        scene.name, meshes.size() == 1 ? "mesh" : "meshes", names, bleeding, pageSize));
+  }
   return charts;
 }
 

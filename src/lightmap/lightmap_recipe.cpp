@@ -18,6 +18,7 @@ AtlasOptions lightmapAtlasOptions(const Scene& scene, const LightmapRecipe& reci
   AtlasOptions ao;
   ao.pageSize = recipe.pageSize > 0 ? recipe.pageSize : kMaxDefaultPageSize;
   ao.sizePagesToContent = recipe.pageSize == 0;
+  ao.givenUvPages = recipe.givenUvPages;
   ao.texelsPerMetre = recipe.texelsPerMetre > 0.0f ? recipe.texelsPerMetre
                       : recipe.texelBudget > 0     ? texelsPerMetreForBudget(scene, recipe.texelBudget)
                                                    : defaultTexelsPerMetre(scene);

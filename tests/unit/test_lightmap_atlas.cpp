@@ -494,6 +494,55 @@ TEST(LightmapAtlas, OverlappingOrOutOfRangeGivenUvsNameTheMesh) {
   EXPECT_NE(msg.find("not finite"), std::string::npos) << msg;
 }
 
+// Meshes whose given UVs address one page (an engine's lightmap atlas, a baked glb's pages) share
+// it: one page, checked together, so that one mesh's UVs over another's are an overlap and charts
+// of two meshes with no texel between them are a gutter warning naming both.
+TEST(LightmapAtlas, MeshesThatShareAPageAreCheckedTogether) {
+  Scene s = twoMeshes();
+  s.meshes.pop_back();  // two given meshes: the second's charts above the first's
+  Mesh above = quadMesh("above", 0, 5);
+  above.lightmapUvs = {Vec2(0.0f, 0.75f), Vec2(0.5f, 0.75f), Vec2(0.5f, 1.0f), Vec2(0.0f, 1.0f),
+                       Vec2(1.0f, 0.75f), Vec2(1.0f, 1.0f)};
+  s.meshes.push_back(above);
+  AtlasOptions o;
+  o.pageSize = 64;
+  EXPECT_EQ(luxel::buildLightmapAtlas(s, o).pageCount, 2);  // a page each, by default
+  o.givenUvPages = {7, 7};
+  LightmapAtlas atlas = luxel::buildLightmapAtlas(s, o);
+  EXPECT_EQ(atlas.pageCount, 1);
+  EXPECT_TRUE(atlas.warnings.empty());
+  for (const auto& mesh : atlas.faces)
+    for (const auto& uv : mesh) EXPECT_EQ(uv.page, 0u);
+  EXPECT_EQ(atlas.faces[1][0].texel[0], Vec2(0.0f, 48.0f));
+  EXPECT_EQ(atlas.chartCount, 2u);  // a chart a mesh, numbered across the page
+  EXPECT_NE(atlas.faces[0][0].chart, atlas.faces[1][0].chart);
+
+  // Touching at v = 0.5: no gutter between the two meshes' charts.
+  for (Vec2& uv : s.meshes[1].lightmapUvs) uv.y -= 0.25f;
+  atlas = luxel::buildLightmapAtlas(s, o);
+  ASSERT_EQ(atlas.warnings.size(), 1u);
+  EXPECT_NE(atlas.warnings[0].find("meshes 'given uvs', 'above'"), std::string::npos) << atlas.warnings[0];
+  // On pages of their own the same UVs are fine.
+  o.givenUvPages = {0, 1};
+  EXPECT_TRUE(luxel::buildLightmapAtlas(s, o).warnings.empty());
+
+  // Over each other on a shared page: an overlap naming both meshes, or kept for the texels view.
+  for (Vec2& uv : s.meshes[1].lightmapUvs) uv.y -= 0.5f;
+  EXPECT_EQ(luxel::buildLightmapAtlas(s, o).pageCount, 2);
+  o.givenUvPages = {3, 3};
+  const std::string msg = errorOf([&] { luxel::buildLightmapAtlas(s, o); });
+  EXPECT_NE(msg.find("mesh 'given uvs' face"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("mesh 'above' face"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("shared page"), std::string::npos) << msg;
+  o.keepOverlappingUvs = true;
+  EXPECT_EQ(luxel::buildLightmapAtlas(s, o).pageCount, 1);
+
+  // One number a mesh, or none.
+  o.givenUvPages = {3};
+  EXPECT_NE(errorOf([&] { luxel::buildLightmapAtlas(s, o); }).find("1 shared pages given for the 2 meshes"),
+            std::string::npos);
+}
+
 TEST(LightmapAtlas, AbsurdOptionsAreErrors) {
   Scene s = luxel::loadScene("cornell");
   auto with = [&](auto set) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <regex>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -92,6 +93,42 @@ TEST(GlViewerCli, BakedGlbShowsWhatLuxelRenderShowsOfTheBake) {
   const std::vector<std::string> before = listDir(dir);
   expectFailure(luxel(dir, {"view", "cornell", "--view", "baked", "--headless", "--frames", "1"}), dir, before,
                 {"the baked view needs a glb written by luxel bake"});
+}
+
+// The texels view of a baked glb lays its lightmap UVs out on the glb's own pages: a bake on three
+// pages of 128^2 shows three pages of 128^2 with the bake's own texel and invalid counts (each of
+// the glb's meshes used to get a 1024^2 page of its own: 8 pages, 16 times the texels), and so
+// does baking the glb again.
+TEST(GlViewerCli, TexelsViewOfABakedGlbShowsItsOwnPages) {
+  const fs::path dir = scratchDir();
+  const CliRun bake = luxel(dir, {"bake", "cornell", "-o", "c.glb", "--lightmaps", "--lightmap-size", "128",
+                                  "--texels-per-metre", "100"});
+  ASSERT_EQ(bake.code, 0) << bake.err;
+  const std::regex baked(R"((\d+) pages? of (\d+)², [0-9.]+ texels per metre, (\d+) texels in \d+ patches, (\d+) invalid)");
+  std::smatch b;
+  const std::string said = bake.out + bake.err;
+  ASSERT_TRUE(std::regex_search(said, b, baked)) << said;
+  EXPECT_GT(std::stoi(b[1]), 1);  // more than one page, so that pages are told apart
+  const CliRun view = luxel(dir, {"view", "c.glb", "--headless", "--view", "texels", "--frames", "2", "--size", "64x64"});
+  if (view.code != 0 && view.err.find("OpenGL 4.5") != std::string::npos) GTEST_SKIP() << "no OpenGL 4.5 context: " << view.err;
+  ASSERT_EQ(view.code, 0) << view.err;
+  const std::regex shown(R"(texels: (\d+) on (\d+) pages? of (\d+)\^2 \(the glb's pages\) from given UVs: (\d+) invalid)");
+  std::smatch v;
+  const std::string out = view.out + view.err;
+  ASSERT_TRUE(std::regex_search(out, v, shown)) << out;
+  EXPECT_EQ(v[2].str(), b[1].str());  // pages
+  EXPECT_EQ(v[3].str(), b[2].str());  // their size
+  EXPECT_EQ(v[1].str(), b[3].str());  // texels
+  EXPECT_EQ(v[4].str(), b[4].str());  // invalid: the view's test is the bake's own
+
+  // Baking the glb again keeps its layout: the same pages, the same texels.
+  const CliRun again = luxel(dir, {"bake", "c.glb", "-o", "again.glb", "--lightmaps"});
+  ASSERT_EQ(again.code, 0) << again.err;
+  const std::regex rebaked(R"((\d+) pages? of (\d+)², given uvs, (\d+) texels in \d+ patches, (\d+) invalid)");
+  std::smatch r;
+  const std::string saidAgain = again.out + again.err;
+  ASSERT_TRUE(std::regex_search(saidAgain, r, rebaked)) << saidAgain;
+  for (int i = 1; i <= 4; ++i) EXPECT_EQ(r[i].str(), b[i].str()) << i;
 }
 
 // A directional bake (LUXEL_lightmap_directional) under a normal map, in the baked view: a floor
