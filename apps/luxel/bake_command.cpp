@@ -59,10 +59,19 @@ std::vector<uint8_t> meshesMatching(const Scene& scene, const std::vector<std::s
 // Baking a glb that `luxel bake` wrote with lightmaps again keeps its layout: meshes stay on the
 // pages they shared, at the pages' size unless --lightmap-size says otherwise (each mesh's given
 // UVs would otherwise fill a page of its own).
-void keepGlbPages(const std::string& path, const Scene& scene, LightmapRecipe& recipe) {
+void keepGlbPages(const std::string& path, const Scene& scene, bool quiet, LightmapRecipe& recipe) {
   const std::string extension = fs::path(path).extension().string();
   if (extension != ".glb" && extension != ".gltf") return;
-  const viewer::BakedGlb glb = viewer::readBakedGlb(path);
+  viewer::BakedGlb glb;
+  try {
+    glb = viewer::readBakedGlb(path);
+  } catch (const Error& e) {
+    // Assimp read the scene; only the pages are lost, so the bake goes on and says so.
+    if (!quiet)
+      std::cerr << "luxel: warning: " << e.what()
+                << ": its lightmap pages are not kept (each mesh's own lightmap uvs get a page of their own)\n";
+    return;
+  }
   if (!glb.hasLightmaps) return;
   const viewer::GlbLightmapPages pages = viewer::glbLightmapPages(glb, scene);
   if (pages.pageSize <= 0) return;
@@ -130,7 +139,7 @@ int runBake(const BakeArgs& a) {
     recipe.texelsPerMetre = a.texelsPerMetre;
     recipe.texelBudget = size_t(a.solve.elements);
     recipe.pageSize = a.lightmapSize;
-    keepGlbPages(a.scene, scene, recipe);
+    keepGlbPages(a.scene, scene, a.quiet, recipe);
     recipe.solve = so;
     recipe.directional = parseDirectionalMode(a.directional);
     // A transfer bake (--transfer): the transfer, and its lightmaps relit by the scene's distant lights.
