@@ -66,6 +66,13 @@ namespace {
 constexpr float kCertifiedMoveShare = 0.05f;
 constexpr size_t kCertifiedPoses = 64;
 constexpr size_t kCertificateBytes = size_t(256) << 20;
+// A pair whose factor a small move changed lies near the object's silhouette, and the next few
+// moves are likely to change it again: for this many moves it is recomputed without the ray
+// test, which costs about as much as the recomputation on the seed scenes. Recomputing is never
+// wrong; it only costs where the pair did not change. Its certificate slot holds the move it
+// changed in, with this level.
+constexpr uint32_t kChangedLevel = 15;
+constexpr uint32_t kMovesRecomputedUntested = 3;
 
 enum class ChangedFactors {
   All,             // incremental: every column again
@@ -185,16 +192,21 @@ class RedistributionSolver final : public ProgressiveSolver {
       // still covers how far the objects have gone from its pose.
       auto certified = [&](uint32_t patch, uint32_t element) {
         const std::vector<uint32_t>& c = certificate_[patch];
-        if (c.empty() || c[element] == 0) return false;
+        if (c.empty() || c[element] == 0 || (c[element] & 15u) == kChangedLevel) return false;
         const uint8_t narrowest = poseHolds[c[element] >> 4];
         return narrowest != 0 && (c[element] & 15u) >= narrowest;
+      };
+      auto changedLately = [&](const Transport::ElementPatch& x) {
+        const std::vector<uint32_t>& c = certificate_[x.patch];
+        return !c.empty() && (c[x.element] & 15u) == kChangedLevel && nextPose_ - (c[x.element] >> 4) <= kMovesRecomputedUntested;
       };
       std::vector<Transport::ElementPatch> pairs = pairsThrough(staticPatches, regions, blockers, always, isMoved, certified);
       // Of the pairs whose rays can pass where the movers were or are, the transport tells which
       // rays' verdicts the move changed (a box that turns a degree changes only the rays that
       // graze it); the rest keep their factors.
-      const auto firstTested = std::stable_partition(pairs.begin(), pairs.end(),
-                                                     [&](const Transport::ElementPatch& x) { return always[x.element] != 0; });
+      const auto firstTested = std::stable_partition(pairs.begin(), pairs.end(), [&](const Transport::ElementPatch& x) {
+        return always[x.element] != 0 || changedLately(x);
+      });
       const std::span<const Transport::ElementPatch> tested(firstTested, pairs.end());
       std::vector<uint8_t> changed(tested.size());
       // A small move asks for certificates good for 2, 4, 8 or 16 times its distance, so that the
@@ -204,7 +216,7 @@ class RedistributionSolver final : public ProgressiveSolver {
                            cachedBytes_ <= kCertificateBytes;
       std::vector<uint8_t> newlyCertified(certify ? tested.size() : 0);
       transport_.visibilityChangedByMove(tested, changed, 2.0f * movedMost, newlyCertified);
-      if (certify) remember(tested, newlyCertified, std::move(was), 2.0f * movedMost);
+      if (certify) remember(tested, newlyCertified, changed, std::move(was), 2.0f * movedMost);
       size_t kept = size_t(firstTested - pairs.begin());
       for (size_t i = 0; i < tested.size(); ++i)
         if (changed[i]) pairs[kept++] = tested[i];
@@ -336,18 +348,18 @@ class RedistributionSolver final : public ProgressiveSolver {
 
   // Keeps the certificates the transport gave `pairs` (certified[i], a level) for the moved
   // objects' place before this move (`shapes`, per moved object) and `reach` * 2^(level - 1)
-  // round it.
+  // round it, and marks the pairs this move changed (kChangedLevel).
   void remember(std::span<const Transport::ElementPatch> pairs, const std::vector<uint8_t>& certified,
-                std::vector<std::vector<Polygon>> shapes, float reach) {
+                const std::vector<uint8_t>& changed, std::vector<std::vector<Polygon>> shapes, float reach) {
     const uint32_t id = nextPose_++;
     poses_.push_back({id, std::move(shapes), reach});
     if (poses_.size() > kCertifiedPoses) poses_.pop_front();
     const size_t ne = sys_.elementCount();
     for (size_t i = 0; i < pairs.size(); ++i) {
-      if (!certified[i]) continue;
+      if (!certified[i] && !changed[i]) continue;
       std::vector<uint32_t>& c = certificate_[pairs[i].patch];
       if (c.empty()) c.assign(ne, 0);
-      c[pairs[i].element] = id << 4 | certified[i];
+      c[pairs[i].element] = id << 4 | (changed[i] ? kChangedLevel : certified[i]);
     }
   }
 
