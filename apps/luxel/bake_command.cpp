@@ -62,19 +62,26 @@ std::vector<uint8_t> meshesMatching(const Scene& scene, const std::vector<std::s
 void keepGlbPages(const std::string& path, const Scene& scene, bool quiet, LightmapRecipe& recipe) {
   const std::string extension = fs::path(path).extension().string();
   if (extension != ".glb" && extension != ".gltf") return;
+  if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& m) { return !m.lightmapUvs.empty(); }))
+    return;  // no lightmap uvs: nothing to keep
+  auto warn = [&](const std::string& why) {
+    if (!quiet)
+      std::cerr << "luxel: warning: " << path << ": its lightmap pages are not kept (" << why
+                << "): each mesh's own lightmap uvs get a page of their own\n";
+  };
   viewer::BakedGlb glb;
   try {
     glb = viewer::readBakedGlb(path);
   } catch (const Error& e) {
-    // Assimp read the scene; only the pages are lost, so the bake goes on and says so.
-    if (!quiet)
-      std::cerr << "luxel: warning: " << e.what()
-                << ": its lightmap pages are not kept (each mesh's own lightmap uvs get a page of their own)\n";
+    warn(e.what());  // Assimp read the scene; only the layout is lost, so the bake goes on
     return;
   }
-  if (!glb.hasLightmaps) return;
+  if (!glb.hasLightmaps) return;  // uvs of its own, not a bake's: a page each, as for any file
   const viewer::GlbLightmapPages pages = viewer::glbLightmapPages(glb, scene);
-  if (pages.pageSize <= 0) return;
+  if (pages.pageSize <= 0) {
+    warn(pages.whyNot);
+    return;
+  }
   recipe.givenUvPages = pages.meshPage;
   if (recipe.pageSize == 0) recipe.pageSize = pages.pageSize;
 }

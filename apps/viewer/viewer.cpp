@@ -624,8 +624,9 @@ void Viewer::buildTexelView() {
       ao.pageSize = pages.pageSize;
       pagesFrom = " (the glb's pages)";
     } else {
-      messages_.push_back("texels: the glb's lightmap pages differ in size or are not square: each mesh's UVs shown "
-                          "on a page of its own");
+      messages_.push_back(fmt::format("texels: the glb's own pages are not shown ({}): each mesh's lightmap uvs on a "
+                                      "page of its own",
+                                      pages.whyNot));
     }
   }
   const LightmapAtlas atlas = buildLightmapAtlas(scene, ao);

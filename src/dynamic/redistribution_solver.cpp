@@ -73,6 +73,7 @@ constexpr size_t kCertificateBytes = size_t(256) << 20;
 // changed in, with this level.
 constexpr uint32_t kChangedLevel = 15;
 constexpr uint32_t kMovesRecomputedUntested = 3;
+static_assert(kCertificateLevels < int(kChangedLevel), "a changed pair's mark must not read as a certificate");
 
 enum class ChangedFactors {
   All,             // incremental: every column again
@@ -169,11 +170,14 @@ class RedistributionSolver final : public ProgressiveSolver {
         was.push_back(std::move(shapes_[o]));
         shapes_[o] = std::move(now);
       }
-      // Certificates from earlier moves that still hold: the objects have stayed, before this
-      // move and after it, within the reach of the place the certificate was made for.
+      // Every move gets an id, certified or not, so that a pair's mark of the move that changed
+      // it ages by moves. Certificates from earlier moves that still hold: the objects have
+      // stayed, before this move and after it, within the reach of the place the certificate was
+      // made for.
       const std::vector<uint32_t> movedNow(objects.begin(), objects.end());
       if (movedNow != certifiedObjects_) forgetCertificates(), certifiedObjects_ = movedNow;
       // Per pose, the widest certificate level that still holds (0: none).
+      const uint32_t moveId = nextPose_++;
       std::vector<uint8_t> poseHolds(nextPose_, 0);
       for (const Pose& pose : poses_) {
         float far = 0.0f;
@@ -198,7 +202,7 @@ class RedistributionSolver final : public ProgressiveSolver {
       };
       auto changedLately = [&](const Transport::ElementPatch& x) {
         const std::vector<uint32_t>& c = certificate_[x.patch];
-        return !c.empty() && (c[x.element] & 15u) == kChangedLevel && nextPose_ - (c[x.element] >> 4) <= kMovesRecomputedUntested;
+        return !c.empty() && (c[x.element] & 15u) == kChangedLevel && moveId - (c[x.element] >> 4) <= kMovesRecomputedUntested;
       };
       std::vector<Transport::ElementPatch> pairs = pairsThrough(staticPatches, regions, blockers, always, isMoved, certified);
       // Of the pairs whose rays can pass where the movers were or are, the transport tells which
@@ -216,7 +220,7 @@ class RedistributionSolver final : public ProgressiveSolver {
                            cachedBytes_ <= kCertificateBytes;
       std::vector<uint8_t> newlyCertified(certify ? tested.size() : 0);
       transport_.visibilityChangedByMove(tested, changed, 2.0f * movedMost, newlyCertified);
-      if (certify) remember(tested, newlyCertified, changed, std::move(was), 2.0f * movedMost);
+      if (certify) remember(moveId, tested, newlyCertified, changed, std::move(was), 2.0f * movedMost);
       size_t kept = size_t(firstTested - pairs.begin());
       for (size_t i = 0; i < tested.size(); ++i)
         if (changed[i]) pairs[kept++] = tested[i];
@@ -349,9 +353,8 @@ class RedistributionSolver final : public ProgressiveSolver {
   // Keeps the certificates the transport gave `pairs` (certified[i], a level) for the moved
   // objects' place before this move (`shapes`, per moved object) and `reach` * 2^(level - 1)
   // round it, and marks the pairs this move changed (kChangedLevel).
-  void remember(std::span<const Transport::ElementPatch> pairs, const std::vector<uint8_t>& certified,
+  void remember(uint32_t id, std::span<const Transport::ElementPatch> pairs, const std::vector<uint8_t>& certified,
                 const std::vector<uint8_t>& changed, std::vector<std::vector<Polygon>> shapes, float reach) {
-    const uint32_t id = nextPose_++;
     poses_.push_back({id, std::move(shapes), reach});
     if (poses_.size() > kCertifiedPoses) poses_.pop_front();
     const size_t ne = sys_.elementCount();
@@ -491,7 +494,8 @@ class RedistributionSolver final : public ProgressiveSolver {
   std::vector<uint8_t> convex_;               // per object: its patches close a convex solid
   // Certificates (Transport::visibilityChangedByMove with `certify`): per cached static column,
   // per element, the pose whose neighbourhood the pair's rays keep their verdicts in, and how
-  // wide (pose << 4 | level; 0: none).
+  // wide (pose << 4 | level; 0: none). Level kChangedLevel is no certificate but a mark: the
+  // move (its id in the pose bits) changed the pair.
   // Only for one list of moving objects at a time; forgotten when another list moves.
   struct Pose {
     uint32_t id;

@@ -99,20 +99,18 @@ LightmapAtlas buildLightmapAtlas(const Scene& scene, const AtlasOptions& options
   }
   atlas.pageSize = o.pageSize;
 
-  // Meshes with their own UVs first, as given: a page each, or the pages they say they share.
+  // Meshes with their own UVs first, as given: the pages they say they share, in the order of
+  // their numbers (a baked glb's pages keep their order), then a page for each other mesh.
+  std::map<int, std::vector<uint32_t>> shared;  // a shared page's number -> its meshes
   std::vector<std::vector<uint32_t>> givenPages;
-  std::map<int, size_t> sharedPage;  // a shared page's number -> its place in givenPages
   for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
     if (!given[m]) continue;
-    const int shared = m < options.givenUvPages.size() ? options.givenUvPages[m] : -1;
-    if (shared < 0) {
-      givenPages.push_back({m});
-      continue;
-    }
-    const auto [at, added] = sharedPage.emplace(shared, givenPages.size());
-    if (added) givenPages.emplace_back();
-    givenPages[at->second].push_back(m);
+    const int number = m < options.givenUvPages.size() ? options.givenUvPages[m] : -1;
+    if (number >= 0) shared[number].push_back(m);
   }
+  for (auto& [number, meshes] : shared) givenPages.push_back(std::move(meshes));
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m)
+    if (given[m] && !(m < options.givenUvPages.size() && options.givenUvPages[m] >= 0)) givenPages.push_back({m});
   uint32_t page = 0;
   for (const std::vector<uint32_t>& meshes : givenPages)
     atlas.chartCount += lightmap::useExistingUvs(scene, meshes, o.pageSize, page++, uint32_t(atlas.chartCount),

@@ -50,11 +50,22 @@ std::string degenerateGivenUvs(const Scene& scene, uint32_t meshIndex) {
 size_t useExistingUvs(const Scene& scene, std::span<const uint32_t> meshes, int pageSize, uint32_t page,
                       uint32_t firstChart, bool keepOverlaps, LightmapAtlas& atlas) {
   // Every face of the page's meshes rasterised at the page size: a texel centre inside two faces
-  // is an overlap, within a mesh or between meshes that share the page.
-  constexpr uint64_t kFree = UINT64_MAX;
-  std::vector<uint64_t> owner(size_t(pageSize) * size_t(pageSize), kFree);  // mesh << 32 | face
+  // is an overlap, within a mesh or between meshes that share the page. A texel's owner is a
+  // face's place among the page's faces (4 bytes a texel: a 16384^2 page is 1 GiB of them).
+  constexpr uint32_t kFree = UINT32_MAX;
+  size_t faces = 0;
+  for (uint32_t m : meshes) faces += scene.meshes[m].faces.size();
+  if (faces >= size_t(kFree))
+    throw Error(fmt::format("scene '{}': {} faces on one lightmap page are too many", scene.name, faces));
+  std::vector<uint32_t> firstFace(meshes.size() + 1, 0);  // the page's faces, mesh by mesh
+  for (size_t k = 0; k < meshes.size(); ++k) firstFace[k + 1] = firstFace[k] + uint32_t(scene.meshes[meshes[k]].faces.size());
+  auto ownerMesh = [&](uint32_t o) {  // the place in `meshes` of the mesh whose face owns o
+    return size_t(std::upper_bound(firstFace.begin(), firstFace.end(), o) - firstFace.begin()) - 1;
+  };
+  std::vector<uint32_t> owner(size_t(pageSize) * size_t(pageSize), kFree);
   size_t charts = 0;
-  for (uint32_t meshIndex : meshes) {
+  for (size_t slot = 0; slot < meshes.size(); ++slot) {
+    const uint32_t meshIndex = meshes[slot];
     const Mesh& mesh = scene.meshes[meshIndex];
     const auto& uv = mesh.lightmapUvs;
     for (size_t i = 0; i < uv.size(); ++i)
@@ -81,12 +92,13 @@ size_t useExistingUvs(const Scene& scene, std::span<const uint32_t> meshes, int 
       out[f].page = page;
       out[f].chart = firstChart + uint32_t(chart);
       for (int k = 0; k < 4; ++k) out[f].texel[size_t(k)] = uv[face.v[size_t(k)]] * float(pageSize);
-      const uint64_t self = uint64_t(meshIndex) << 32 | f;
+      const uint32_t self = firstFace[slot] + f;
       auto claim = [&](int x, int y) {
-        uint64_t& o = owner[size_t(y) * size_t(pageSize) + size_t(x)];
+        uint32_t& o = owner[size_t(y) * size_t(pageSize) + size_t(x)];
         if (o != kFree && o != self && keepOverlaps) return;  // the first face keeps it, as the bake does
         if (o != kFree && o != self) {
-          const uint32_t otherMesh = uint32_t(o >> 32), otherFace = uint32_t(o);
+          const size_t otherSlot = ownerMesh(o);
+          const uint32_t otherMesh = meshes[otherSlot], otherFace = o - firstFace[otherSlot];
           if (otherMesh == meshIndex)
             throw Error(fmt::format(
                 "scene '{}': mesh '{}': lightmap uvs of faces {} and {} overlap (texel {}, {} of {})",
@@ -106,17 +118,21 @@ size_t useExistingUvs(const Scene& scene, std::span<const uint32_t> meshes, int 
   // Charts with no gutter between them: their light mixes under bilinear filtering.
   std::vector<uint32_t> chartOf(owner.size(), kNoChart);
   for (size_t i = 0; i < owner.size(); ++i)
-    if (owner[i] != kFree) chartOf[i] = atlas.faces[size_t(owner[i] >> 32)][uint32_t(owner[i])].chart;
+    if (owner[i] != kFree) {
+      const size_t slot = ownerMesh(owner[i]);
+      chartOf[i] = atlas.faces[meshes[slot]][owner[i] - firstFace[slot]].chart;
+    }
   const std::vector<uint8_t> next = nextToAnotherChart(chartOf, pageSize);
   const auto bleeding = size_t(std::count(next.begin(), next.end(), uint8_t(1)));
   if (bleeding > 0) {
     std::string names;
     for (uint32_t m : meshes) names += (names.empty() ? "'" : ", '") + scene.meshes[m].name + "'";
     atlas.warnings.push_back(fmt::format(
-        "scene '{}': {} {}: {} texels of its lightmap uvs lie next to another chart's with no gutter at {} texels a "
+        "scene '{}': {} {}: {} texels of {} lightmap uvs lie next to another chart's with no gutter at {} texels a "
         "side: bilinear filtering mixes the two charts' light there (leave a texel or two between charts; luxel view's "
         "texels view shows where)",
-        scene.name, meshes.size() == 1 ? "mesh" : "meshes", names, bleeding, pageSize));
+        scene.name, meshes.size() == 1 ? "mesh" : "meshes", names, bleeding, meshes.size() == 1 ? "its" : "their",
+        pageSize));
   }
   return charts;
 }

@@ -168,8 +168,8 @@ void CpuTransport::objectsMoved(std::span<const uint32_t> objects) {
     grow(1, facePolygons_[f]);
   }
   // The moved faces alone, where they were and where they are, for visibilityChangedByMove; and
-  // when every moved object is closed and convex, its solid where it was with how far its
-  // corners moved.
+  // when every moved object is closed and convex, its solid where it was and where it is, with
+  // how far its corners moved.
   if (movedBefore_) movedRays_ += movedBefore_->raysTraced() + movedAfter_->raysTraced();
   movedBefore_.reset(), movedAfter_.reset();
   if (!before.empty()) {
@@ -531,9 +531,10 @@ void CpuTransport::visibilityChangedByMove(std::span<const ElementPatch> pairs, 
   ensureQuadrature();
   // A pair's rays are blocked in the scene where they are blocked by the static faces or by the
   // moved ones; where no ray's verdict against the moved faces differs between their two places,
-  // no ray's verdict in the scene does, and the factor is the same number as before. Most rays
-  // are settled against closed convex movers' solids (movedRaySettled); the rest are traced
-  // against the moved faces alone, a fraction of the scene's BVH.
+  // no ray's verdict in the scene does, and the factor is the same number as before. Against
+  // closed convex movers most rays are decided without tracing (moveVerdict; movedRaySettled for
+  // the certificates' wider reaches), and a pair stops at its first ray proved changed; the rest
+  // are traced against the moved faces alone, a fraction of the scene's BVH.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), kPairsPerBatch), [&](const tbb::blocked_range<size_t>& r) {
     Workspace& ws = workspace();
     std::vector<RTCRay>& before = ws.rays;
