@@ -67,10 +67,10 @@ constexpr float kCertifiedMoveShare = 0.05f;
 constexpr size_t kCertifiedPoses = 64;
 constexpr size_t kCertificateBytes = size_t(256) << 20;
 // A pair whose factor a small move changed lies near the object's silhouette, and the next few
-// moves are likely to change it again: for this many moves it is recomputed without the ray
-// test, which costs about as much as the recomputation on the seed scenes. Recomputing is never
-// wrong; it only costs where the pair did not change. Its certificate slot holds the move it
-// changed in, with this level.
+// moves are likely to change it again, so testing it would mostly be followed by recomputing it
+// anyway: for this many moves it is recomputed without the ray test. Recomputing is never wrong;
+// it only costs where the pair did not change. Its certificate slot holds the move it changed
+// in, with this level.
 constexpr uint32_t kChangedLevel = 15;
 constexpr uint32_t kMovesRecomputedUntested = 3;
 static_assert(kCertificateLevels < int(kChangedLevel), "a changed pair's mark must not read as a certificate");

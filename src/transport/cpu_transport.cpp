@@ -498,7 +498,7 @@ CpuTransport::MoveVerdict CpuTransport::moveVerdict(Vec3 a, Vec3 b) const {
   // crosses one solid is blocked there, one that misses every solid (grown by the rounding pad)
   // is clear. Only rays that graze a solid, at either place, are traced against the moved faces.
   // (Classifying against the old place grown by the whole move, as certificates do, leaves every
-  // ray within that distance of the surface unsure: half of a 10-degree turn's rays.)
+  // ray within that distance of the surface unsure: docs/algorithms.md, "Dynamic radiosity".)
   if (movedSolids_.empty()) return MoveVerdict::Unsure;
   using Segment = ConvexSolid::Segment;
   auto at = [&](const ConvexSolid MovedSolid::*place) {
