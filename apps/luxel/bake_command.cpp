@@ -257,8 +257,8 @@ int runBake(const BakeArgs& a) {
 
   if (!a.quiet) {
     const SolveStats& s = solution.stats;
-    std::cout << fmt::format("luxel: {} — {} elements in {} patches, {} ({} shots, {} iterations), unshot {:.3f}%\n",
-                             solved.name, s.elements, s.patches, s.method, s.shots, s.iterations,
+    std::cout << fmt::format("luxel: {} — {}, {} ({} shots, {} iterations), unshot {:.3f}%\n",
+                             solved.name, elementsAndPatches(s), s.method, s.shots, s.iterations,
                              100.0 * s.unshotFraction);
     if (a.vertexColors)
       std::cout << fmt::format("luxel: bake {} elements with vertex colours (radiance){}; total {:.3f} s\n",

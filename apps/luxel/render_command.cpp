@@ -256,8 +256,8 @@ int runRender(const RenderArgs& a) {
     writeStatsJson(record, a.statsPath);
   }
   if (!a.quiet) {
-    std::cout << fmt::format("luxel: {} — {} elements in {} patches, {} on {}{} ({} shots, {} iterations), unshot {:.3f}%\n",
-                             sceneName, s.elements, s.patches, s.method, s.backend,
+    std::cout << fmt::format("luxel: {} — {}, {} on {}{} ({} shots, {} iterations), unshot {:.3f}%\n",
+                             sceneName, elementsAndPatches(s), s.method, s.backend,
                              s.device.empty() ? "" : " (" + s.device + ")", s.shots, s.iterations, 100.0 * s.unshotFraction);
     std::cout << fmt::format("luxel: solve {:.3f} s (setup {:.3f}, form factors {:.3f}, iterate {:.3f}), {:.1f} M rays/s\n",
                              s.secondsTotal, s.secondsSetup, s.secondsFormFactors, s.secondsSolve, s.raysPerSecond() / 1e6);

@@ -115,6 +115,11 @@ std::string solveSize(const SolveArgs& a) {
   return "the default 10,000-element budget";
 }
 
+std::string elementsAndPatches(const SolveStats& s) {
+  if (s.patches == 0) return fmt::format("{} elements", s.elements);
+  return fmt::format("{} elements in {} patches", s.elements, s.patches);
+}
+
 std::string solveSizeHint(const SolveArgs& a, bool lightmaps) {
   std::string hint = lightmaps ? "use fewer texels (--elements, a lower --texels-per-metre or a larger --element-size)"
                                : "use fewer elements (--elements, or a larger --element-size)";

@@ -60,6 +60,9 @@ SolveOptions solveOptions(const SolveArgs& args);
 std::string solveSize(const SolveArgs& args);
 // What to reduce when a solve runs out of memory; `lightmaps`: texels are its elements.
 std::string solveSizeHint(const SolveArgs& args, bool lightmaps);
+// "3,012 elements in 220 patches", or "1,499,755 elements" for a solve without patches (the
+// hierarchy's), for the summary line.
+std::string elementsAndPatches(const SolveStats& stats);
 // Checks what needs no scene and no file (--sun, the solver, backend and options): throws Error.
 void checkSolveArgs(const SolveArgs& args);
 

@@ -91,6 +91,7 @@ void Viewer::startSession() {
   so.solve = options_.solve;
   so.solve.followsChanges = true;  // edits continue from the last solution where the solver can
   so.borrowCurrentGlContext = options_.shareContext;
+  so.keepPatches = true;  // the patches view draws them
   // The new session gets the scene as it stands now (edited lights and poses included).
   Scene scene = session_ ? session_->scene() : loaded_;
   for (size_t i = 0; i < scene.objects.size() && i < loaded_.objects.size(); ++i)
@@ -244,6 +245,7 @@ void Viewer::moveObject(uint32_t object, const glm::mat4& delta, bool aboutCentr
     so.solve = options_.solve;
     so.solve.followsChanges = true;
     so.borrowCurrentGlContext = options_.shareContext;
+    so.keepPatches = true;
     auto next = std::make_unique<Session>(std::move(edited), options_.discretise, so);
     session_ = std::move(next);
     loaded_.objects[object].dynamic = true;

@@ -29,6 +29,9 @@ struct SessionOptions {
   // Said here rather than by recordIncidentSh, the analytic lights' directions come from the same
   // rays as their irradiance instead of being traced again when asked.
   int incidentShCount = 0;
+  // The surfaces keep their patches when the solver does not shoot from them (the hierarchy):
+  // for a caller that shows them, as the viewer does. Otherwise the session drops them.
+  bool keepPatches = false;
 };
 
 class Session {

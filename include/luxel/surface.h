@@ -42,6 +42,9 @@ struct SurfaceFace {
   Vec2 uv(Vec2 st) const;
 };
 
+// Element::patch of a set without patches (SurfaceSet::dropPatches).
+inline constexpr uint32_t kNoPatch = 0xffffffffu;
+
 struct Element {
   Polygon polygon;                   // in world space
   std::array<Vec2, 4> param{};       // corners in the face's parameter space
@@ -49,7 +52,7 @@ struct Element {
   Vec3 normal{0.0f};
   float area = 0.0f;
   uint32_t face = 0;                 // index into SurfaceSet::faces
-  uint32_t patch = 0;                // index into SurfaceSet::patches
+  uint32_t patch = 0;                // index into SurfaceSet::patches, or kNoPatch
   uint32_t material = 0;
   Rgb reflectance{0.0f};             // albedo averaged over the element (texture included)
   Rgb exitance{0.0f};                // emitted exitance, pi * Le averaged over the element
@@ -100,6 +103,11 @@ struct SurfaceSet {
   std::vector<RestPose> restPoses;
 
   float totalArea() const;
+  // Patches are the flat solvers' shooters. A set cut for a solver that does not shoot from them
+  // (the face-cluster hierarchy) can drop them: at one element a face they are a third of the
+  // set's memory. Afterwards every element's patch is kNoPatch.
+  bool hasPatches() const { return !patches.empty(); }
+  void dropPatches();
   // Moves the faces, patches and elements of scene.objects[object] to where its current transform
   // puts them (after Scene::placeObject). Throws Error when the move is not a similarity, or the
   // object's elements were refined after its first move.

@@ -48,6 +48,7 @@ Run solveOnce(const Scene& scene, const Case& c, const std::function<void(Transp
   const auto start = Clock::now();
   SurfaceSet surfaces = discretise(scene, c.discretise);
   r.patches = surfaces.patches.size();
+  if (!mayShootFromPatches(c.solve, surfaces)) surfaces.dropPatches();  // as a Session does
   const double discretised = secondsSince(start);
   SolverHost host(scene, surfaces, c.solve);
   if (before) before(host.transport());

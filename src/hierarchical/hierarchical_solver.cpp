@@ -984,6 +984,7 @@ void registerCpuHierarchical(SolverRegistry& registry) {
   // elements a block half covers or a penumbra crosses these differ by up to a third, which the
   // 0.02 of a solver of the same quadrature does not allow for (docs/algorithms.md).
   e.accuracy.cornell = 0.05;
+  e.shootsFromPatches = false;  // clusters of elements shoot
   registry.add(std::move(e));
 }
 

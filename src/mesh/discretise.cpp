@@ -7,6 +7,10 @@
 #include <cmath>
 #include <numbers>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include <fmt/format.h>
 
 #include "luxel/error.h"
@@ -294,6 +298,17 @@ float SurfaceSet::totalArea() const {
   return float(a);
 }
 
+void SurfaceSet::dropPatches() {
+  std::vector<Patch>().swap(patches);
+  for (Element& e : elements) e.patch = kNoPatch;
+#if defined(__GLIBC__)
+  // The patches' element lists are millions of small blocks in the heap's middle, which free()
+  // keeps mapped for reuse: give their pages back now, so that the drop is memory the process
+  // no longer holds whatever it allocates next.
+  malloc_trim(0);
+#endif
+}
+
 void SurfaceSet::splitElement(uint32_t index, const Scene& scene) {
   const Element parent = elements[index];
   const auto& p = parent.param;
@@ -311,7 +326,7 @@ void SurfaceSet::splitElement(uint32_t index, const Scene& scene) {
   const auto depth = uint8_t(parent.depth + 1);
   elements[index] = makeElement(scene, *this, parent.face, parent.patch, children[0], depth);
   for (int c = 1; c < 4; ++c) {
-    patches[parent.patch].elements.push_back(uint32_t(elements.size()));
+    if (parent.patch != kNoPatch) patches[parent.patch].elements.push_back(uint32_t(elements.size()));
     elements.push_back(makeElement(scene, *this, parent.face, parent.patch, children[c], depth));
   }
 }

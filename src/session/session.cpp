@@ -42,6 +42,7 @@ Session::Session(Scene scene, const DiscretiseOptions& discretise, const Session
   validateSolveOptions(options.solve);  // before the discretisation, which can take a while
   state_->scene = std::move(scene);
   state_->surfaces = luxel::discretise(state_->scene, discretise);
+  if (!options.keepPatches && !mayShootFromPatches(options.solve, state_->surfaces)) state_->surfaces.dropPatches();
   state_->makeHost(options);
 }
 

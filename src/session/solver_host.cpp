@@ -20,7 +20,10 @@ namespace luxel {
 namespace {
 
 SolveOptions withMethodChosen(SolveOptions options, const SurfaceSet& surfaces) {
-  options.method = chooseMethod(options.method, options.backend, surfaces.patches.size(), options.followsChanges);
+  // A set without patches was cut for the hierarchy (Session drops them): its elements, at least
+  // as many as its patches were, keep auto's choice where it was.
+  const size_t shooters = surfaces.hasPatches() ? surfaces.patches.size() : surfaces.elements.size();
+  options.method = chooseMethod(options.method, options.backend, shooters, options.followsChanges);
   return options;
 }
 
@@ -42,6 +45,19 @@ const char* const kLikelyCauses =
     "reflectance of 1 in a closed scene";
 
 }  // namespace
+
+bool mayShootFromPatches(const SolveOptions& options, const SurfaceSet& surfaces) {
+  const std::string method =
+      chooseMethod(options.method, options.backend, surfaces.patches.size(), options.followsChanges);
+  bool found = false;
+  for (const SolverEntry& e : SolverRegistry::builtin().entries()) {
+    if (e.description.name != method || (options.backend != "auto" && e.description.backend != options.backend))
+      continue;
+    found = true;
+    if (e.shootsFromPatches) return true;
+  }
+  return !found;  // no such solver: the host says so
+}
 
 SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOptions& requested, BorrowedResources borrowed,
                        int incidentShCount)
@@ -78,6 +94,10 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
   }
   entry_ = &registry.get(method, chosen);
   const std::string name = fmt::format("solver {} on {}", method, chosen);
+  if (entry_->shootsFromPatches && !surfaces.hasPatches())
+    throw Error(fmt::format("{} shoots from patches, and scene '{}' was cut without them (for a solver that does "
+                            "not need them); discretise it again",
+                            name, scene.name));
 
   // Options: each one must be read by the chosen solver. When auto fell back to the CPU, options
   // only the GL solver reads are dropped with a warning instead, and so are those only the

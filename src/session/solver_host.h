@@ -30,6 +30,11 @@ struct BorrowedResources {
   gl::Context* glContext = nullptr;
 };
 
+// Whether the solver a host would make for `options` may read the surfaces' patches: any
+// registered backend of the method that the options (auto included) can pick. When not, the
+// owner of the surfaces can drop them (SurfaceSet::dropPatches) before making the host.
+bool mayShootFromPatches(const SolveOptions& options, const SurfaceSet& surfaces);
+
 class SolverHost {
  public:
   // Chooses the method ("auto": solve/method_choice.h, by the surfaces' patches) and the backend

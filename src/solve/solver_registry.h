@@ -44,6 +44,8 @@ struct SolverEntry {
   // solution: for the conformance tests and references.
   SolverSettings converged;
   SolverAccuracy accuracy;
+  // Whether it reads SurfaceSet::patches. A session whose solver does not drops them.
+  bool shootsFromPatches = true;
 };
 
 class SolverRegistry {
