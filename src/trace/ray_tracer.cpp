@@ -128,6 +128,20 @@ RayTracer::RayTracer(std::span<const Polygon> polygons, std::span<const int32_t>
     throw Error(fmt::format("Embree could not build the scene: {}", lastEmbreeError()));
 }
 
+Polygon RayTracer::polygonAsBuilt(uint32_t i) const {
+  if (!flatCorners_ || i >= quad_.size())
+    throw Error(fmt::format("ray tracer: polygon {} as built is gone ({} polygons, moved: {})", i, quad_.size(), moved_));
+  // writeCorners' order undone: a quad's corner c holds v[(c + 1) % 4], a triangle's its v[c].
+  Polygon p;
+  p.count = quad_[i] ? 4 : 3;
+  const float* c = flatCorners_ + 12 * size_t(i);
+  for (int k = 0; k < p.count; ++k) {
+    const int at = quad_[i] ? (k + 3) % 4 : k;
+    p.v[size_t(k)] = Vec3(c[3 * at], c[3 * at + 1], c[3 * at + 2]);
+  }
+  return p;
+}
+
 void RayTracer::placeInstance(uint32_t instance, const glm::mat4& transform) {
   if (instance >= instanceCount_)
     throw Error(fmt::format("ray tracer: no instance {} ({} instances)", instance, instanceCount_));

@@ -65,6 +65,10 @@ class RayTracer {
     return corners ? corners + 12 * size_t(primID) : nullptr;
   }
 
+  // Polygon i as it went in, read back from the one-level BVH's corners: for a tracer none of
+  // whose instances has moved (the caller then need not keep its own copy of every polygon).
+  Polygon polygonAsBuilt(uint32_t i) const;
+
   uint64_t raysTraced() const { return rays_.load(std::memory_order_relaxed); }
 
   // Benchmarks only: occlusion rays as a solver cast them, stream by stream, so that Embree's raw

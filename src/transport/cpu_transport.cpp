@@ -121,6 +121,9 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
       threadLocal_(std::make_unique<ThreadLocal>()) {
   rayOffset_ = rayOffsetFor(surfaces.sceneExtent);
   for (uint32_t o : scene.dynamicObjects()) builtAt_.emplace_back(o, scene.objects[o].transform);
+  // A static scene's polygons never change: the tracer's corners serve (facePolygon), and a copy
+  // of every face here would be 52 bytes a face for nothing.
+  if (builtAt_.empty()) std::vector<Polygon>().swap(facePolygons_);
   patchRadius_.resize(surfaces.patches.size());
   for (size_t p = 0; p < surfaces.patches.size(); ++p)
     patchRadius_[p] = polygonRadius(surfaces.patches[p].polygon, surfaces.patches[p].centroid);
@@ -283,7 +286,7 @@ void CpuTransport::updateQuadrature(std::span<const uint32_t> elements) {
       const float floor = std::max(0.1f * radius, options_.nearFactor * radius / float(kMaxAnalyticSide));
       float gap = std::numeric_limits<float>::max();
       tracer_.forEachNear(e.centroid, options_.nearFactor * radius, [&](uint32_t face) {
-        if (face != e.face) gap = std::min(gap, pointPolygonDistance(e.centroid, facePolygons_[face]));
+        if (face != e.face) gap = std::min(gap, pointPolygonDistance(e.centroid, facePolygon(face)));
         return gap > floor;
       });
       gap = std::max(gap, 0.1f * radius);
@@ -323,7 +326,7 @@ bool CpuTransport::shaftIsEmpty(const Patch& a, const Patch& b) const {
   int candidates = 0;
   tracer_.forEachNear(centre, radius, [&](uint32_t face) {
     if (face == a.face || face == b.face) return true;
-    if (++candidates > kMaxShaftCandidates || shaft.mayIntersect(facePolygons_[face])) empty = false;
+    if (++candidates > kMaxShaftCandidates || shaft.mayIntersect(facePolygon(face))) empty = false;
     return empty;
   });
   return empty;

@@ -69,7 +69,10 @@ class CpuTransport final : public Transport {
   const Scene& scene_;
   const SurfaceSet& surfaces_;
   FormFactorOptions options_;
-  std::vector<Polygon> facePolygons_;
+  std::vector<Polygon> facePolygons_;  // where each face is now: kept for scenes with dynamic objects only
+  Polygon facePolygon(uint32_t face) const {
+    return facePolygons_.empty() ? tracer_.polygonAsBuilt(face) : facePolygons_[face];
+  }
   RayTracer tracer_;
   float rayOffset_ = 0.0f;
   enum class PairVisibility : uint8_t { Unknown, Clear, Partial };

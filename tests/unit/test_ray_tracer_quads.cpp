@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "luxel/error.h"
 #include "luxel/lightmap.h"
 #include "luxel/render.h"
 #include "render/camera_frame.h"
@@ -161,6 +162,20 @@ TEST(RayTracerQuads, LightmapLookUpsLieOnThePixelsRays) {
   EXPECT_GT(checked, 300);
   EXPECT_GT(upper, 100);            // the lifted triangle is in view
   EXPECT_GT(checked - upper, 100);  // and so is the flat one
+}
+
+// The transport of a static scene keeps no copy of the faces: it reads them back from the
+// tracer, corners in their own order (the BVH stores a quad's rotated by one).
+TEST(RayTracerQuads, PolygonsReadBackAsTheyWentIn) {
+  const std::vector<luxel::Polygon> polygons = {{kCorners, 4},
+                                                {{Vec3(2, 0, 0), Vec3(3, 0, 0.5f), Vec3(2, 1, 0), Vec3(0)}, 3}};
+  const luxel::RayTracer tracer(polygons);
+  for (uint32_t i = 0; i < polygons.size(); ++i) {
+    const luxel::Polygon back = tracer.polygonAsBuilt(i);
+    ASSERT_EQ(back.count, polygons[i].count);
+    for (int c = 0; c < back.count; ++c) EXPECT_EQ(back.v[size_t(c)], polygons[i].v[size_t(c)]) << i << ", " << c;
+  }
+  EXPECT_THROW(tracer.polygonAsBuilt(2), luxel::Error);
 }
 
 }  // namespace
