@@ -17,18 +17,18 @@ namespace luxel {
 namespace {
 
 // Bump when buildFaceClusterTree would build a different tree from the same surfaces.
-constexpr char kFormat[] = "luxel-face-clusters-2";
-constexpr char kMagic[8] = {'L', 'X', 'F', 'C', 'T', '0', '0', '1'};
+constexpr char kFormat[] = "luxel-face-clusters-3";  // 3: leaves not stored
+constexpr char kMagic[8] = {'L', 'X', 'F', 'C', 'T', '0', '0', '2'};
 
 static_assert(std::is_trivially_copyable_v<FaceCluster>, "clusters are written as bytes");
 
 struct Header {
   char magic[8];
   uint64_t key;
-  uint64_t nodes, order;
+  uint64_t inner, order;  // joined nodes; elements (each with its place in order and its leaf's parent)
   uint32_t root, components;
   uint64_t clusterSize;  // sizeof(FaceCluster): another layout is another format
-  uint64_t checksum;     // of the nodes' and order's bytes
+  uint64_t checksum;     // of the joined nodes', order's and leaf parents' bytes
 };
 
 std::filesystem::path fileFor(const std::filesystem::path& directory, uint64_t key) {
@@ -37,22 +37,29 @@ std::filesystem::path fileFor(const std::filesystem::path& directory, uint64_t k
 
 uint64_t checksum(const FaceClusterTree& tree) {
   ContentHash h;
-  h.bytes(tree.nodes.data(), tree.nodes.size() * sizeof(FaceCluster));
+  h.bytes(tree.inner.data(), tree.inner.size() * sizeof(FaceCluster));
   h.bytes(tree.order.data(), tree.order.size() * sizeof(uint32_t));
+  h.bytes(tree.leafParent.data(), tree.leafParent.size() * sizeof(uint32_t));
   return h.digest();
 }
 
 // Indices that a corrupt file with a good checksum (a collision, or a bug that wrote it) could
 // still get wrong would send the solver out of bounds: checked once more.
 bool consistent(const FaceClusterTree& t, size_t n) {
-  if (t.order.size() != n || t.nodes.size() < n || t.nodes.size() > 2 * n - 1 || t.root >= t.nodes.size()) return false;
-  for (uint32_t e : t.order)
-    if (e >= n) return false;
-  for (const FaceCluster& c : t.nodes) {
+  const size_t nodes = t.nodeCount();
+  if (t.order.size() != n || t.leafParent.size() != n || t.inner.size() > n - 1 || t.root >= nodes) return false;
+  std::vector<uint8_t> seen(n, 0);
+  for (uint32_t e : t.order) {
+    if (e >= n || seen[e]) return false;
+    seen[e] = 1;
+  }
+  for (uint32_t p : t.leafParent)
+    if (p != kNoCluster && (p < n || p >= nodes)) return false;
+  for (const FaceCluster& c : t.inner) {
     if (size_t(c.begin) + c.count > n) return false;
-    if (c.parent != kNoCluster && c.parent >= t.nodes.size()) return false;
+    if (c.parent != kNoCluster && (c.parent < n || c.parent >= nodes)) return false;
     for (uint32_t k : c.child)
-      if (k != kNoCluster && k >= t.nodes.size()) return false;
+      if (k >= nodes) return false;
   }
   return true;
 }
@@ -80,16 +87,20 @@ std::optional<FaceClusterTree> loadFaceClusterTree(const std::filesystem::path& 
   Header h{};
   in.read(reinterpret_cast<char*>(&h), sizeof h);
   if (!in || std::memcmp(h.magic, kMagic, sizeof kMagic) != 0 || h.key != key || h.clusterSize != sizeof(FaceCluster) ||
-      h.order != elementCount || h.nodes < elementCount || h.nodes > 2 * elementCount - 1)
+      h.order != elementCount || h.inner > elementCount - 1)
     return std::nullopt;
   FaceClusterTree t;
-  t.nodes.resize(h.nodes);
+  t.inner.resize(h.inner);
   t.order.resize(h.order);
+  t.leafParent.resize(h.order);
   t.root = h.root, t.components = h.components;
-  in.read(reinterpret_cast<char*>(t.nodes.data()), std::streamsize(t.nodes.size() * sizeof(FaceCluster)));
+  in.read(reinterpret_cast<char*>(t.inner.data()), std::streamsize(t.inner.size() * sizeof(FaceCluster)));
   in.read(reinterpret_cast<char*>(t.order.data()), std::streamsize(t.order.size() * sizeof(uint32_t)));
+  in.read(reinterpret_cast<char*>(t.leafParent.data()), std::streamsize(t.leafParent.size() * sizeof(uint32_t)));
   if (!in || in.peek() != std::char_traits<char>::eof() || checksum(t) != h.checksum || !consistent(t, elementCount))
     return std::nullopt;
+  t.leafAt.resize(t.order.size());
+  for (uint32_t k = 0; k < t.order.size(); ++k) t.leafAt[t.order[k]] = k;
   return t;
 }
 
@@ -100,15 +111,16 @@ void saveFaceClusterTree(const std::filesystem::path& directory, uint64_t key, c
   Header h{};
   std::memcpy(h.magic, kMagic, sizeof kMagic);
   h.key = key;
-  h.nodes = tree.nodes.size(), h.order = tree.order.size();
+  h.inner = tree.inner.size(), h.order = tree.order.size();
   h.root = tree.root, h.components = tree.components;
   h.clusterSize = sizeof(FaceCluster);
   h.checksum = checksum(tree);
   writeFileAtomically(fileFor(directory, key), [&](const std::filesystem::path& tmp) {
     OutputFile out(tmp);
     out.write(&h, sizeof h);
-    out.write(tree.nodes.data(), tree.nodes.size() * sizeof(FaceCluster));
+    out.write(tree.inner.data(), tree.inner.size() * sizeof(FaceCluster));
     out.write(tree.order.data(), tree.order.size() * sizeof(uint32_t));
+    out.write(tree.leafParent.data(), tree.leafParent.size() * sizeof(uint32_t));
     out.close();
   });
 }

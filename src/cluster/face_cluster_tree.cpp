@@ -180,18 +180,42 @@ std::vector<uint32_t> weldCorners(const SurfaceSet& s, std::vector<uint32_t>& fi
 
 FaceClusterTree::Depth FaceClusterTree::depth() const {
   Depth d;
-  if (nodes.empty()) return d;
-  std::vector<uint32_t> at(nodes.size(), 0);
+  const size_t nodes = nodeCount();
+  if (nodes == 0) return d;
+  std::vector<uint32_t> at(nodes, 0);
   double sum = 0.0;
   // Parents come after their children: a pass from the root down, in reverse index order.
-  for (size_t i = nodes.size(); i-- > 0;) {
-    const FaceCluster& c = nodes[i];
-    if (c.parent != kNoCluster) at[i] = at[c.parent] + 1;
+  for (size_t i = nodes; i-- > 0;) {
+    const uint32_t p = parent(uint32_t(i));
+    if (p != kNoCluster) at[i] = at[p] + 1;
     d.max = std::max(d.max, at[i]);
-    if (c.leaf()) sum += at[i];
+    if (isLeaf(uint32_t(i))) sum += at[i];
   }
   d.meanLeaf = order.empty() ? 0.0 : sum / double(order.size());
   return d;
+}
+
+FaceCluster leafCluster(const Element& el, uint32_t at, uint32_t parent) {
+  // The same arithmetic as a joined node's fields from its moments, so that a leaf made here is
+  // the leaf the tree once stored, to the bit.
+  const Moments m = elementMoments(el);
+  FaceCluster c;
+  c.begin = at, c.count = 1, c.parent = parent;
+  c.area = float(m.area);
+  c.vectorArea = Vec3(m.vectorArea);
+  c.reflectance = m.area > 0 ? Rgb(m.reflectance / m.area) : Rgb(0.0f);
+  c.convex = m.convex;
+  c.cone = {el.normal, 1.0f};
+  c.box = fitOrientedBox({el.polygon.v.data(), size_t(el.polygon.count)}, el.normal);
+  for (int j = 0; j < 3; ++j) {
+    const float d = glm::dot(el.normal, c.box.axis[size_t(j)]) * el.area;
+    c.axisAreas[size_t(j)] = std::max(0.0f, d), c.axisAreas[size_t(j) + 3] = std::max(0.0f, -d);
+  }
+  return c;
+}
+
+FaceCluster FaceClusterTree::node(uint32_t i, const SurfaceSet& surfaces) const {
+  return isLeaf(i) ? leafCluster(surfaces.elements[i], leafAt[i], leafParent[i]) : joined(i);
 }
 
 FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
@@ -451,53 +475,42 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
 #ifdef __GLIBC__
   malloc_trim(0);  // the neighbour lists were many small blocks: give their pages back before the nodes come
 #endif
-  tree.nodes.resize(next);
-  for (uint32_t i = 0; i < next; ++i) {
-    FaceCluster& c = tree.nodes[i];
+  tree.inner.resize(next - n);
+  for (uint32_t i = uint32_t(n); i < next; ++i) {
+    FaceCluster& c = tree.inner[i - n];
     c.child = childOf[i], c.parent = parentOf[i], c.connected = joinsPieces[i] == 0;
   }
+  tree.leafParent.assign(parentOf.begin(), parentOf.begin() + std::ptrdiff_t(n));
   release(childOf), release(parentOf), release(joinsPieces);
 
   // Each cluster's elements contiguous: the leaves in depth-first order.
   tree.order.reserve(n);
+  tree.leafAt.assign(n, 0);
   std::vector<uint32_t> stack{tree.root};
   while (!stack.empty()) {
     const uint32_t i = stack.back();
     stack.pop_back();
-    FaceCluster& c = tree.nodes[i];
-    if (c.leaf()) {
-      c.begin = uint32_t(tree.order.size()), c.count = 1;
+    if (i < n) {  // (not isLeaf, which counts the order being made)
+      tree.leafAt[i] = uint32_t(tree.order.size());
       tree.order.push_back(i);
     } else {
-      stack.push_back(c.child[1]);
-      stack.push_back(c.child[0]);
+      stack.push_back(tree.inner[i - n].child[1]);
+      stack.push_back(tree.inner[i - n].child[0]);
     }
   }
 
-  // Each node's geometry: the leaves from their elements, then the joined nodes level by level
-  // (a node's children are below it), each level in parallel. In one sequential pass this was a
-  // third of the build at 1.5M faces.
+  // Each joined node's geometry from its children (a leaf's made from its element when read),
+  // level by level (a node's children are below it), each level in parallel. In one sequential
+  // pass this was a third of the build at 1.5M faces.
   auto fill = [&](uint32_t i) {
-    FaceCluster& c = tree.nodes[i];
+    FaceCluster& c = tree.inner[i - n];
     const Moments m = momentsOf(i);
     c.area = float(m.area);
     c.vectorArea = Vec3(m.vectorArea);
     c.reflectance = m.area > 0 ? Rgb(m.reflectance / m.area) : Rgb(0.0f);
     c.convex = m.convex;
-    if (c.leaf()) {
-      const Element& el = surfaces.elements[i];
-      c.maxReflectance = std::max({el.reflectance.r, el.reflectance.g, el.reflectance.b});
-      c.cone = {el.normal, 1.0f};
-      c.box = fitOrientedBox({el.polygon.v.data(), size_t(el.polygon.count)}, el.normal);
-      for (int j = 0; j < 3; ++j) {
-        const float d = glm::dot(el.normal, c.box.axis[size_t(j)]) * el.area;
-        c.axisAreas[size_t(j)] = std::max(0.0f, d), c.axisAreas[size_t(j) + 3] = std::max(0.0f, -d);
-      }
-      return;
-    }
-    const FaceCluster &a = tree.nodes[c.child[0]], &b = tree.nodes[c.child[1]];
+    const FaceCluster a = tree.node(c.child[0], surfaces), b = tree.node(c.child[1], surfaces);
     c.begin = std::min(a.begin, b.begin), c.count = a.count + b.count;
-    c.maxReflectance = std::max(a.maxReflectance, b.maxReflectance);
     c.cone = mergeCones(a.cone, b.cone);
     const float len = glm::length(c.vectorArea);
     Vec3 normal = len > 1e-6f * c.area ? c.vectorArea / len : (a.area >= b.area ? a.box.axis[2] : b.box.axis[2]);
@@ -525,15 +538,12 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
       }
     }
   };
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(n), 1024), [&](const tbb::blocked_range<uint32_t>& r) {
-    for (uint32_t i = r.begin(); i != r.end(); ++i) fill(i);
-  });
   {
-    // Inner nodes by height (a leaf's is 0), in index order within a height.
+    // Joined nodes by height (a leaf's is 0), in index order within a height.
     std::vector<uint32_t> height(next, 0), byHeight(next - n);
     uint32_t levels = 0;
     for (uint32_t i = uint32_t(n); i < next; ++i) {
-      const FaceCluster& c = tree.nodes[i];
+      const FaceCluster& c = tree.joined(i);
       height[i] = std::max(height[c.child[0]], height[c.child[1]]) + 1;
       levels = std::max(levels, height[i]);
     }

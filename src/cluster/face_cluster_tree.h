@@ -29,7 +29,6 @@ struct FaceCluster {
   std::array<float, 6> axisAreas{};     // D+_j, D-_j: projected area along +-box.axis[j]
   NormalCone cone;
   Rgb reflectance{0.0f};                // area-weighted mean
-  float maxReflectance = 0.0f;          // largest channel of any element
   // Made by contracting dual edges none of which is concave: the surface is locally convex
   // everywhere, so no part of it sees another (its self form factor is 0).
   bool convex = true;
@@ -43,16 +42,30 @@ struct FaceCluster {
   float selfFormFactorBound() const;
 };
 
+// Node e < elementCount() is the leaf of element e; the joined nodes follow, each after its
+// children (a pass in index order is bottom-up), the root last. Only the joined nodes are
+// stored: a leaf is its element's polygon, and is made from it when asked (node), which keeps
+// half the nodes, 148 bytes a face, out of memory (docs/performance.md, "Face-cluster radiosity").
 struct FaceClusterTree {
-  // Leaves first: node e (e < elementCount) is element e. Then the joined nodes, each after its
-  // children (a pass in index order is bottom-up); the root last.
-  std::vector<FaceCluster> nodes;
-  std::vector<uint32_t> order;  // element indices, each cluster's a contiguous run
+  std::vector<FaceCluster> inner;    // node elementCount() + k is inner[k]
+  std::vector<uint32_t> order;       // element indices, each cluster's a contiguous run
+  std::vector<uint32_t> leafParent;  // per element: its leaf's parent (kNoCluster for a lone root)
+  std::vector<uint32_t> leafAt;      // per element: its place in order (its leaf's begin)
   uint32_t root = kNoCluster;
-  uint32_t components = 0;      // connected components the contraction ended with
-  double seconds = 0.0;         // build time
+  uint32_t components = 0;           // connected components the contraction ended with
+  double seconds = 0.0;              // build time
 
   size_t elementCount() const { return order.size(); }
+  size_t nodeCount() const { return order.size() + inner.size(); }
+  bool isLeaf(uint32_t i) const { return i < order.size(); }
+  // Node i whole; a leaf made from `surfaces`, the set the tree was built on.
+  FaceCluster node(uint32_t i, const SurfaceSet& surfaces) const;
+  // A joined node, without a copy.
+  const FaceCluster& joined(uint32_t i) const { return inner[i - order.size()]; }
+  uint32_t parent(uint32_t i) const { return isLeaf(i) ? leafParent[i] : joined(i).parent; }
+  // The run of order that node i covers.
+  uint32_t begin(uint32_t i) const { return isLeaf(i) ? leafAt[i] : joined(i).begin; }
+  uint32_t count(uint32_t i) const { return isLeaf(i) ? 1u : joined(i).count; }
   // The deepest leaf's depth (the root's is 0) and the leaves' mean depth: about log2 n for a
   // balanced tree; far more where big clusters grew by a face at a time.
   struct Depth {
@@ -60,8 +73,15 @@ struct FaceClusterTree {
     double meanLeaf = 0.0;
   };
   Depth depth() const;
-  size_t bytes() const { return nodes.capacity() * sizeof(FaceCluster) + order.capacity() * sizeof(uint32_t); }
+  size_t bytes() const {
+    return inner.capacity() * sizeof(FaceCluster) +
+           (order.capacity() + leafParent.capacity() + leafAt.capacity()) * sizeof(uint32_t);
+  }
 };
+
+// The leaf of one element, as a joined node's fields are made from its elements: its place in
+// the tree's order and its parent given.
+FaceCluster leafCluster(const Element& element, uint32_t at, uint32_t parent);
 
 // Builds the hierarchy over `surfaces.elements`. Elements are adjacent when they share an edge
 // (both corners at exactly the same position). Throws Error when there are no elements.

@@ -30,10 +30,10 @@ ClusterPoints::ClusterPoints(const FaceClusterTree& tree, const SurfaceSet& surf
 
 void ClusterPoints::points(uint32_t node, int side, std::vector<SurfacePoint>& out) const {
   out.clear();
-  const FaceCluster& c = tree_.nodes[node];
+  const uint32_t at = tree_.begin(node), faces = tree_.count(node);  // its run of the tree's order
   const float k = float(side);
-  if (c.count == 1) {
-    const uint32_t e = tree_.order[c.begin];
+  if (faces == 1) {
+    const uint32_t e = tree_.order[at];
     const Element& el = surfaces_.elements[e];
     const Polygon& p = el.polygon;
     if (p.count == 3) {
@@ -64,9 +64,9 @@ void ClusterPoints::points(uint32_t node, int side, std::vector<SurfacePoint>& o
     return;
   }
   const int count = side * side;
-  const double base = cumulativeArea_[c.begin], area = cumulativeArea_[c.begin + c.count] - base;
-  const auto first = cumulativeArea_.begin() + std::ptrdiff_t(c.begin) + 1;
-  const auto last = cumulativeArea_.begin() + std::ptrdiff_t(c.begin + c.count) + 1;
+  const double base = cumulativeArea_[at], area = cumulativeArea_[at + faces] - base;
+  const auto first = cumulativeArea_.begin() + std::ptrdiff_t(at) + 1;
+  const auto last = cumulativeArea_.begin() + std::ptrdiff_t(at + faces) + 1;
   for (int i = 0; i < count; ++i) {
     const double target = base + area * (double(i) + 0.5) / double(count);
     auto it = std::upper_bound(first, last, target);

@@ -115,7 +115,7 @@ class HierarchicalSolver final : public Solver {
     if (!cached.warning.empty()) warnings_.push_back(cached.warning);
     points_ = std::make_unique<ClusterPoints>(tree_, sys.surfaces);
     rayOffset_ = rayOffsetFor(sys.surfaces.sceneExtent);
-    const size_t nodes = tree_.nodes.size(), ne = sys.elementCount();
+    const size_t nodes = tree_.nodeCount(), ne = sys.elementCount();
     // The emitting surfaces' direct light, per element as the analytic lights' is: through the
     // hierarchy's links it was the largest error where lamps are surfaces (docs/algorithms.md,
     // "Direct light first").
@@ -136,22 +136,22 @@ class HierarchicalSolver final : public Solver {
     unshot_.assign(nodes, Rgb(0.0f));
     if (!exactDirect_) emission_.assign(nodes, Rgb(0.0f));
     for (uint32_t i = 0; i < nodes; ++i) {
-      const FaceCluster& c = tree_.nodes[i];
-      if (c.leaf()) {
+      if (tree_.isLeaf(i)) {
         if (!exactDirect_) emission_[i] = sys.emission[i];
         unshot_[i] = (exactDirect_ ? Rgb(0.0f) : emission_[i]) +
                      sys.reflectance[i] * (sys.analytic[i] + emitterDirect_.irradiance[i]);
       } else {
-        const FaceCluster &a = tree_.nodes[c.child[0]], &b = tree_.nodes[c.child[1]];
+        const FaceCluster& c = tree_.joined(i);
+        const float a = areaOf(c.child[0]), b = areaOf(c.child[1]);
         const float w = c.area > 0.0f ? 1.0f / c.area : 0.0f;
-        if (!exactDirect_) emission_[i] = (a.area * emission_[c.child[0]] + b.area * emission_[c.child[1]]) * w;
-        unshot_[i] = (a.area * unshot_[c.child[0]] + b.area * unshot_[c.child[1]]) * w;
+        if (!exactDirect_) emission_[i] = (a * emission_[c.child[0]] + b * emission_[c.child[1]]) * w;
+        unshot_[i] = (a * unshot_[c.child[0]] + b * unshot_[c.child[1]]) * w;
       }
     }
     for (size_t e = 0; e < ne; ++e) emittedPower_ += double(sys.area[e]) * maxChannel(unshot_[e]);
     std::vector<uint32_t> height(nodes, 0);
     for (uint32_t i = uint32_t(ne); i < nodes; ++i)
-      height[i] = std::max(height[tree_.nodes[i].child[0]], height[tree_.nodes[i].child[1]]) + 1;
+      height[i] = std::max(height[tree_.joined(i).child[0]], height[tree_.joined(i).child[1]]) + 1;
     const uint32_t levels = nodes > ne ? height[tree_.root] : 0;
     levelStart_.assign(size_t(levels) + 1, 0);
     for (uint32_t i = uint32_t(ne); i < nodes; ++i) ++levelStart_[height[i]];  // counts, shifted by one below
@@ -159,9 +159,9 @@ class HierarchicalSolver final : public Solver {
     mix_.resize(nodes - ne);
     std::vector<size_t> fill(levelStart_.begin(), levelStart_.end() - 1);
     for (uint32_t i = uint32_t(ne); i < nodes; ++i) {
-      const FaceCluster& c = tree_.nodes[i];
+      const FaceCluster& c = tree_.joined(i);
       const float w = c.area > 0.0f ? 1.0f / c.area : 0.0f;
-      mix_[fill[height[i] - 1]++] = {i, c.child[0], c.child[1], tree_.nodes[c.child[0]].area * w, tree_.nodes[c.child[1]].area * w};
+      mix_[fill[height[i] - 1]++] = {i, c.child[0], c.child[1], areaOf(c.child[0]) * w, areaOf(c.child[1]) * w};
     }
     next_.assign(ne, Rgb(0.0f));
     faces_.resize(ne);
@@ -202,13 +202,14 @@ class HierarchicalSolver final : public Solver {
     out.radiosity.resize(ne), out.irradiance.resize(ne), out.directIrradiance.resize(ne);
     tbb::parallel_for(uint32_t(0), uint32_t(ne), [&](uint32_t e) {
       uint32_t m = e;
-      while (since_[m].load(std::memory_order_relaxed) == kNever) m = tree_.nodes[m].parent;
+      while (since_[m].load(std::memory_order_relaxed) == kNever) m = tree_.parent(m);
       const Element& el = surfaces.elements[e];
       Rgb h(0.0f), hd(0.0f);
       const uint32_t f = field_[m].load(std::memory_order_relaxed);
       if (f != kNever) {
-        h = irradiance(fields_[f], m, el.centroid, el.normal);
-        hd = irradiance(fields_[f + 1], m, el.centroid, el.normal);
+        const OrientedBox box = node(m).box;
+        h = irradiance(fields_[f], box, el.centroid, el.normal);
+        hd = irradiance(fields_[f + 1], box, el.centroid, el.normal);
       }
       out.irradiance[e] = h + sys_.analytic[e] + emitterDirect_.irradiance[e];
       out.directIrradiance[e] = hd + sys_.analytic[e] + emitterDirect_.irradiance[e];
@@ -243,12 +244,12 @@ class HierarchicalSolver final : public Solver {
       Rgb* c = &out[size_t(e) * size_t(count)];
       std::fill(c, c + count, Rgb(0.0f));
       uint32_t m = e;
-      while (since_[m].load(std::memory_order_relaxed) == kNever) m = tree_.nodes[m].parent;
+      while (since_[m].load(std::memory_order_relaxed) == kNever) m = tree_.parent(m);
       const uint32_t f = field_[m].load(std::memory_order_relaxed);
       if (f == kNever) return;
       const Field& field = fields_[f];
       float basis[kMaxBasisFunctions];
-      evaluateBasis(tree_.nodes[m].box.planeParameters(sys_.surfaces.elements[e].centroid), s_.basis, basis);
+      evaluateBasis(node(m).box.planeParameters(sys_.surfaces.elements[e].centroid), s_.basis, basis);
       for (int ch = 0; ch < 3; ++ch) {
         float radiance = 0.0f;
         Vec3 v(0.0f);
@@ -272,7 +273,7 @@ class HierarchicalSolver final : public Solver {
   // element tree and its fields are saved. Between sweeps nothing is in flight (next_ is zero).
   bool checkpoints() const override { return true; }
   void saveState(StateWriter& out) const override {
-    const size_t nodes = tree_.nodes.size();
+    const size_t nodes = tree_.nodeCount();
     out.array(unshot_), out.array(split_);
     std::vector<uint32_t> field(nodes), since(nodes);
     for (size_t i = 0; i < nodes; ++i) field[i] = field_[i].load(), since[i] = since_[i].load();
@@ -286,7 +287,7 @@ class HierarchicalSolver final : public Solver {
     out.value(recordSh_);
   }
   void restoreState(StateReader& in) override {
-    const size_t nodes = tree_.nodes.size();
+    const size_t nodes = tree_.nodeCount();
     in.array(unshot_, nodes), in.array(split_, nodes);
     std::vector<uint32_t> field, since;
     in.array(field, nodes), in.array(since, nodes);
@@ -350,8 +351,12 @@ class HierarchicalSolver final : public Solver {
   // where the emitters' light goes through the links.
   Rgb emitterEmission(uint32_t j) const { return iterations_ == 0 && !emission_.empty() ? emission_[j] : Rgb(0.0f); }
 
+  // Node i of the tree, a leaf made from its element (FaceClusterTree::node).
+  FaceCluster node(uint32_t i) const { return tree_.node(i, sys_.surfaces); }
+  float areaOf(uint32_t i) const { return tree_.isLeaf(i) ? sys_.surfaces.elements[i].area : tree_.joined(i).area; }
+
   bool facing(uint32_t i, uint32_t j) const {
-    const FaceCluster &a = tree_.nodes[i], &b = tree_.nodes[j];
+    const FaceCluster a = node(i), b = node(j);
     return mayFace(b.cone, b.box, a.box) && mayFace(a.cone, a.box, b.box);
   }
 
@@ -369,8 +374,9 @@ class HierarchicalSolver final : public Solver {
     const int nb = s_.basis;
     const size_t np = r.points.size();
     r.basisAt.resize(np * size_t(nb));
+    const OrientedBox box = node(i).box;
     for (size_t p = 0; p < np; ++p)
-      evaluateBasis(tree_.nodes[i].box.planeParameters(r.points[p].position), nb, &r.basisAt[p * size_t(nb)]);
+      evaluateBasis(box.planeParameters(r.points[p].position), nb, &r.basisAt[p * size_t(nb)]);
     project(r, nullptr, r.projection);
   }
 
@@ -423,7 +429,7 @@ class HierarchicalSolver final : public Solver {
   void push(const Field& from, uint32_t parent, const Receiver& r, uint32_t child, Field& to) const {
     const int nb = s_.basis;
     const size_t np = r.points.size();
-    const Vec3 normal = tree_.nodes[child].vectorArea;
+    const Vec3 normal = node(child).vectorArea;
     std::array<bool, 3> keep;
     for (int ch = 0; ch < 3; ++ch) keep[size_t(ch)] = glm::dot(normal, from.c[size_t(ch)]) > 0.0f;
     // The directions' record goes with the vectors it belongs to.
@@ -436,9 +442,10 @@ class HierarchicalSolver final : public Solver {
     to = Field{};
     to.sh = from.sh;
     const bool record = recordSh_ > 0;
+    const OrientedBox box = node(parent).box;
     for (size_t p = 0; p < np; ++p) {
       float basis[kMaxBasisFunctions];
-      evaluateBasis(tree_.nodes[parent].box.planeParameters(r.points[p].position), nb, basis);
+      evaluateBasis(box.planeParameters(r.points[p].position), nb, basis);
       for (int ch = 0; ch < 3; ++ch) {
         if (!keep[size_t(ch)]) continue;
         Vec3 value(0.0f);
@@ -454,9 +461,9 @@ class HierarchicalSolver final : public Solver {
 
   // Irradiance at a face (position, unit normal) from a field given on cluster `on`: the vector
   // part dotted with the normal plus the harmonics' part, each clamped at zero.
-  Rgb irradiance(const Field& f, uint32_t on, Vec3 position, Vec3 normal) const {
+  Rgb irradiance(const Field& f, const OrientedBox& on, Vec3 position, Vec3 normal) const {
     float basis[kMaxBasisFunctions];
-    evaluateBasis(tree_.nodes[on].box.planeParameters(position), s_.basis, basis);
+    evaluateBasis(on.planeParameters(position), s_.basis, basis);
     std::array<float, kShCoefficients> y = shBasis(normal);
     for (int i = 0; i < kShCoefficients; ++i) y[size_t(i)] *= kShCosine[size_t(i)];
     Rgb out(0.0f);
@@ -498,7 +505,7 @@ class HierarchicalSolver final : public Solver {
     float upper = 0.0f, spread = 0.0f;
   };
   TransferBounds transferBounds(uint32_t i, uint32_t j, const Receiver& r, const std::vector<SurfacePoint>& q) const {
-    const FaceCluster &a = tree_.nodes[i], &b = tree_.nodes[j];
+    const FaceCluster a = node(i), b = node(j);
     float hi = 0.0f, lo = std::numeric_limits<float>::max();
     for (const SurfacePoint& x : r.points)
       for (const SurfacePoint& y : q) {
@@ -519,7 +526,7 @@ class HierarchicalSolver final : public Solver {
   // the lit ones (a floor beside the dark sides of a block on it), so the mean would be too dark
   // one way and too bright the other.
   float couple(uint32_t j, const Receiver& r, Scratch& s, bool asHarmonics) const {
-    const FaceCluster& b = tree_.nodes[j];
+    const FaceCluster b = node(j);
     const size_t np = r.points.size();
     s.transport.assign(np, {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)});
     s.direct.assign(np, {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)});
@@ -657,7 +664,7 @@ class HierarchicalSolver final : public Solver {
   // Splits receiver element i: its children become elements, its field goes down to them.
   void splitReceiver(uint32_t i) {
     if (split_[i]) return;
-    const FaceCluster& c = tree_.nodes[i];
+    const FaceCluster& c = tree_.joined(i);  // a leaf has no children to split into
     const uint32_t f = field_[i].load(std::memory_order_relaxed);
     Receiver r;
     for (uint32_t child : c.child) {
@@ -703,7 +710,7 @@ class HierarchicalSolver final : public Solver {
   // this cluster's own too.
   void transportLight(uint32_t i, uint32_t parent, const Field* inheritedTotal, const Field* inheritedDirect,
                       std::vector<uint32_t> shooters, bool selfLinked = false) {
-    const FaceCluster& c = tree_.nodes[i];
+    const FaceCluster c = node(i);
     Receiver r;
     prepareReceiver(i, r);
     Field total, direct;
@@ -718,7 +725,7 @@ class HierarchicalSolver final : public Solver {
     for (size_t idx = 0; idx < shooters.size(); ++idx) {
       const uint32_t j = shooters[idx];
       const Rgb unshot = emitterUnshot(j);
-      const FaceCluster& b = tree_.nodes[j];
+      const FaceCluster b = node(j);
       const bool bothLeaves = c.leaf() && b.leaf();
       // Refine the larger side that can be split.
       auto refine = [&] {
@@ -849,7 +856,7 @@ class HierarchicalSolver final : public Solver {
       keep += total, keepDirect += direct;
       for (uint32_t k = c.begin; k < c.begin + c.count; ++k) {
         const FaceSample& face = faces_[k];
-        next_[k] = face.reflectance * irradiance(total, i, face.centroid, face.normal);
+        next_[k] = face.reflectance * irradiance(total, c.box, face.centroid, face.normal);
       }
       return;
     }

@@ -25,8 +25,9 @@ fs::path freshDirectory(const std::string& name) {
 }
 
 bool sameTree(const FaceClusterTree& a, const FaceClusterTree& b) {
-  return a.nodes.size() == b.nodes.size() && a.order == b.order && a.root == b.root && a.components == b.components &&
-         std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(FaceCluster)) == 0;
+  return a.inner.size() == b.inner.size() && a.order == b.order && a.leafParent == b.leafParent &&
+         a.leafAt == b.leafAt && a.root == b.root && a.components == b.components &&
+         std::memcmp(a.inner.data(), b.inner.data(), a.inner.size() * sizeof(FaceCluster)) == 0;
 }
 
 SurfaceSet cornellSurfaces() { return discretise(builtinScene("cornell"), DiscretiseOptions{}); }
@@ -74,16 +75,16 @@ TEST(FaceClusterCache, AFileThatDoesNotCheckOutIsRebuilt) {
   const std::vector<std::pair<std::string, std::function<void()>>> cases = {
       {"cut short", [&] { fs::resize_file(file, size / 2); }},
       {"a flipped byte", [&] { damage([&](std::fstream& f) {
-         f.seekg(std::streamoff(size - 4 * surfaces.elements.size() - 40));
+         f.seekg(std::streamoff(size - 8 * surfaces.elements.size() - 40));
          char c = 0;
          f.read(&c, 1);
          c = char(c ^ 0x10);
-         f.seekp(std::streamoff(size - 4 * surfaces.elements.size() - 40));
+         f.seekp(std::streamoff(size - 8 * surfaces.elements.size() - 40));
          f.write(&c, 1);
        }); }},
       {"another element count", [&] { damage([&](std::fstream& f) {
          const uint64_t wrong = surfaces.elements.size() + 1;
-         f.seekp(24);  // magic, key, nodes: then the order's length
+         f.seekp(24);  // magic, key, joined nodes: then the order's length
          f.write(reinterpret_cast<const char*>(&wrong), sizeof wrong);
        }); }},
   };

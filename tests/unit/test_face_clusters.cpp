@@ -99,17 +99,23 @@ class CrumpledTree : public ::testing::Test {
 
 TEST_F(CrumpledTree, EveryNodeIsAContiguousRunWithAdditiveArea) {
   const size_t n = surfaces.elements.size();
-  ASSERT_EQ(tree.nodes.size(), 2 * n - 1);
+  ASSERT_EQ(tree.nodeCount(), 2 * n - 1);
+  ASSERT_EQ(tree.inner.size(), n - 1);  // leaves are made from their elements, not stored
   ASSERT_EQ(tree.order.size(), n);
   EXPECT_EQ(tree.components, 1u);  // the ball is one connected surface
-  const FaceCluster& root = tree.nodes[tree.root];
+  const FaceCluster root = tree.node(tree.root, surfaces);
   EXPECT_EQ(root.begin, 0u);
   EXPECT_EQ(root.count, n);
   std::vector<int> seen(n, 0);
   for (uint32_t e : tree.order) ++seen[e];
   for (size_t e = 0; e < n; ++e) EXPECT_EQ(seen[e], 1);
-  for (uint32_t i = 0; i < tree.nodes.size(); ++i) {
-    const FaceCluster& c = tree.nodes[i];
+  for (uint32_t i = 0; i < tree.nodeCount(); ++i) {
+    const FaceCluster c = tree.node(i, surfaces);
+    EXPECT_EQ(c.leaf(), tree.isLeaf(i));
+    EXPECT_EQ(c.parent, tree.parent(i));
+    EXPECT_EQ(c.begin, tree.begin(i));
+    EXPECT_EQ(c.count, tree.count(i));
+    if (c.leaf()) EXPECT_EQ(tree.order[c.begin], i);  // a leaf is its own element
     double area = 0.0;
     Vec3 vector(0.0f);
     for (uint32_t k = c.begin; k < c.begin + c.count; ++k) {
@@ -127,8 +133,9 @@ TEST_F(CrumpledTree, EveryNodeIsAContiguousRunWithAdditiveArea) {
     EXPECT_NEAR(c.area, area, 1e-4 * area + 1e-7);
     EXPECT_LT(glm::length(c.vectorArea - vector), 1e-3f * float(area) + 1e-6f);
     if (!c.leaf()) {
-      EXPECT_EQ(c.count, tree.nodes[c.child[0]].count + tree.nodes[c.child[1]].count);
-      EXPECT_EQ(tree.nodes[c.child[0]].parent, i);
+      EXPECT_EQ(c.count, tree.count(c.child[0]) + tree.count(c.child[1]));
+      EXPECT_EQ(tree.parent(c.child[0]), i);
+      EXPECT_EQ(tree.parent(c.child[1]), i);
     }
   }
   // A closed surface has no vector area, so Willmott's bound says all of it may see itself, and
@@ -141,8 +148,8 @@ TEST_F(CrumpledTree, EveryNodeIsAContiguousRunWithAdditiveArea) {
 TEST_F(CrumpledTree, ProjectedAreaBoundsHold) {
   std::mt19937 rng(11);
   std::normal_distribution<float> g(0.0f, 1.0f);
-  for (uint32_t i = 0; i < tree.nodes.size(); i += 7) {
-    const FaceCluster& c = tree.nodes[i];
+  for (uint32_t i = 0; i < tree.nodeCount(); i += 7) {
+    const FaceCluster c = tree.node(i, surfaces);
     for (int t = 0; t < 20; ++t) {
       const Vec3 r = Vec3(g(rng), g(rng), g(rng)) * 3.0f;  // not unit: the bounds are homogeneous
       double truth = 0.0;
@@ -162,14 +169,14 @@ TEST(FaceClusterTree, ConvexityIsTrackedAcrossEdges) {
   Scene ball = test::crumpledBall(12, 20, 0.0f, 1);  // a plain (convex) polyhedral sphere
   const SurfaceSet s = oneElementPerFace(ball);
   const FaceClusterTree t = buildFaceClusterTree(s);
-  EXPECT_TRUE(t.nodes[t.root].convex);
-  EXPECT_EQ(t.nodes[t.root].selfFormFactorBound(), 0.0f);
+  EXPECT_TRUE(t.node(t.root, s).convex);
+  EXPECT_EQ(t.node(t.root, s).selfFormFactorBound(), 0.0f);
 
   const Scene room = builtin::furnace();
   const SurfaceSet r = oneElementPerFace(room);
   const FaceClusterTree rt = buildFaceClusterTree(r);
-  EXPECT_FALSE(rt.nodes[rt.root].convex);
-  EXPECT_GT(rt.nodes[rt.root].selfFormFactorBound(), 0.9f);  // a closed room keeps all its light
+  EXPECT_FALSE(rt.node(rt.root, r).convex);
+  EXPECT_GT(rt.node(rt.root, r).selfFormFactorBound(), 0.9f);  // a closed room keeps all its light
 }
 
 // A wall cut into a grid of equal faces is where a single-heap contraction grows one cluster a
@@ -195,14 +202,14 @@ TEST(FaceClusterTree, GridsMakeShallowTreesThatKeepWallsWhole) {
   ASSERT_EQ(wallElements.size(), 6u);
   for (const auto& [face, count] : wallElements) {
     bool whole = false;
-    for (const FaceCluster& c : t.nodes) {
+    for (const FaceCluster& c : t.inner) {
       if (c.count != count) continue;
       bool same = true;
       for (uint32_t k = c.begin; k < c.begin + c.count && same; ++k) same = s.elements[t.order[k]].face == face;
       whole = whole || same;
     }
     size_t largest = 0;
-    for (const FaceCluster& c : t.nodes) {
+    for (const FaceCluster& c : t.inner) {
       bool same = true;
       for (uint32_t k = c.begin; k < c.begin + c.count && same; ++k) same = s.elements[t.order[k]].face == face;
       if (same) largest = std::max(largest, size_t(c.count));
