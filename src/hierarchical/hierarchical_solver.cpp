@@ -100,15 +100,25 @@ Polygon squareAround(const SurfacePoint& y, float a, const OrientedBox& box) {
   return square;
 }
 
+// The hierarchy over `surfaces`, from the disk cache when `cache`.
+CachedFaceClusterTree faceClusterTree(const SurfaceSet& surfaces, bool cache) {
+  return cachedFaceClusterTree(surfaces, cache ? defaultFaceClusterCacheDirectory() : std::filesystem::path());
+}
+
 class HierarchicalSolver final : public Solver {
  public:
-  HierarchicalSolver(const RadiositySystem& sys, Transport& transport, const HierarchicalSettings& s)
+  // `prepared`: the hierarchy, built or loaded by the registry's prepare before the transport was;
+  // null to make it here.
+  HierarchicalSolver(const RadiositySystem& sys, Transport& transport, const HierarchicalSettings& s,
+                     std::shared_ptr<CachedFaceClusterTree> prepared)
       : sys_(sys), s_(s) {
     tracer_ = transport.rayTracer();
     if (!tracer_) throw Error("the hierarchical solver needs a transport that traces rays (the CPU transport)");
     const Stopwatch watch;
-    CachedFaceClusterTree cached =
-        cachedFaceClusterTree(sys.surfaces, s.cache ? defaultFaceClusterCacheDirectory() : std::filesystem::path());
+    const bool wasPrepared = prepared != nullptr;
+    CachedFaceClusterTree cached = prepared ? std::move(*prepared) : faceClusterTree(sys.surfaces, s.cache);
+    if (cached.tree.elementCount() != sys.elementCount())
+      throw Error("hierarchical solver: the prepared hierarchy is of other surfaces");
     tree_ = std::move(cached.tree);
     treeLoaded_ = cached.loaded;
     treeDepth_ = tree_.depth();
@@ -177,7 +187,7 @@ class HierarchicalSolver final : public Solver {
     field_[tree_.root].store(newField());
     unshotFraction_ = emittedPower_ > 0.0 ? 1.0 : 0.0;
     done_ = emittedPower_ <= 0.0;
-    setupSeconds_ = watch.seconds();
+    setupSeconds_ = watch.seconds() + (wasPrepared ? tree_.seconds : 0.0);  // the tree counts as the solve's, wherever built
   }
 
   bool step(const StepLimit& limit, const ProgressCallback& progress) override {
@@ -979,7 +989,11 @@ void registerCpuHierarchical(SolverRegistry& registry) {
     HierarchicalSettings s{basisSize(v.choice("basis")), v.real("error"),           v.real("unshot"),
                            v.integer("iterations"),       v.integer("receiver-points"), v.integer("emitter-points"),
                            v.flag("cache"),               v.choice("emitter-light") == "elements"};
-    return std::make_unique<HierarchicalSolver>(r.system, r.transport, s);
+    return std::make_unique<HierarchicalSolver>(r.system, r.transport, s,
+                                                std::static_pointer_cast<CachedFaceClusterTree>(r.prepared));
+  };
+  e.prepare = [](const SurfaceSet& surfaces, const SolverOptionValues& v) -> std::shared_ptr<void> {
+    return std::make_shared<CachedFaceClusterTree>(faceClusterTree(surfaces, v.flag("cache")));
   };
   e.converged.set("error", 1e-5).set("unshot", 1e-6).set("receiver-points", 3).set("emitter-points", 8);
   e.accuracy.furnace = 5e-3;  // the target for the furnace

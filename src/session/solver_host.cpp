@@ -122,13 +122,17 @@ SolverHost::SolverHost(const Scene& scene, SurfaceSet& surfaces, const SolveOpti
       ownContext_ = std::make_unique<gl::Context>([this](const std::string& m) { warnings_.push_back(m); });
     if (!glContext_) glContext_ = ownContext_.get();
   }
+  // Before the transport (SolverEntry::prepare); the solver counts its time as its own.
+  const Stopwatch preparing;
+  if (entry_->prepare) prepared_ = entry_->prepare(surfaces, *values_);
+  const double prepareSeconds = preparing.seconds();
   if (borrowed.transport) {
     transport_ = borrowed.transport;
   } else {
     ownTransport_ = std::make_unique<CpuTransport>(scene, surfaces, formFactorOptions(*values_));
     transport_ = ownTransport_.get();
   }
-  setupSeconds_ = watch.seconds();
+  setupSeconds_ = watch.seconds() - prepareSeconds;
   makeSolver();
 
   const CheckpointOptions& cp = options.checkpoint;
@@ -270,7 +274,7 @@ void SolverHost::makeSolver(bool analyticIsCurrent) {
   system_.reset();
   if (!analyticIsCurrent) computeAnalytic();
   system_ = std::make_unique<RadiositySystem>(surfaces_, analytic_);
-  solver_ = entry_->make(SolverResources{scene_, *system_, *transport_, glContext_}, *values_);
+  solver_ = entry_->make(SolverResources{scene_, *system_, *transport_, glContext_, std::move(prepared_)}, *values_);
   if (recordSh_) solver_->recordIncidentSh(recordSh_);
 }
 

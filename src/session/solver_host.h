@@ -106,6 +106,7 @@ class SolverHost {
   SolveOptions options_;
   std::vector<std::string> warnings_;
   const SolverEntry* entry_ = nullptr;
+  std::shared_ptr<void> prepared_;  // entry_->prepare's work, for the first solver made
   std::unique_ptr<SolverOptionValues> values_;
   SolverSettings settings_;  // what the solver was given, for the checkpoints' key
   // Makes the GL context current (a no-op on the CPU, or for a borrowed one): every call that

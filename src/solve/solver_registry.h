@@ -26,6 +26,7 @@ struct SolverResources {
   const RadiositySystem& system;  // the surfaces, emission, reflectance, analytic irradiance
   Transport& transport;           // the CPU backend's form factors (unused by GL solvers)
   gl::Context* glContext;         // the GL backend's context, current on this thread; null on the CPU
+  std::shared_ptr<void> prepared = nullptr;  // what SolverEntry::prepare made, the first time only
 };
 
 // What the conformance suite (tests/conformance) holds a solver to: the relative tolerances the
@@ -46,6 +47,11 @@ struct SolverEntry {
   SolverAccuracy accuracy;
   // Whether it reads SurfaceSet::patches. A session whose solver does not drops them.
   bool shootsFromPatches = true;
+  // Work on the surfaces alone that the solver does first, which the host runs before it builds
+  // the transport so that the two are never in memory together (the face-cluster hierarchy's
+  // build, at millions of faces several GB of temporaries, beside the BVH). Its result reaches
+  // the first make() as SolverResources::prepared; a solver made again does the work itself.
+  std::function<std::shared_ptr<void>(const SurfaceSet&, const SolverOptionValues&)> prepare;
 };
 
 class SolverRegistry {
