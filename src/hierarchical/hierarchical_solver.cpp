@@ -312,6 +312,8 @@ class HierarchicalSolver final : public Solver {
     fields_.grow_by(size_t(pool));
     for (Field& f : fields_) in.value(f);
     in.value(iterations_), in.value(unshotFraction_), in.value(done_), in.value(seconds_);
+    if (!done_ && faces_.empty())
+      throw Error("hierarchical solver: an unfinished state restored into a solver that has finished");
     for (auto* counter : {&links_, &refinedNear_, &refinedTransfer_, &refinedShadow_, &refinedSelf_})
       counter->store(in.value<uint64_t>());
     leaves_.store(size_t(in.value<uint64_t>())), elements_.store(size_t(in.value<uint64_t>()));
@@ -878,6 +880,7 @@ class HierarchicalSolver final : public Solver {
   }
 
   void iterate() {
+    if (faces_.empty()) throw Error("hierarchical solver: stepped after it finished");
     const Stopwatch watch;
     transportLight(tree_.root, kNoCluster, nullptr, nullptr, {});
     // The Jacobi swap: what the faces gathered is shot next, and every cluster's mean is what it
@@ -911,6 +914,14 @@ class HierarchicalSolver final : public Solver {
     std::vector<Rgb>().swap(emission_);  // read in the first iteration only
     unshotFraction_ = emittedPower_ > 0.0 ? unshotPower / emittedPower_ : 0.0;
     done_ = unshotFraction_ < s_.unshot || int(iterations_) >= s_.maxIterations;
+    if (done_) {
+      // What only a sweep reads goes before the solution is asked for, which allocates its own
+      // arrays: at 10 million faces the two together were the solve's peak. The fields, the
+      // tree and unshot_ (saved in checkpoints) stay.
+      std::vector<FaceSample>().swap(faces_);
+      std::vector<Rgb>().swap(next_);
+      std::vector<Mix>().swap(mix_);
+    }
     seconds_ += watch.seconds();
   }
 

@@ -44,6 +44,12 @@ void writeCorners(const Polygon& p, float* out) {
   }
 }
 
+// Above this many polygons a BVH is built compact (Embree's RTC_SCENE_FLAG_COMPACT: leaves refer
+// to the vertex buffer instead of holding copies of the corners): rays somewhat slower, and less
+// memory, which is what runs out first at millions of faces (docs/performance.md, "Face-cluster
+// radiosity").
+constexpr size_t kCompactBvhPolygons = 4'000'000;
+
 // A BVH over the polygons `which` of `polygons` (all when empty).
 RTCScene buildPolygonScene(RTCDevice dev, std::span<const Polygon> polygons, const std::vector<uint32_t>* which) {
   const size_t n = which ? which->size() : polygons.size();
@@ -52,6 +58,7 @@ RTCScene buildPolygonScene(RTCDevice dev, std::span<const Polygon> polygons, con
   // seed 002's room as with RTC_BUILD_QUALITY_HIGH, and the build takes a third of the time
   // (docs/performance.md, "Face-cluster radiosity").
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+  if (n > kCompactBvhPolygons) rtcSetSceneFlags(scene, RTC_SCENE_FLAG_COMPACT);
   if (n == 0) {  // an object whose faces all had no area: nothing to hit
     rtcCommitScene(scene);
     return scene;
