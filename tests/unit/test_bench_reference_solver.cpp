@@ -43,5 +43,25 @@ TEST(BenchReference, CaseSolverIsUsedAndCachedApart) {
   std::filesystem::remove_all(cache);
 }
 
+// A hierarchical case drops its surfaces' patches (as luxel render does), and its stats say 0
+// patches; the reference's size is still that of the surfaces cut again, patches and all. Read
+// from the stats, a case too large for a gather went on to build one, and failed.
+TEST(BenchReference, AHierarchicalCaseIsSizedByTheSurfacesAsCut) {
+  bench::Case c;
+  c.name = "cornell/hierarchical";
+  c.scene = "cornell";
+  c.discretise.elementBudget = 400;
+  c.solve.method = "hierarchical";
+  c.maxReferencePairs = 1000;  // far fewer than 400 elements x their patches
+  bench::Options o;
+  o.runs = 1;
+  o.hardwareLimit = false;
+  o.cacheDir = (std::filesystem::temp_directory_path() / "luxel-test-reference-size").string();
+  const bench::CaseResult r = bench::runCase(c, o);
+  EXPECT_GT(r.patches, 0u);
+  EXPECT_FALSE(r.error.has_value());
+  EXPECT_NE(r.errorNote.find("no reference"), std::string::npos) << r.errorNote;
+}
+
 }  // namespace
 }  // namespace luxel
