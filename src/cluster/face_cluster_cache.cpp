@@ -104,6 +104,27 @@ std::optional<FaceClusterTree> loadFaceClusterTree(const std::filesystem::path& 
   return t;
 }
 
+namespace {
+
+// Trees in a layout this luxel cannot read (an older one's) are never loaded again, and at
+// millions of faces each is hundreds of MB: they go when a tree is saved beside them. Files that
+// are not trees (no "LXFCT" at their start) are left alone.
+void removeStaleTrees(const std::filesystem::path& directory) {
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(directory, ec)) {
+    if (entry.path().extension() != ".fct") continue;
+    char magic[sizeof kMagic] = {};
+    {
+      std::ifstream in(entry.path(), std::ios::binary);
+      in.read(magic, sizeof magic);
+      if (!in || std::memcmp(magic, kMagic, 5) != 0 || std::memcmp(magic, kMagic, sizeof kMagic) == 0) continue;
+    }
+    std::filesystem::remove(entry.path(), ec);
+  }
+}
+
+}  // namespace
+
 void saveFaceClusterTree(const std::filesystem::path& directory, uint64_t key, const FaceClusterTree& tree) {
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
@@ -123,6 +144,7 @@ void saveFaceClusterTree(const std::filesystem::path& directory, uint64_t key, c
     out.write(tree.leafParent.data(), tree.leafParent.size() * sizeof(uint32_t));
     out.close();
   });
+  removeStaleTrees(directory);
 }
 
 CachedFaceClusterTree cachedFaceClusterTree(const SurfaceSet& surfaces, const std::filesystem::path& directory) {

@@ -27,7 +27,8 @@ uint64_t faceClusterKey(const SurfaceSet& surfaces);
 // is none or it does not check out.
 std::optional<FaceClusterTree> loadFaceClusterTree(const std::filesystem::path& directory, uint64_t key,
                                                    size_t elementCount);
-// Stores `tree` under `directory` (created when missing). Throws Error when it cannot.
+// Stores `tree` under `directory` (created when missing), and removes the trees there that an
+// older luxel wrote in another layout. Throws Error when it cannot store it.
 void saveFaceClusterTree(const std::filesystem::path& directory, uint64_t key, const FaceClusterTree& tree);
 
 struct CachedFaceClusterTree {

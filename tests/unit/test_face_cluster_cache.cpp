@@ -99,6 +99,25 @@ TEST(FaceClusterCache, AFileThatDoesNotCheckOutIsRebuilt) {
   }
 }
 
+// A tree an older luxel wrote in another layout is never read again: saving a tree removes it,
+// and leaves alone what is not a tree or not a cache file.
+TEST(FaceClusterCache, TreesOfAnOlderLayoutGoWhenATreeIsSaved) {
+  const SurfaceSet surfaces = cornellSurfaces();
+  const fs::path dir = freshDirectory("stale");
+  fs::create_directories(dir);
+  auto write = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(dir / name, std::ios::binary) << bytes;
+  };
+  write("0123456789abcdef.fct", std::string("LXFCT001") + std::string(64, 'x'));  // format 2's magic
+  write("other.fct", "not a tree at all");
+  write("keep.bin", std::string("LXFCT001") + std::string(64, 'x'));
+  ASSERT_FALSE(cachedFaceClusterTree(surfaces, dir).loaded);
+  EXPECT_FALSE(fs::exists(dir / "0123456789abcdef.fct"));
+  EXPECT_TRUE(fs::exists(dir / "other.fct"));
+  EXPECT_TRUE(fs::exists(dir / "keep.bin"));
+  EXPECT_TRUE(cachedFaceClusterTree(surfaces, dir).loaded);  // the new tree stays
+}
+
 TEST(FaceClusterCache, ASolveFromTheCacheIsTheSameSolve) {
   const Scene scene = builtinScene("cornell");
   ::setenv("LUXEL_CACHE_DIR", freshDirectory("solve").c_str(), 1);
