@@ -195,22 +195,35 @@ FaceClusterTree::Depth FaceClusterTree::depth() const {
   return d;
 }
 
-FaceCluster leafCluster(const Element& el, uint32_t at, uint32_t parent) {
-  // The same arithmetic as a joined node's fields from its moments, so that a leaf made here is
-  // the leaf the tree once stored, to the bit.
-  const Moments m = elementMoments(el);
-  FaceCluster c;
-  c.begin = at, c.count = 1, c.parent = parent;
+namespace {
+
+// The fields a cluster, leaf or joined, takes from its moments.
+void setFromMoments(FaceCluster& c, const Moments& m) {
   c.area = float(m.area);
   c.vectorArea = Vec3(m.vectorArea);
   c.reflectance = m.area > 0 ? Rgb(m.reflectance / m.area) : Rgb(0.0f);
   c.convex = m.convex;
-  c.cone = {el.normal, 1.0f};
-  c.box = fitOrientedBox({el.polygon.v.data(), size_t(el.polygon.count)}, el.normal);
+}
+
+// One element's projected area along +- each of the cluster's box axes, added to the cluster's.
+void addAxisAreas(FaceCluster& c, const Element& el) {
   for (int j = 0; j < 3; ++j) {
     const float d = glm::dot(el.normal, c.box.axis[size_t(j)]) * el.area;
-    c.axisAreas[size_t(j)] = std::max(0.0f, d), c.axisAreas[size_t(j) + 3] = std::max(0.0f, -d);
+    c.axisAreas[size_t(j)] += std::max(0.0f, d), c.axisAreas[size_t(j) + 3] += std::max(0.0f, -d);
   }
+}
+
+}  // namespace
+
+FaceCluster leafCluster(const Element& el, uint32_t at, uint32_t parent) {
+  // The same arithmetic as a joined node's fields, so that a leaf made here is the leaf the tree
+  // once stored, to the bit.
+  FaceCluster c;
+  c.begin = at, c.count = 1, c.parent = parent;
+  setFromMoments(c, elementMoments(el));
+  c.cone = {el.normal, 1.0f};
+  c.box = fitOrientedBox({el.polygon.v.data(), size_t(el.polygon.count)}, el.normal);
+  addAxisAreas(c, el);
   return c;
 }
 
@@ -504,11 +517,7 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
   // pass this was a third of the build at 1.5M faces.
   auto fill = [&](uint32_t i) {
     FaceCluster& c = tree.inner[i - n];
-    const Moments m = momentsOf(i);
-    c.area = float(m.area);
-    c.vectorArea = Vec3(m.vectorArea);
-    c.reflectance = m.area > 0 ? Rgb(m.reflectance / m.area) : Rgb(0.0f);
-    c.convex = m.convex;
+    setFromMoments(c, momentsOf(i));
     const FaceCluster a = tree.node(c.child[0], surfaces), b = tree.node(c.child[1], surfaces);
     c.begin = std::min(a.begin, b.begin), c.count = a.count + b.count;
     c.cone = mergeCones(a.cone, b.cone);
@@ -523,13 +532,7 @@ FaceClusterTree buildFaceClusterTree(const SurfaceSet& surfaces) {
     c.box = fitOrientedBox(points, normal);
     if (c.count <= 64) {  // exact, from the faces
       c.axisAreas.fill(0.0f);
-      for (uint32_t k = c.begin; k < c.begin + c.count; ++k) {
-        const Element& el = surfaces.elements[tree.order[k]];
-        for (int j = 0; j < 3; ++j) {
-          const float d = glm::dot(el.normal, c.box.axis[size_t(j)]) * el.area;
-          c.axisAreas[size_t(j)] += std::max(0.0f, d), c.axisAreas[size_t(j) + 3] += std::max(0.0f, -d);
-        }
-      }
+      for (uint32_t k = c.begin; k < c.begin + c.count; ++k) addAxisAreas(c, surfaces.elements[tree.order[k]]);
     } else {  // bounded by the children's bounds along the new axes, so that the build stays linear
       for (int j = 0; j < 3; ++j) {
         const Vec3 u = c.box.axis[size_t(j)];

@@ -367,8 +367,7 @@ class HierarchicalSolver final : public Solver {
   FaceCluster node(uint32_t i) const { return tree_.node(i, sys_.surfaces); }
   float areaOf(uint32_t i) const { return tree_.isLeaf(i) ? sys_.surfaces.elements[i].area : tree_.joined(i).area; }
 
-  bool facing(uint32_t i, uint32_t j) const {
-    const FaceCluster a = node(i), b = node(j);
+  bool facing(const FaceCluster& a, const FaceCluster& b) const {
     return mayFace(b.cone, b.box, a.box) && mayFace(a.cone, a.box, b.box);
   }
 
@@ -381,12 +380,11 @@ class HierarchicalSolver final : public Solver {
     std::vector<float> projection;  // basis x points
     std::vector<float> basisAt;     // points x basis: the functions at each point
   };
-  void prepareReceiver(uint32_t i, Receiver& r) const {
+  void prepareReceiver(uint32_t i, const OrientedBox& box, Receiver& r) const {
     points_->points(i, s_.receiverSide, r.points);
     const int nb = s_.basis;
     const size_t np = r.points.size();
     r.basisAt.resize(np * size_t(nb));
-    const OrientedBox box = node(i).box;
     for (size_t p = 0; p < np; ++p)
       evaluateBasis(box.planeParameters(r.points[p].position), nb, &r.basisAt[p * size_t(nb)]);
     project(r, nullptr, r.projection);
@@ -438,10 +436,10 @@ class HierarchicalSolver final : public Solver {
   // the parent's function at the child's points, projected on the child's basis). A channel whose
   // mean vector points behind the child's surface is dropped, as the paper does: vector
   // irradiance is valid in one half-space only. The harmonics are pushed whole.
-  void push(const Field& from, uint32_t parent, const Receiver& r, uint32_t child, Field& to) const {
+  void push(const Field& from, const OrientedBox& parent, const Receiver& r, Vec3 childVectorArea, Field& to) const {
     const int nb = s_.basis;
     const size_t np = r.points.size();
-    const Vec3 normal = node(child).vectorArea;
+    const Vec3 normal = childVectorArea;
     std::array<bool, 3> keep;
     for (int ch = 0; ch < 3; ++ch) keep[size_t(ch)] = glm::dot(normal, from.c[size_t(ch)]) > 0.0f;
     // The directions' record goes with the vectors it belongs to.
@@ -454,10 +452,9 @@ class HierarchicalSolver final : public Solver {
     to = Field{};
     to.sh = from.sh;
     const bool record = recordSh_ > 0;
-    const OrientedBox box = node(parent).box;
     for (size_t p = 0; p < np; ++p) {
       float basis[kMaxBasisFunctions];
-      evaluateBasis(box.planeParameters(r.points[p].position), nb, basis);
+      evaluateBasis(parent.planeParameters(r.points[p].position), nb, basis);
       for (int ch = 0; ch < 3; ++ch) {
         if (!keep[size_t(ch)]) continue;
         Vec3 value(0.0f);
@@ -516,8 +513,8 @@ class HierarchicalSolver final : public Solver {
   struct TransferBounds {
     float upper = 0.0f, spread = 0.0f;
   };
-  TransferBounds transferBounds(uint32_t i, uint32_t j, const Receiver& r, const std::vector<SurfacePoint>& q) const {
-    const FaceCluster a = node(i), b = node(j);
+  TransferBounds transferBounds(const FaceCluster& a, const FaceCluster& b, const Receiver& r,
+                                const std::vector<SurfacePoint>& q) const {
     float hi = 0.0f, lo = std::numeric_limits<float>::max();
     for (const SurfacePoint& x : r.points)
       for (const SurfacePoint& y : q) {
@@ -537,8 +534,7 @@ class HierarchicalSolver final : public Solver {
   // leaving a cluster towards a receiver comes from the faces that face it, and those are often
   // the lit ones (a floor beside the dark sides of a block on it), so the mean would be too dark
   // one way and too bright the other.
-  float couple(uint32_t j, const Receiver& r, Scratch& s, bool asHarmonics) const {
-    const FaceCluster b = node(j);
+  float couple(uint32_t j, const FaceCluster& b, const Receiver& r, Scratch& s, bool asHarmonics) const {
     const size_t np = r.points.size();
     s.transport.assign(np, {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)});
     s.direct.assign(np, {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)});
@@ -682,9 +678,10 @@ class HierarchicalSolver final : public Solver {
     for (uint32_t child : c.child) {
       const uint32_t g = newField();
       if (f != kNever) {
-        prepareReceiver(child, r);
-        push(fields_[f], i, r, child, fields_[g]);
-        push(fields_[f + 1], i, r, child, fields_[g + 1]);
+        const FaceCluster below = node(child);
+        prepareReceiver(child, below.box, r);
+        push(fields_[f], c.box, r, below.vectorArea, fields_[g]);
+        push(fields_[f + 1], c.box, r, below.vectorArea, fields_[g + 1]);
       }
       field_[child].store(g, std::memory_order_relaxed);
       since_[child].store(iterations_, std::memory_order_relaxed);
@@ -724,11 +721,12 @@ class HierarchicalSolver final : public Solver {
                       std::vector<uint32_t> shooters, bool selfLinked = false) {
     const FaceCluster c = node(i);
     Receiver r;
-    prepareReceiver(i, r);
+    prepareReceiver(i, c.box, r);
     Field total, direct;
     if (inheritedTotal) {
-      push(*inheritedTotal, parent, r, i, total);
-      push(*inheritedDirect, parent, r, i, direct);
+      const OrientedBox above = tree_.joined(parent).box;  // a parent has children: never a leaf
+      push(*inheritedTotal, above, r, c.vectorArea, total);
+      push(*inheritedDirect, above, r, c.vectorArea, direct);
     }
     Scratch s;
     std::array<std::vector<uint32_t>, 2> childShooters;
@@ -745,10 +743,10 @@ class HierarchicalSolver final : public Solver {
         if (receiverSide) {
           splitReceiver(i);
           for (int k = 0; k < 2; ++k)
-            if (facing(c.child[size_t(k)], j)) childShooters[size_t(k)].push_back(j);
+            if (facing(node(c.child[size_t(k)]), b)) childShooters[size_t(k)].push_back(j);
         } else {
           for (uint32_t k : b.child)
-            if (facing(i, k) && maxChannel(emitterUnshot(k)) > 0.0f) shooters.push_back(k);
+            if (facing(c, node(k)) && maxChannel(emitterUnshot(k)) > 0.0f) shooters.push_back(k);
         }
       };
       // Errors are of the power arriving, not reflected: luxel's outputs include irradiance (a
@@ -777,14 +775,14 @@ class HierarchicalSolver final : public Solver {
       // sees the emitter from behind takes none of it), and takes the light as harmonics.
       const bool wholly = c.leaf() || whollyFaces(c.cone, c.box, b.box, kHorizonSlack);
       if (!bothLeaves) {
-        const TransferBounds bounds = transferBounds(i, j, r, s.emitterPoints);
+        const TransferBounds bounds = transferBounds(c, b, r, s.emitterPoints);
         if (scale * (wholly ? bounds.spread : bounds.upper) > threshold) {
           ++refinedTransfer_;
           refine();
           continue;
         }
       }
-      const float blocked = couple(j, r, s, !wholly);
+      const float blocked = couple(j, b, r, s, !wholly);
       ++links_;
       if (!bothLeaves && blocked > 0.0f && blocked < 1.0f) {
         // A shadow edge crosses the link: refine while the light it carries is above threshold.
@@ -838,8 +836,9 @@ class HierarchicalSolver final : public Solver {
         ++refinedSelf_;
         splitReceiver(i);
         const uint32_t a = c.child[0], b = c.child[1];
-        if (facing(a, b) && maxChannel(emitterUnshot(b)) > 0.0f) childShooters[0].push_back(b);
-        if (facing(b, a) && maxChannel(emitterUnshot(a)) > 0.0f) childShooters[1].push_back(a);
+        const FaceCluster ca = node(a), cb = node(b);
+        if (facing(ca, cb) && maxChannel(emitterUnshot(b)) > 0.0f) childShooters[0].push_back(b);
+        if (facing(cb, ca) && maxChannel(emitterUnshot(a)) > 0.0f) childShooters[1].push_back(a);
       } else if (self > 0.0) {
         // Below the threshold the cluster's light to itself is still a link, taken whole as one
         // harmonics link from the cluster to itself, as a link between two clusters below the
@@ -847,7 +846,7 @@ class HierarchicalSolver final : public Solver {
         // concave cluster keeps at every level of the tree (a statue's own folds, a window's
         // niche: docs/algorithms.md, item 5).
         points_->points(i, s_.emitterSide, s.emitterPoints);
-        couple(i, r, s, true);
+        couple(i, c, r, s, true);
         ++links_;
         selfLinked = true;
         double seeing = 0.0;
@@ -916,8 +915,8 @@ class HierarchicalSolver final : public Solver {
     done_ = unshotFraction_ < s_.unshot || int(iterations_) >= s_.maxIterations;
     if (done_) {
       // What only a sweep reads goes before the solution is asked for, which allocates its own
-      // arrays: at 10 million faces the two together were the solve's peak. The fields, the
-      // tree and unshot_ (saved in checkpoints) stay.
+      // arrays: at millions of faces the two together were the solve's peak (docs/performance.md).
+      // The fields, the tree and unshot_ (saved in checkpoints) stay.
       std::vector<FaceSample>().swap(faces_);
       std::vector<Rgb>().swap(next_);
       std::vector<Mix>().swap(mix_);

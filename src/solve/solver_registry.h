@@ -49,8 +49,8 @@ struct SolverEntry {
   bool shootsFromPatches = true;
   // Work on the surfaces alone that the solver does first, which the host runs before it builds
   // the transport so that the two are never in memory together (the face-cluster hierarchy's
-  // build, at millions of faces several GB of temporaries, beside the BVH). Its result reaches
-  // the first make() as SolverResources::prepared; a solver made again does the work itself.
+  // build, a solve's largest temporaries at millions of faces: docs/performance.md). Its result
+  // reaches the first make() as SolverResources::prepared; a solver made again does the work itself.
   std::function<std::shared_ptr<void>(const SurfaceSet&, const SolverOptionValues&)> prepare;
 };
 
