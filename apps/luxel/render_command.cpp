@@ -59,6 +59,7 @@ RenderOptions renderOptionsFor(const Scene& scene, const ViewArgs& a) {
   ro.gatherRays = a.gatherRays;
   ro.seed = a.renderSeed;
   ro.gatherBounces = a.gatherBounces;
+  ro.gatherElements = a.gatherElements;
   ro.mode = parseRenderMode(a.mode);
   validateRenderOptions(ro);
   return ro;
@@ -105,8 +106,14 @@ void addViewOptions(CLI::App& c, ViewArgs& a) {
                            kDefaultVertexGatherRays, kDefaultPixelGatherRays))
       ->check(CLI::Range(0, 65536));
   c.add_option("--gather-bounces", a.gatherBounces,
-               "Bounces gathered before the solution is read: 1, or 2 (a coarse gather of every vertex first)")
-      ->check(CLI::Range(1, 2))
+               "Bounces gathered before the solution is read: 1, or 2 to 4 (coarse gathers of every vertex first, each "
+               "reading the one before)")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  c.add_option("--gather-elements", a.gatherElements,
+               "hq's vertex gather runs on the solved elements split (each into 4, as often as it takes) until "
+               "they are nearest this many; 0 or fewer than solved: on the solved elements")
+      ->check(CLI::Range(size_t(0), size_t(100000000)))
       ->capture_default_str();
   c.add_option("--render-seed", a.renderSeed,
                "Seed of the image's samples (pixel jitter, light points, gather rays); the solver's is --set seed=N")
@@ -225,7 +232,17 @@ int runRender(const RenderArgs& a) {
     nowDoing(renderingWhat(a, sceneName), "use a smaller image (--size)");
     image = renderLightmapped(scene, baked.atlas, baked.bake, ro, bar.callback(), &rs);
   } else {
-    Session session(std::move(scene), discretiseOptions(a.solve), {so});
+    DiscretiseOptions discretise = discretiseOptions(a.solve);
+    // An hq render reads its solution three bounces away and gathers on a mesh of its own
+    // (RenderOptions::gatherElements), so its solve, unless asked otherwise, is a smaller one;
+    // not where the smaller budget would leave faces uncut (at least two elements a face), which
+    // turns the vertex gather off (RenderOptions::Indirect::Auto).
+    size_t faces = 0;
+    for (const Mesh& m : scene.meshes) faces += m.faces.size();
+    if (ro.mode == RenderOptions::Mode::HighQuality && a.solve.elements == 0 && a.solve.elementSize == 0.0f &&
+        2 * faces <= kHqSolveElements)
+      discretise.elementBudget = kHqSolveElements;
+    Session session(std::move(scene), discretise, {so});
     solution = session.solve(bar.callback());
     // The solver's memory goes back before the renderer takes its own: at seed 002's 1.5M faces
     // the hierarchy and the transport's ray tracer are a third of the peak.
@@ -261,8 +278,9 @@ int runRender(const RenderArgs& a) {
                              s.device.empty() ? "" : " (" + s.device + ")", s.shots, s.iterations, 100.0 * s.unshotFraction);
     std::cout << fmt::format("luxel: solve {:.3f} s (setup {:.3f}, form factors {:.3f}, iterate {:.3f}), {:.1f} M rays/s\n",
                              s.secondsTotal, s.secondsSetup, s.secondsFormFactors, s.secondsSolve, s.raysPerSecond() / 1e6);
-    std::cout << fmt::format("luxel: render {}x{} at {} spp ({}) {:.3f} s; total {:.3f} s\n", width, height, a.spp,
-                             a.mode, rs.seconds, total);
+    const std::string gathered = rs.gatherElements > 0 ? fmt::format(", gathered on {} elements", rs.gatherElements) : "";
+    std::cout << fmt::format("luxel: render {}x{} at {} spp ({}{}) {:.3f} s; total {:.3f} s\n", width, height, a.spp,
+                             a.mode, gathered, rs.seconds, total);
     for (const std::string& o : a.outputs) std::cout << "luxel: wrote " << o << "\n";
   }
   return 0;

@@ -27,6 +27,7 @@ struct ViewArgs {
   int gatherRays = 0;                      // per vertex or per pixel sample; 0: the default
   uint32_t renderSeed = RenderOptions{}.seed;  // the image's samples (not the solver's)
   int gatherBounces = RenderOptions{}.gatherBounces;
+  size_t gatherElements = RenderOptions{}.gatherElements;
   std::string mode = "hq";
   std::string toneCurve = "filmic";
   float exposure = 0.0f;
@@ -52,7 +53,7 @@ struct RenderArgs : ViewArgs {
 
 // Adds --camera, --eye, --target, --up and --fov.
 void addCameraOptions(CLI::App& command, ViewArgs& args);
-// Adds those and --size, --spp, --indirect, --gather-rays, --gather-bounces, --render-seed, --tonemap and --exposure (each
+// Adds those and --size, --spp, --indirect, --gather-rays, --gather-bounces, --gather-elements, --render-seed, --tonemap and --exposure (each
 // command adds its own --mode, whose choices differ).
 void addViewOptions(CLI::App& command, ViewArgs& args);
 // Checks the view options that need no scene (the mode only when it is hq or radiosity): throws Error.

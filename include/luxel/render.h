@@ -10,6 +10,13 @@
 
 namespace luxel {
 
+// The vertex gather's mesh by default (RenderOptions::gatherElements), and the element budget the
+// command line gives an hq render's solve when none is asked for: the image is gathered on about
+// 10,000 elements while the solve runs on a quarter of them, and reading that solution three
+// bounces away costs it no accuracy measured against a path tracer (docs/performance.md).
+inline constexpr size_t kDefaultGatherElements = 10000;
+inline constexpr size_t kHqSolveElements = 2500;
+
 struct RenderOptions {
   enum class Mode {
     // The seeds' display: all light, direct included, interpolated from the element solution.
@@ -32,9 +39,10 @@ struct RenderOptions {
     // The element solution's indirect irradiance, interpolated: the fastest, but the
     // discretisation shows (patches shooting their mean, elements averaged across contacts).
     Interpolated,
-    // A final gather at the element vertices, interpolated per pixel: rays read the solution one
-    // or two bounces away (gatherBounces), with the direct light traced where they land. Smooth,
-    // and cheap at any image size.
+    // A final gather at the element vertices (of the solved elements, or those split further:
+    // gatherElements), interpolated per pixel: rays read the solution gatherBounces bounces away,
+    // with the direct light traced where they land, or read from the solution where they land a
+    // few elements away. Smooth, and cheap at any image size.
     VertexGather,
     // A final gather at every pixel sample: no interpolation at all, so contact shadows and
     // normal maps reach the indirect light too, at the price of noise.
@@ -53,11 +61,17 @@ struct RenderOptions {
   // default: kDefaultPixelGatherRays, or kDefaultVertexGatherRays where the scene's vertices allow
   // (render/final_gather.h keeps the whole gather to about 16 million rays).
   int gatherRays = 0;
-  // Bounces gathered before the solution is read: 1, at the gather's hits; 2 (default), where the
-  // hits read a coarse gather of every vertex (kCoarseGatherRays each), which halves what is left
-  // of the solution's error in no more time: the one-bounce gather's near hits gather again
+  // Bounces gathered before the solution is read: 1, at the gather's hits; 2, where the hits read
+  // a coarse gather of every vertex (kCoarseGatherRays each), which halves what is left of the
+  // solution's error in no more time than the one-bounce gather's near hits cost; 3 (default) or
+  // 4, where that coarse gather reads another in turn, so that a solve on coarse patches (the
+  // solve kHqSolveElements makes) is met further away, for 16 rays a vertex a level
   // (docs/performance.md, "Against a peer").
-  int gatherBounces = 2;
+  int gatherBounces = 3;
+  // VertexGather's mesh: the solved elements split (each into 4, as often as it takes) until they
+  // are nearest this many, so that the solve can run on fewer elements than the picture
+  // interpolates over (render/gather_mesh.h). 0, or no more than the solved elements: as solved.
+  size_t gatherElements = kDefaultGatherElements;
   uint32_t seed = 7;
 };
 
@@ -80,6 +94,7 @@ struct RenderStats {
   double seconds = 0.0;
   uint64_t rays = 0;  // primary, shadow and gather rays
   RenderOptions::Indirect indirect = RenderOptions::Indirect::Interpolated;  // what Auto chose
+  size_t gatherElements = 0;  // the elements a vertex gather ran on (0: no vertex gather)
 };
 
 // The indirect light `options` asks for, with Auto resolved for `surfaces`.

@@ -15,6 +15,7 @@
 
 #include "luxel/error.h"
 #include "luxel/surface.h"
+#include "mesh/element_split.h"
 #include "mesh/orient_faces.h"
 
 namespace luxel {
@@ -311,18 +312,7 @@ void SurfaceSet::dropPatches() {
 
 void SurfaceSet::splitElement(uint32_t index, const Scene& scene) {
   const Element parent = elements[index];
-  const auto& p = parent.param;
-  const bool triangle = faces[parent.face].triangle;
-  std::array<std::array<Vec2, 4>, 4> children;
-  if (triangle) {
-    Vec2 ab = 0.5f * (p[0] + p[1]), bc = 0.5f * (p[1] + p[2]), ca = 0.5f * (p[2] + p[0]);
-    children = {{{p[0], ab, ca, ca}, {ab, p[1], bc, bc}, {ca, bc, p[2], p[2]}, {ab, bc, ca, ca}}};
-  } else {
-    Vec2 m01 = 0.5f * (p[0] + p[1]), m12 = 0.5f * (p[1] + p[2]), m23 = 0.5f * (p[2] + p[3]),
-         m30 = 0.5f * (p[3] + p[0]), mid = 0.25f * (p[0] + p[1] + p[2] + p[3]);
-    children = {{{p[0], m01, mid, m30}, {m01, p[1], m12, mid}, {mid, m12, p[2], m23},
-                 {m30, mid, m23, p[3]}}};
-  }
+  const auto children = splitCorners(parent.param, faces[parent.face].triangle);
   const auto depth = uint8_t(parent.depth + 1);
   elements[index] = makeElement(scene, *this, parent.face, parent.patch, children[0], depth);
   for (int c = 1; c < 4; ++c) {

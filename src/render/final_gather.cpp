@@ -12,6 +12,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/multi_jitter.h"
 #include "core/random.h"
 #include "mesh/corner_groups.h"
 #include "render/corner_values.h"
@@ -21,20 +22,20 @@ namespace luxel {
 namespace {
 
 constexpr float kInvPi = std::numbers::inv_pi_v<float>;
-// A hit nearer than this many of its element's edge lengths gathers its own indirect light with
-// kNearHitSide^2 rays.
-constexpr float kNearHitElements = 2.0f;
+// A near hit (kNearHitElements) gathers its own indirect light with kNearHitSide^2 rays.
 constexpr int kNearHitSide = 3;
 
 }  // namespace
 
-FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
-                         const std::vector<Rgb>& indirectCorners, bool gatherNearHits)
+FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer,
+                         const DirectLight& direct, const std::vector<Rgb>& indirectCorners,
+                         bool gatherNearHits, const SolvedDirect* solvedDirect)
     : gatherNearHits_(gatherNearHits),
       surfaces_(surfaces),
       tracer_(tracer),
       direct_(direct),
       corners_(indirectCorners),
+      solvedDirect_(solvedDirect),
       rayOffset_(rayOffsetFor(surfaces.sceneExtent)) {}
 
 size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
@@ -60,6 +61,7 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
   shadowRays.clear(), shadowValues.clear(), shadowTargets.clear();
   second.clear(), secondWeights.clear(), secondTargets.clear();
   size_t backs = 0;
+  const MultiJitter lightPattern{uint32_t(rays.size())};
   for (size_t k = 0; k < rays.size(); ++k) {
     const RTCRayHit& rh = rays[k];
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
@@ -89,12 +91,19 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
     } else {
       *targets[k] += weight * interpolateCorners(&corners_[size_t(h) * 4], hit.polygon.count, rh.hit.u, rh.hit.v);
     }
+    if (solvedDirect_ && rh.ray.tfar >= solvedDirect_->tracedWithin[h]) {
+      *targets[k] += weight * solvedDirect_->irradiance[h];
+      continue;
+    }
     Rng rng(hashCombine(seed, uint32_t(k)));
     const size_t before = shadowRays.size();
     // The form-factor estimator here too: the kernel alone (A k(y) V(y)) would skip the analytic
     // factor and is unbiased, but heavy-tailed next to a large emitter (docs/performance.md).
-    *targets[k] += weight * direct_.sample(q, hit.normal, hit.normal, Sides::Front, rng, rayOffset_, shadowRays,
-                                           shadowValues);
+    // The batch's light points are stratified over each light (as a pixel's samples are), so a
+    // vertex's hits in a penumbra see the lamp evenly covered rather than at random points.
+    const Vec2 u = lightPattern(uint32_t(k), hashCombine(seed, 0x11647u));
+    *targets[k] += weight * direct_.sample(q, hit.normal, hit.normal, Sides::Front, u, rng,
+                                           rayOffset_, shadowRays, shadowValues);
     for (size_t r = before; r < shadowRays.size(); ++r) {
       shadowValues[r] *= weight;
       shadowTargets.push_back(targets[k]);
@@ -133,7 +142,8 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
     : surfaces_(surfaces), gather_(gather), seed_(seed) {
   const CornerGroups groups(surfaces, kDefaultCreaseCosine);
   const size_t ne = surfaces.elements.size();
-  // Slots that share a position and a smooth surface (the group's first member names it) are one vertex.
+  // Slots that share a position and a smooth surface (the group's first member names it) are one
+  // vertex.
   vertexOf_.assign(ne * 4, 0);
   std::unordered_map<VertexKey, uint32_t, VertexKeyHash> index;
   index.reserve(ne * 2);

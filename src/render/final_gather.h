@@ -1,14 +1,16 @@
 // The final gather of two-pass methods (Chen, Rushmeier, Miller and Turner, "A Progressive
 // Multi-Pass Method for Global Illumination", SIGGRAPH 1991; the per-pixel gathers over a radiosity
-// solution of Reichert 1992 and Lischinski, Tampieri and Greenberg 1993): the indirect irradiance at a point is gathered by rays over
-// its hemisphere, each reading the radiance the solution leaves where the ray lands. Where it
-// lands, the direct light is traced again (a shadow ray per light) and only the indirect part is
-// interpolated from the elements; so the element solution is met one bounce away and only through
-// its indirect light, where its discretisation error (patches shooting their mean, elements
-// averaged across a block's footprint) is smallest. A hit within two of its element's edge lengths
-// sees those elements large, and gathers its own indirect light in turn (9 rays) from the solution
-// one bounce further. The corners read at the hits may instead be a coarse gather of their own
-// (VertexGather over this class): the solution is then two bounces away.
+// solution of Reichert 1992 and Lischinski, Tampieri and Greenberg 1993): the indirect irradiance
+// at a point is gathered by rays over its hemisphere, each reading the radiance the solution leaves
+// where the ray lands. Where it lands, the direct light is traced again (a shadow ray per light)
+// and only the indirect part is interpolated from the elements; so the element solution is met one
+// bounce away and only through its indirect light, where its discretisation error (patches shooting
+// their mean, elements averaged across a block's footprint) is smallest. A hit within two of its
+// element's edge lengths sees those elements large, and gathers its own indirect light in turn (9
+// rays) from the solution one bounce further. The corners read at the hits may instead be a coarse
+// gather of their own (VertexGather over this class), or a coarse gather of a coarse gather: the
+// solution is then two or more bounces away. Where a hit is a few elements away, its direct light
+// may be read from the solution instead of traced (SolvedDirect).
 //
 // Emission met by a gather ray is not counted, nor is the sky met by one that escapes: both are
 // direct light, which the caller traces at the point itself.
@@ -26,17 +28,34 @@
 namespace luxel {
 
 inline constexpr size_t kVertexGatherRayBudget = size_t(1) << 24;
+// A hit nearer than this many of its element's edge lengths is near: it sees the element large,
+// and with it the element's averaging.
+inline constexpr float kNearHitElements = 2.0f;
 
 class FinalGather {
  public:
+  // The direct light where gather rays land is traced there (a shadow ray per light, as at a
+  // pixel), or read from the solution: each element's mean direct irradiance, exact over the
+  // element in total and blurred within it. Seen from a few elements away the blur is what the
+  // gather's rays average over anyway, and reading it costs no ray; nearer it shows (a block's
+  // footprint darkening the floor beside it), so hits within `tracedWithin` of their ray's origin
+  // still trace it. An element partly inside a solid (the floor under a block's edge) has the dark
+  // part in its mean, which shows from any distance: its tracedWithin is infinite.
+  struct SolvedDirect {
+    std::vector<Rgb> irradiance;      // per element of the gather's surfaces
+    std::vector<float> tracedWithin;  // per element: hits nearer than this trace their direct light
+  };
+
   // `indirectCorners`: the solution's indirect irradiance at element corners (elementCornerValues
   // of irradiance minus direct irradiance). `tracer` holds the elements with twins apart
   // (trace/element_polygons.h).
   // `gatherNearHits`: a hit within two of its element's edge lengths gathers its own indirect
   // light (9 rays) instead of reading the corners there: for corners taken from the solution, whose
   // elements average across a block's footprint; gathered corners (VertexGather) need it not.
+  // `solvedDirect`: see SolvedDirect; null traces the direct light at every hit.
   FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
-              const std::vector<Rgb>& indirectCorners, bool gatherNearHits = true);
+              const std::vector<Rgb>& indirectCorners, bool gatherNearHits = true,
+              const SolvedDirect* solvedDirect = nullptr);
 
   // One batch of gather rays, traced here. Adds weights[i] * L_i to *targets[i], where L_i is the
   // reflected radiance (rho / pi times the irradiance) at the point rays[i] lands on; misses and
@@ -55,6 +74,7 @@ class FinalGather {
   const RayTracer& tracer_;
   const DirectLight& direct_;
   const std::vector<Rgb>& corners_;
+  const SolvedDirect* solvedDirect_;
   float rayOffset_;
 };
 
@@ -82,6 +102,11 @@ class VertexGather {
   std::vector<Rgb> all();
   size_t vertexCount() const { return vertices_.size(); }
   int raysPerVertex() const { return side_ * side_; }
+  // Whether corner c of element e lies inside a solid (most of its rays met backs); valid once
+  // corners(e) has been gathered.
+  bool cornerInside(uint32_t e, int c) const {
+    return vertices_[vertexOf_[size_t(e) * 4 + size_t(c)]].inside;
+  }
   size_t verticesGathered() const;
 
  private:

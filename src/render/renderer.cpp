@@ -26,6 +26,7 @@
 #include "render/corner_values.h"
 #include "render/direct_light.h"
 #include "render/final_gather.h"
+#include "render/gather_mesh.h"
 #include "render/normal_map.h"
 #include "trace/element_polygons.h"
 #include "trace/hemisphere_rays.h"
@@ -43,6 +44,21 @@ constexpr uint64_t kMaxGatherRaysPerPixel = uint64_t(1) << 20;
 // Salts of a pixel's sample patterns (core/multi_jitter.h), one per use.
 enum PatternUse : uint32_t { kPixelFootprint = 1, kLightPoints = 2, kGatherDirections = 3 };
 
+// The solved elements that are partly inside a solid (some of their split elements' corners are,
+// some are not), found by the first coarse gather: their mean direct light counts the dark part,
+// so gather rays landing on them trace theirs wherever they come from.
+void traceStraddlingElements(const VertexGather& gathered, const GatherMesh& mesh,
+                             FinalGather::SolvedDirect& direct) {
+  const SurfaceSet& shown = mesh.surfaces();
+  // Per solved element (there are no more of them than split ones): 1 a corner inside, 2 outside.
+  std::vector<uint8_t> state(shown.elements.size(), 0);
+  for (uint32_t e = 0; e < shown.elements.size(); ++e)
+    for (int c = 0; c < shown.elements[e].polygon.count; ++c)
+      state[mesh.parent(e)] |= gathered.cornerInside(e, c) ? 1 : 2;
+  for (uint32_t e = 0; e < shown.elements.size(); ++e)
+    if (state[mesh.parent(e)] == 3) direct.tracedWithin[e] = std::numeric_limits<float>::infinity();
+}
+
 }  // namespace
 
 void validateRenderOptions(const RenderOptions& o) {
@@ -55,8 +71,8 @@ void validateRenderOptions(const RenderOptions& o) {
                             double(o.width) * o.height * sizeof(Rgb) / double(1u << 30)));
   if (o.samplesPerPixel < 1 || o.samplesPerPixel > 65536)
     throw Error(fmt::format("samples per pixel {} must be between 1 and 65536", o.samplesPerPixel));
-  if (o.gatherBounces < 1 || o.gatherBounces > 2)
-    throw Error(fmt::format("gather bounces {} must be 1 or 2", o.gatherBounces));
+  if (o.gatherBounces < 1 || o.gatherBounces > 4)
+    throw Error(fmt::format("gather bounces {} must be between 1 and 4", o.gatherBounces));
   if (o.gatherRays < 0 || o.gatherRays > kMaxGatherRays)
     throw Error(fmt::format("gather rays {} must be between 0 and {}", o.gatherRays, kMaxGatherRays));
   if (o.indirect == RenderOptions::Indirect::PixelGather &&
@@ -130,29 +146,52 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   if (hq)
     for (size_t e = 0; e < field.size(); ++e)
       field[e] = glm::max(field[e] - solution.directIrradiance[e], Rgb(0.0f));
-  const std::vector<Rgb> corners = elementCornerValues(surfaces, field);
+  // The elements the pixels find and the vertex gather interpolates over: the solved ones, split
+  // where options.gatherElements asks for more (render/gather_mesh.h).
+  const GatherMesh mesh(
+      scene, surfaces,
+      vertexGather ? GatherMesh::splitsFor(surfaces.elements.size(), options.gatherElements) : 0);
+  const SurfaceSet& shown = mesh.surfaces();
+  const std::vector<Rgb> corners = mesh.corners(elementCornerValues(surfaces, field));
 
-  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(surfaces);
+  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(shown);
   RayTracer tracer(polygons);
-  DirectLight direct(scene, surfaces);
-  const FinalGather gather(surfaces, tracer, direct, corners);
+  const DirectLight direct(scene, surfaces);
+  // A vertex gather's hits a few elements away read their direct light from the solution.
+  std::optional<FinalGather::SolvedDirect> solvedDirect;
+  if (vertexGather) {
+    solvedDirect.emplace();
+    solvedDirect->irradiance = mesh.perElement(solution.directIrradiance);
+    solvedDirect->tracedWithin.resize(shown.elements.size());
+    for (uint32_t e = 0; e < shown.elements.size(); ++e)
+      solvedDirect->tracedWithin[e] =
+          kNearHitElements * std::sqrt(surfaces.elements[mesh.parent(e)].area);
+  }
+  const FinalGather::SolvedDirect* readDirect = solvedDirect ? &*solvedDirect : nullptr;
+  const FinalGather gather(shown, tracer, direct, corners, /*gatherNearHits=*/true, readDirect);
   const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
-  // With two bounces gathered, the gather's hits read a coarse gather at every vertex instead of
-  // the solution, so the solution is met two bounces away.
+  // With two bounces or more gathered, the gather's hits read a coarse gather at every vertex
+  // instead of the solution, and each further bounce a coarse gather of that one, so the solution
+  // is met gatherBounces bounces away. The first coarse gather also finds the solved elements that
+  // solids stand on, whose mean direct light cannot be read (traceStraddlingElements).
   std::vector<Rgb> coarse;
   std::optional<FinalGather> fromCoarse;
-  if ((vertexGather || pixelGather) && options.gatherBounces >= 2) {
-    VertexGather first(surfaces, gather, kCoarseGatherRays, hashCombine(options.seed, 0xc0a25eu));
-    coarse = first.all();
-    fromCoarse.emplace(surfaces, tracer, direct, coarse, /*gatherNearHits=*/false);
+  for (int level = 2; (vertexGather || pixelGather) && level <= options.gatherBounces; ++level) {
+    VertexGather lower(shown, fromCoarse ? *fromCoarse : gather, kCoarseGatherRays,
+                       hashCombine(options.seed, 0xc0a25eu + uint32_t(level - 2)));
+    coarse = lower.all();  // the level below read the previous `coarse` until all() returned
+    if (level == 2 && solvedDirect) traceStraddlingElements(lower, mesh, *solvedDirect);
+    fromCoarse.emplace(shown, tracer, direct, coarse, /*gatherNearHits=*/false, readDirect);
   }
   const FinalGather& finalGather = fromCoarse ? *fromCoarse : gather;
   // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at
   // vertices, each vertex when a pixel first needs it.
   std::optional<VertexGather> vertexGathered;
-  if (vertexGather) vertexGathered.emplace(surfaces, finalGather, options.gatherRays, options.seed);
-  const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
+  if (vertexGather) vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed);
+  const int gatherRays = !pixelGather             ? 0
+                         : options.gatherRays > 0 ? options.gatherRays
+                                                  : kDefaultPixelGatherRays;
 
   // Background: the sky where there is one.
   std::vector<const Light*> skies;
@@ -165,7 +204,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const int tilesX = (options.width + kTile - 1) / kTile, tilesY = (options.height + kTile - 1) / kTile;
   const int tileCount = tilesX * tilesY;
   const int spp = options.samplesPerPixel;
-  const uint32_t gatherCount = uint32_t(spp) * uint32_t(gatherRays);
+  const MultiJitter pixelPattern{uint32_t(spp)},
+      gatherPattern{uint32_t(spp) * uint32_t(gatherRays)};
   const float perGatherRay = gatherRays > 0 ? 1.0f / float(gatherRays) : 0.0f;
   std::atomic<int> tilesDone{0};
   std::atomic<bool> cancelled{false};
@@ -188,7 +228,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
       for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
           const uint32_t pixel = uint32_t(y * options.width + x);
-          const Vec2 j = multiJitter(uint32_t(s), uint32_t(spp), hashCombine(hashCombine(options.seed, pixel), kPixelFootprint));
+          const Vec2 j = pixelPattern(uint32_t(s), hashCombine(hashCombine(options.seed, pixel), kPixelFootprint));
           Vec3 d = cam.direction((float(x) + j.x) / float(options.width), (float(y) + j.y) / float(options.height));
           RTCRayHit rh;
           rh.ray = makeRay(cam.eye, d, 0.0f, std::numeric_limits<float>::infinity());
@@ -214,8 +254,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
           }
           ++hitSamples[size_t((y - y0) * kTile + (x - x0))];
           const uint32_t e = rh.hit.primID;
-          const Element& el = surfaces.elements[e];
-          const SurfaceFace& face = surfaces.faces[el.face];
+          const Element& el = shown.elements[e];
+          const SurfaceFace& face = shown.faces[el.face];
           const Material& m = scene.materials[el.material];
           const float u = rh.hit.u, v = rh.hit.v;
           const int count = el.polygon.count;
@@ -241,7 +281,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
                                                     : el.normal;
           Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, pixel), uint32_t(s)));
           const size_t before = shadowRays.size();
-          const Vec2 lightPoint = multiJitter(uint32_t(s), uint32_t(spp), hashCombine(pattern, kLightPoints));
+          const Vec2 lightPoint = pixelPattern(uint32_t(s), hashCombine(pattern, kLightPoints));
           sum += rho * kInvPi *
                  direct.sample(p, el.normal, shading, Sides::Front, lightPoint, rng, rayOffset, shadowRays, shadowValues);
           for (size_t k = before; k < shadowRays.size(); ++k) {
@@ -255,8 +295,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
           const HemisphereFrame frame(el.normal);
           const Vec3 origin = p + el.normal * rayOffset;
           for (int r = 0; r < gatherRays; ++r) {
-            const Vec2 g = multiJitter(uint32_t(s) * uint32_t(gatherRays) + uint32_t(r), gatherCount,
-                                       hashCombine(pattern, kGatherDirections));
+            const Vec2 g = gatherPattern(uint32_t(s) * uint32_t(gatherRays) + uint32_t(r),
+                                         hashCombine(pattern, kGatherDirections));
             const Vec3 d = frame.cosine(g.x, g.y);
             float w = perGatherRay;
             if (shading != el.normal) {
@@ -293,6 +333,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->rays = tracer.raysTraced();
     stats->indirect = indirect;
+    stats->gatherElements = vertexGather ? shown.elements.size() : 0;
   }
   return image;
 }

@@ -1,0 +1,50 @@
+// The mesh an hq render's vertex gather runs on (render/final_gather.h): the solution's elements,
+// each split into 4^k by SurfaceSet::splitElement. A vertex gather reads the solution two bounces
+// away, where its discretisation hardly shows, but interpolates its own result over elements, so
+// the picture wants finer elements than the solve does: beside a crease or a contact the gathered
+// light bends within an element, and coarse elements show it as dark bands. Splitting decouples
+// the two, so the solve (whose cost grows with elements times patches) runs on a quarter or a
+// sixteenth of the elements the gather interpolates over (docs/algorithms.md, "Rendering").
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "luxel/scene.h"
+#include "luxel/surface.h"
+
+namespace luxel {
+
+class GatherMesh {
+ public:
+  // The splits that bring `solved` elements nearest `wanted` (by their ratio; none when wanted is
+  // 0 or not above solved).
+  static int splitsFor(size_t solved, size_t wanted);
+
+  // `solved` split `splits` times (0: the solved elements themselves, nothing copied). The split
+  // set has no patches. `solved` must outlive this.
+  GatherMesh(const Scene& scene, const SurfaceSet& solved, int splits);
+
+  const SurfaceSet& surfaces() const { return split_ ? *split_ : solved_; }
+  int splits() const { return splits_; }
+  // The solved element that element e of surfaces() lies in.
+  uint32_t parent(uint32_t e) const { return split_ ? parent_[e] : e; }
+  // A corner field of the solved elements (4 slots each, as elementCornerValues lays them out),
+  // at the corners of surfaces()'s elements: each interpolated in its parent the way a hit there
+  // is (barycentric on triangles, bilinear on quads), so the field is the same function of
+  // position on either mesh.
+  std::vector<Rgb> corners(const std::vector<Rgb>& solvedCorners) const;
+  // A field of the solved elements, each element of surfaces() taking its parent's value.
+  std::vector<Rgb> perElement(const std::vector<Rgb>& solved) const;
+
+ private:
+  const SurfaceSet& solved_;
+  int splits_ = 0;
+  std::optional<SurfaceSet> split_;
+  std::vector<uint32_t> parent_;
+  std::vector<std::array<Vec2, 4>> local_;  // each element's corners in its parent's coordinates
+};
+
+}  // namespace luxel
