@@ -55,7 +55,11 @@ struct RenderOptions {
   Camera camera;
   int width = 512;
   int height = 512;
-  int samplesPerPixel = 16;  // pixel jitter, and one shadow ray per light per sample
+  // Light points per pixel (a shadow ray per light each), and as many camera samples (pixel
+  // jitter), except inside faces: a pixel whose corners all see one untextured face takes a quarter
+  // of the camera samples, each with four of the light points, when the count is a multiple of 4
+  // and no light casts hard shadows (point, spot, sun); docs/algorithms.md, "Rendering".
+  int samplesPerPixel = 16;
   Indirect indirect = Indirect::Auto;
   // Gather rays per vertex (VertexGather) or per pixel sample (PixelGather); 0 takes the mode's
   // default: kDefaultPixelGatherRays, or kDefaultVertexGatherRays where the scene's vertices allow

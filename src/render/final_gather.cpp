@@ -17,6 +17,7 @@
 #include "mesh/corner_groups.h"
 #include "render/corner_values.h"
 #include "trace/hemisphere_rays.h"
+#include "transport/form_factor.h"
 
 namespace luxel {
 namespace {
@@ -29,13 +30,13 @@ constexpr int kNearHitSide = 3;
 
 FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer,
                          const DirectLight& direct, const std::vector<Rgb>& indirectCorners,
-                         bool gatherNearHits, const SolvedDirect* solvedDirect)
+                         bool gatherNearHits, const ElementDirect* elementDirect)
     : gatherNearHits_(gatherNearHits),
       surfaces_(surfaces),
       tracer_(tracer),
       direct_(direct),
       corners_(indirectCorners),
-      solvedDirect_(solvedDirect),
+      elementDirect_(elementDirect),
       rayOffset_(rayOffsetFor(surfaces.sceneExtent)) {}
 
 size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
@@ -91,8 +92,8 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
     } else {
       *targets[k] += weight * interpolateCorners(&corners_[size_t(h) * 4], hit.polygon.count, rh.hit.u, rh.hit.v);
     }
-    if (solvedDirect_ && rh.ray.tfar >= solvedDirect_->tracedWithin[h]) {
-      *targets[k] += weight * solvedDirect_->irradiance[h];
+    if (elementDirect_ && rh.ray.tfar >= elementDirect_->tracedWithin[h]) {
+      *targets[k] += weight * elementDirect_->irradiance[h];
       continue;
     }
     Rng rng(hashCombine(seed, uint32_t(k)));
@@ -114,6 +115,39 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
     if (!isOccluded(shadowRays[r])) *shadowTargets[r] += shadowValues[r];
   if (!second.empty()) add(second, secondWeights, secondTargets, hashCombine(seed, 0x5ec0u), false);
   return backs;
+}
+
+std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
+                                    int samples, uint32_t seed) {
+  std::vector<Rgb> out(surfaces.elements.size(), Rgb(0.0f));
+  if (samples <= 0) return out;
+  const MultiJitter pattern{uint32_t(samples)};
+  const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
+  const float perSample = 1.0f / float(samples);
+  const auto estimate = [&](const tbb::blocked_range<uint32_t>& range) {
+    std::vector<RTCRay> rays;
+    std::vector<Rgb> values;
+    std::vector<uint32_t> owners;
+    for (uint32_t e = range.begin(); e < range.end(); ++e) {
+      const Element& el = surfaces.elements[e];
+      Rng rng(hashCombine(seed ^ 0xd17ec7u, e));
+      Rgb always(0.0f);
+      for (int k = 0; k < samples; ++k) {
+        const Vec2 st = pattern(uint32_t(k), hashCombine(seed, e));
+        const Vec2 u = pattern(uint32_t(k), hashCombine(seed ^ 0x119u, e));
+        const size_t before = rays.size();
+        always += direct.sample(polygonPoint(el.polygon, st.x, st.y), el.normal, el.normal, Sides::Front, u, rng,
+                                rayOffset, rays, values);
+        owners.insert(owners.end(), rays.size() - before, e);
+      }
+      out[e] = always * perSample;
+    }
+    tracer.occluded(rays);
+    for (size_t i = 0; i < rays.size(); ++i)
+      if (!isOccluded(rays[i])) out[owners[i]] += values[i] * perSample;
+  };
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(surfaces.elements.size()), 64), estimate);
+  return out;
 }
 
 namespace {

@@ -10,7 +10,7 @@
 // rays) from the solution one bounce further. The corners read at the hits may instead be a coarse
 // gather of their own (VertexGather over this class), or a coarse gather of a coarse gather: the
 // solution is then two or more bounces away. Where a hit is a few elements away, its direct light
-// may be read from the solution instead of traced (SolvedDirect).
+// may be read per element instead of traced (ElementDirect).
 //
 // Emission met by a gather ray is not counted, nor is the sky met by one that escapes: both are
 // direct light, which the caller traces at the point itself.
@@ -35,13 +35,13 @@ inline constexpr float kNearHitElements = 2.0f;
 class FinalGather {
  public:
   // The direct light where gather rays land is traced there (a shadow ray per light, as at a
-  // pixel), or read from the solution: each element's mean direct irradiance, exact over the
-  // element in total and blurred within it. Seen from a few elements away the blur is what the
-  // gather's rays average over anyway, and reading it costs no ray; nearer it shows (a block's
+  // pixel), or read per element: the element's mean direct irradiance (elementDirectLight), exact
+  // over the element in total and blurred within it. Seen from a few elements away the blur is what
+  // the gather's rays average over anyway, and reading it costs no ray; nearer it shows (a block's
   // footprint darkening the floor beside it), so hits within `tracedWithin` of their ray's origin
   // still trace it. An element partly inside a solid (the floor under a block's edge) has the dark
   // part in its mean, which shows from any distance: its tracedWithin is infinite.
-  struct SolvedDirect {
+  struct ElementDirect {
     std::vector<Rgb> irradiance;      // per element of the gather's surfaces
     std::vector<float> tracedWithin;  // per element: hits nearer than this trace their direct light
   };
@@ -52,10 +52,10 @@ class FinalGather {
   // `gatherNearHits`: a hit within two of its element's edge lengths gathers its own indirect
   // light (9 rays) instead of reading the corners there: for corners taken from the solution, whose
   // elements average across a block's footprint; gathered corners (VertexGather) need it not.
-  // `solvedDirect`: see SolvedDirect; null traces the direct light at every hit.
+  // `elementDirect`: see ElementDirect; null traces the direct light at every hit.
   FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
               const std::vector<Rgb>& indirectCorners, bool gatherNearHits = true,
-              const SolvedDirect* solvedDirect = nullptr);
+              const ElementDirect* elementDirect = nullptr);
 
   // One batch of gather rays, traced here. Adds weights[i] * L_i to *targets[i], where L_i is the
   // reflected radiance (rho / pi times the irradiance) at the point rays[i] lands on; misses and
@@ -74,9 +74,14 @@ class FinalGather {
   const RayTracer& tracer_;
   const DirectLight& direct_;
   const std::vector<Rgb>& corners_;
-  const SolvedDirect* solvedDirect_;
+  const ElementDirect* elementDirect_;
   float rayOffset_;
 };
+
+// Each element's mean direct irradiance (DirectLight, shadow rays traced through `tracer`), from
+// `samples` points stratified over the element, each with a light point stratified over each lamp.
+std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
+                                    int samples, uint32_t seed);
 
 // The indirect irradiance gathered at element corners, `rays` cosine-stratified rays per vertex,
 // each vertex on first demand (an image gathers only what it sees). Corners that meet on one
@@ -104,6 +109,7 @@ class VertexGather {
   int raysPerVertex() const { return side_ * side_; }
   // Whether corner c of element e lies inside a solid (most of its rays met backs); valid once
   // corners(e) has been gathered.
+  int cornerCount(uint32_t e) const { return surfaces_.elements[e].polygon.count; }
   bool cornerInside(uint32_t e, int c) const {
     return vertices_[vertexOf_[size_t(e) * 4 + size_t(c)]].inside;
   }

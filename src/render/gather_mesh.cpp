@@ -62,12 +62,4 @@ std::vector<Rgb> GatherMesh::corners(const std::vector<Rgb>& solvedCorners) cons
   });
   return out;
 }
-
-std::vector<Rgb> GatherMesh::perElement(const std::vector<Rgb>& solved) const {
-  if (!split_) return solved;
-  std::vector<Rgb> out(split_->elements.size());
-  for (size_t e = 0; e < out.size(); ++e) out[e] = solved[parent_[e]];
-  return out;
-}
-
 }  // namespace luxel

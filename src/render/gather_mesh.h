@@ -36,8 +36,6 @@ class GatherMesh {
   // is (barycentric on triangles, bilinear on quads), so the field is the same function of
   // position on either mesh.
   std::vector<Rgb> corners(const std::vector<Rgb>& solvedCorners) const;
-  // A field of the solved elements, each element of surfaces() taking its parent's value.
-  std::vector<Rgb> perElement(const std::vector<Rgb>& solved) const;
 
  private:
   const SurfaceSet& solved_;

@@ -44,20 +44,59 @@ constexpr uint64_t kMaxGatherRaysPerPixel = uint64_t(1) << 20;
 // Salts of a pixel's sample patterns (core/multi_jitter.h), one per use.
 enum PatternUse : uint32_t { kPixelFootprint = 1, kLightPoints = 2, kGatherDirections = 3 };
 
-// The solved elements that are partly inside a solid (some of their split elements' corners are,
-// some are not), found by the first coarse gather: their mean direct light counts the dark part,
-// so gather rays landing on them trace theirs wherever they come from.
-void traceStraddlingElements(const VertexGather& gathered, const GatherMesh& mesh,
-                             FinalGather::SolvedDirect& direct) {
-  const SurfaceSet& shown = mesh.surfaces();
-  // Per solved element (there are no more of them than split ones): 1 a corner inside, 2 outside.
-  std::vector<uint8_t> state(shown.elements.size(), 0);
-  for (uint32_t e = 0; e < shown.elements.size(); ++e)
-    for (int c = 0; c < shown.elements[e].polygon.count; ++c)
-      state[mesh.parent(e)] |= gathered.cornerInside(e, c) ? 1 : 2;
-  for (uint32_t e = 0; e < shown.elements.size(); ++e)
-    if (state[mesh.parent(e)] == 3) direct.tracedWithin[e] = std::numeric_limits<float>::infinity();
+// Light points per camera sample in interior pixels (render(), lightsPerCamera).
+constexpr int kLightsPerCameraSample = 4;
+
+// Which pixels of the tile [x0, x1) x [y0, y1) are interior: a ray through each pixel corner, and
+// a pixel whose four corners meet the front of one face, with no texture, has no edge or texture
+// detail for extra camera samples to resolve (a feature smaller than a pixel between its corners
+// can be missed). 1 for interior, per pixel at (y - y0) * kTile + (x - x0).
+std::vector<uint8_t> interiorPixels(const RayTracer& tracer, const SurfaceSet& shown, const Scene& scene,
+                                    const CameraFrame& cam, const RenderOptions& options, int x0, int y0, int x1,
+                                    int y1) {
+  const int w = x1 - x0 + 1, h = y1 - y0 + 1;
+  std::vector<RTCRayHit> corners(size_t(w * h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      corners[size_t(y * w + x)].ray =
+          makeRay(cam.eye, cam.direction(float(x0 + x) / float(options.width), float(y0 + y) / float(options.height)),
+                  0.0f, std::numeric_limits<float>::infinity());
+  tracer.intersect(corners);
+  // The face each corner meets the front of, untextured; -1 otherwise.
+  std::vector<int64_t> face(corners.size(), -1);
+  for (size_t k = 0; k < corners.size(); ++k) {
+    const RTCRayHit& rh = corners[k];
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+    const Element& el = shown.elements[rh.hit.primID];
+    const Material& m = scene.materials[el.material];
+    if (m.reflectanceTexture >= 0 || m.emissionTexture >= 0 || m.normalTexture >= 0) continue;
+    if (glm::dot(el.normal, Vec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z)) >= 0.0f) continue;
+    face[k] = el.face;
+  }
+  std::vector<uint8_t> interior(size_t(kTile * kTile), 0);
+  for (int y = 0; y + 1 < h; ++y)
+    for (int x = 0; x + 1 < w; ++x) {
+      const int64_t f = face[size_t(y * w + x)];
+      interior[size_t(y * kTile + x)] = f >= 0 && face[size_t(y * w + x + 1)] == f &&
+                                        face[size_t((y + 1) * w + x)] == f && face[size_t((y + 1) * w + x + 1)] == f;
+    }
+  return interior;
 }
+
+// The elements that are partly inside a solid (some of their corners are, some are not), found by
+// the first coarse gather: their mean direct light counts the dark part, so gather rays landing on
+// them trace theirs wherever they come from.
+void traceStraddlingElements(const VertexGather& gathered, FinalGather::ElementDirect& direct) {
+  for (uint32_t e = 0; e < direct.tracedWithin.size(); ++e) {
+    int inside = 0;
+    const int count = gathered.cornerCount(e);
+    for (int c = 0; c < count; ++c) inside += gathered.cornerInside(e, c);
+    if (inside > 0 && inside < count) direct.tracedWithin[e] = std::numeric_limits<float>::infinity();
+  }
+}
+
+// Samples of each element's mean direct light (elementDirectLight), for the gather's far hits.
+constexpr int kElementDirectSamples = 16;
 
 }  // namespace
 
@@ -157,17 +196,17 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const std::vector<Polygon> polygons = elementPolygonsTwinsApart(shown);
   RayTracer tracer(polygons);
   const DirectLight direct(scene, surfaces);
-  // A vertex gather's hits a few elements away read their direct light from the solution.
-  std::optional<FinalGather::SolvedDirect> solvedDirect;
+  // A vertex gather's hits a few elements away read their direct light per element.
+  std::optional<FinalGather::ElementDirect> elementDirect;
   if (vertexGather) {
-    solvedDirect.emplace();
-    solvedDirect->irradiance = mesh.perElement(solution.directIrradiance);
-    solvedDirect->tracedWithin.resize(shown.elements.size());
+    elementDirect.emplace();
+    elementDirect->irradiance =
+        elementDirectLight(shown, tracer, direct, kElementDirectSamples, hashCombine(options.seed, 0xe1d1u));
+    elementDirect->tracedWithin.resize(shown.elements.size());
     for (uint32_t e = 0; e < shown.elements.size(); ++e)
-      solvedDirect->tracedWithin[e] =
-          kNearHitElements * std::sqrt(surfaces.elements[mesh.parent(e)].area);
+      elementDirect->tracedWithin[e] = kNearHitElements * std::sqrt(shown.elements[e].area);
   }
-  const FinalGather::SolvedDirect* readDirect = solvedDirect ? &*solvedDirect : nullptr;
+  const FinalGather::ElementDirect* readDirect = elementDirect ? &*elementDirect : nullptr;
   const FinalGather gather(shown, tracer, direct, corners, /*gatherNearHits=*/true, readDirect);
   const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
@@ -181,7 +220,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     VertexGather lower(shown, fromCoarse ? *fromCoarse : gather, kCoarseGatherRays,
                        hashCombine(options.seed, 0xc0a25eu + uint32_t(level - 2)));
     coarse = lower.all();  // the level below read the previous `coarse` until all() returned
-    if (level == 2 && solvedDirect) traceStraddlingElements(lower, mesh, *solvedDirect);
+    if (level == 2 && elementDirect) traceStraddlingElements(lower, *elementDirect);
     fromCoarse.emplace(shown, tracer, direct, coarse, /*gatherNearHits=*/false, readDirect);
   }
   const FinalGather& finalGather = fromCoarse ? *fromCoarse : gather;
@@ -189,9 +228,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   // vertices, each vertex when a pixel first needs it.
   std::optional<VertexGather> vertexGathered;
   if (vertexGather) vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed);
-  const int gatherRays = !pixelGather             ? 0
-                         : options.gatherRays > 0 ? options.gatherRays
-                                                  : kDefaultPixelGatherRays;
+  const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
 
   // Background: the sky where there is one.
   std::vector<const Light*> skies;
@@ -204,8 +241,17 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const int tilesX = (options.width + kTile - 1) / kTile, tilesY = (options.height + kTile - 1) / kTile;
   const int tileCount = tilesX * tilesY;
   const int spp = options.samplesPerPixel;
-  const MultiJitter pixelPattern{uint32_t(spp)},
-      gatherPattern{uint32_t(spp) * uint32_t(gatherRays)};
+  const MultiJitter pixelPattern{uint32_t(spp)}, gatherPattern{uint32_t(spp) * uint32_t(gatherRays)};
+  // Interior pixels (smoothPixels) take spp / lightsPerCamera camera samples, each with
+  // lightsPerCamera of the pixel's spp light points: the light points are what a penumbra needs,
+  // and the camera samples only cost there. Not with a per-pixel gather (its rays go with the camera
+  // samples), nor with lights whose shadows are hard (point, spot, sun): their edges cross a face
+  // and want the camera samples.
+  int lightsPerCamera = hq && !pixelGather && spp % kLightsPerCameraSample == 0 ? kLightsPerCameraSample : 1;
+  for (const Light& l : scene.lights)
+    if (l.type == Light::Type::Point || l.type == Light::Type::Spot || l.type == Light::Type::Directional)
+      lightsPerCamera = 1;
+  const MultiJitter interiorPattern{uint32_t(spp / lightsPerCamera)};
   const float perGatherRay = gatherRays > 0 ? 1.0f / float(gatherRays) : 0.0f;
   std::atomic<int> tilesDone{0};
   std::atomic<bool> cancelled{false};
@@ -223,16 +269,25 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     std::vector<RTCRayHit> gathers;
     std::vector<Rgb> gatherWeights;  // what a gather ray's radiance is multiplied by
     std::vector<Rgb*> gatherTargets;
+    std::vector<uint16_t> active;  // the tile's pixels (y * kTile + x) that take sample s
+    const std::vector<uint8_t> interior = lightsPerCamera > 1
+                                              ? interiorPixels(tracer, shown, scene, cam, options, x0, y0, x1, y1)
+                                              : std::vector<uint8_t>(size_t(kTile * kTile), 0);
     for (int s = 0; s < spp; ++s) {
       hits.clear();
+      active.clear();
       for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
+          const size_t t = size_t((y - y0) * kTile + (x - x0));
+          if (interior[t] && s >= spp / lightsPerCamera) continue;
           const uint32_t pixel = uint32_t(y * options.width + x);
-          const Vec2 j = pixelPattern(uint32_t(s), hashCombine(hashCombine(options.seed, pixel), kPixelFootprint));
+          const uint32_t footprint = hashCombine(hashCombine(options.seed, pixel), kPixelFootprint);
+          const Vec2 j = interior[t] ? interiorPattern(uint32_t(s), footprint) : pixelPattern(uint32_t(s), footprint);
           Vec3 d = cam.direction((float(x) + j.x) / float(options.width), (float(y) + j.y) / float(options.height));
           RTCRayHit rh;
           rh.ray = makeRay(cam.eye, d, 0.0f, std::numeric_limits<float>::infinity());
           hits.push_back(rh);
+          active.push_back(uint16_t(t));
         }
       tracer.intersect(hits);
 
@@ -242,73 +297,77 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
       gathers.clear();
       gatherWeights.clear();
       gatherTargets.clear();
-      size_t i = 0;
-      for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x, ++i) {
-          Rgb& sum = sums[size_t((y - y0) * kTile + (x - x0))];
-          const RTCRayHit& rh = hits[i];
-          Vec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
-          if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-            for (const Light* sky : skies) sum += skyRadiance(*sky, dir, up);
-            continue;
-          }
-          ++hitSamples[size_t((y - y0) * kTile + (x - x0))];
-          const uint32_t e = rh.hit.primID;
-          const Element& el = shown.elements[e];
-          const SurfaceFace& face = shown.faces[el.face];
-          const Material& m = scene.materials[el.material];
-          const float u = rh.hit.u, v = rh.hit.v;
-          const int count = el.polygon.count;
-          const bool front = glm::dot(el.normal, dir) < 0.0f;
-          if (!front) continue;  // the back of a one-sided surface takes no part in transport
-
-          Vec2 uv = face.uv(interpolateCorners(el.param.data(), count, u, v));
-          Rgb rho = m.reflectance;
-          if (m.reflectanceTexture >= 0) rho *= scene.textures[size_t(m.reflectanceTexture)].sample(uv);
-          Rgb le = m.emission;
-          if (m.emissionTexture >= 0 && m.isEmissive()) le *= scene.textures[size_t(m.emissionTexture)].sample(uv);
-          sum += le;
-          if (indirect == Indirect::Interpolated || vertexGather) {
-            const Rgb* c = vertexGathered ? vertexGathered->corners(e) : &corners[size_t(e) * 4];
-            sum += rho * (kInvPi * interpolateCorners(c, count, u, v));
-          }
-          if (!hq) continue;
-
-          const uint32_t pixel = uint32_t(y * options.width + x);
-          const uint32_t pattern = hashCombine(options.seed, pixel);
-          const Vec3 p = cam.eye + dir * rh.ray.tfar;
-          const Vec3 shading = m.normalTexture >= 0 ? shadingNormal(scene, face.mesh, face.meshFace, uv, el.normal)
-                                                    : el.normal;
-          Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, pixel), uint32_t(s)));
-          const size_t before = shadowRays.size();
-          const Vec2 lightPoint = pixelPattern(uint32_t(s), hashCombine(pattern, kLightPoints));
-          sum += rho * kInvPi *
-                 direct.sample(p, el.normal, shading, Sides::Front, lightPoint, rng, rayOffset, shadowRays, shadowValues);
-          for (size_t k = before; k < shadowRays.size(); ++k) {
-            shadowValues[k] *= rho * kInvPi;
-            shadowTargets.push_back(&sum);
-          }
-
-          // Cosine-distributed about the geometric normal, so the estimate of rho / pi * H is
-          // rho * L; a normal map's cosine enters as the ratio max(0, shading . d) / (n . d).
-          // (FinalGather::add multiplies by rho / pi at the hit; the weights carry the rest.)
-          const HemisphereFrame frame(el.normal);
-          const Vec3 origin = p + el.normal * rayOffset;
-          for (int r = 0; r < gatherRays; ++r) {
-            const Vec2 g = gatherPattern(uint32_t(s) * uint32_t(gatherRays) + uint32_t(r),
-                                         hashCombine(pattern, kGatherDirections));
-            const Vec3 d = frame.cosine(g.x, g.y);
-            float w = perGatherRay;
-            if (shading != el.normal) {
-              const float cn = glm::dot(el.normal, d);
-              w *= cn > 1e-6f ? std::max(0.0f, glm::dot(shading, d)) / cn : 0.0f;
-            }
-            if (w <= 0.0f) continue;
-            gathers.emplace_back().ray = makeRay(origin, d, 0.0f, std::numeric_limits<float>::infinity());
-            gatherWeights.push_back(rho * w);
-            gatherTargets.push_back(&sum);
-          }
+      for (size_t i = 0; i < active.size(); ++i) {
+        const size_t t = active[i];
+        const int x = x0 + int(t % kTile), y = y0 + int(t / kTile);
+        // An interior pixel's camera sample stands for `weight` of its spp samples.
+        const int weight = interior[t] ? lightsPerCamera : 1;
+        Rgb& sum = sums[t];
+        const RTCRayHit& rh = hits[i];
+        Vec3 dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+          for (const Light* sky : skies) sum += float(weight) * skyRadiance(*sky, dir, up);
+          continue;
         }
+        hitSamples[t] += weight;
+        const uint32_t e = rh.hit.primID;
+        const Element& el = shown.elements[e];
+        const SurfaceFace& face = shown.faces[el.face];
+        const Material& m = scene.materials[el.material];
+        const float u = rh.hit.u, v = rh.hit.v;
+        const int count = el.polygon.count;
+        const bool front = glm::dot(el.normal, dir) < 0.0f;
+        if (!front) continue;  // the back of a one-sided surface takes no part in transport
+
+        Vec2 uv = face.uv(interpolateCorners(el.param.data(), count, u, v));
+        Rgb rho = m.reflectance;
+        if (m.reflectanceTexture >= 0) rho *= scene.textures[size_t(m.reflectanceTexture)].sample(uv);
+        Rgb le = m.emission;
+        if (m.emissionTexture >= 0 && m.isEmissive()) le *= scene.textures[size_t(m.emissionTexture)].sample(uv);
+        sum += float(weight) * le;
+        if (indirect == Indirect::Interpolated || vertexGather) {
+          const Rgb* c = vertexGathered ? vertexGathered->corners(e) : &corners[size_t(e) * 4];
+          sum += float(weight) * rho * (kInvPi * interpolateCorners(c, count, u, v));
+        }
+        if (!hq) continue;
+
+        const uint32_t pixel = uint32_t(y * options.width + x);
+        const uint32_t pattern = hashCombine(options.seed, pixel);
+        const Vec3 p = cam.eye + dir * rh.ray.tfar;
+        const Vec3 shading = m.normalTexture >= 0 ? shadingNormal(scene, face.mesh, face.meshFace, uv, el.normal)
+                                                  : el.normal;
+        Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, pixel), uint32_t(s)));
+        const size_t before = shadowRays.size();
+        for (int l = 0; l < weight; ++l) {
+          const Vec2 lightPoint = pixelPattern(uint32_t(s * weight + l), hashCombine(pattern, kLightPoints));
+          sum += rho * kInvPi * direct.sample(p, el.normal, shading, Sides::Front, lightPoint, rng, rayOffset,
+                                              shadowRays, shadowValues);
+        }
+        for (size_t k = before; k < shadowRays.size(); ++k) {
+          shadowValues[k] *= rho * kInvPi;
+          shadowTargets.push_back(&sum);
+        }
+
+        // Cosine-distributed about the geometric normal, so the estimate of rho / pi * H is
+        // rho * L; a normal map's cosine enters as the ratio max(0, shading . d) / (n . d).
+        // (FinalGather::add multiplies by rho / pi at the hit; the weights carry the rest.)
+        const HemisphereFrame frame(el.normal);
+        const Vec3 origin = p + el.normal * rayOffset;
+        for (int r = 0; r < gatherRays; ++r) {
+          const Vec2 g = gatherPattern(uint32_t(s) * uint32_t(gatherRays) + uint32_t(r),
+                                       hashCombine(pattern, kGatherDirections));
+          const Vec3 d = frame.cosine(g.x, g.y);
+          float w = perGatherRay;
+          if (shading != el.normal) {
+            const float cn = glm::dot(el.normal, d);
+            w *= cn > 1e-6f ? std::max(0.0f, glm::dot(shading, d)) / cn : 0.0f;
+          }
+          if (w <= 0.0f) continue;
+          gathers.emplace_back().ray = makeRay(origin, d, 0.0f, std::numeric_limits<float>::infinity());
+          gatherWeights.push_back(rho * w);
+          gatherTargets.push_back(&sum);
+        }
+      }
       tracer.occluded(shadowRays);
       for (size_t k = 0; k < shadowRays.size(); ++k)
         if (!isOccluded(shadowRays[k])) *shadowTargets[k] += shadowValues[k];
