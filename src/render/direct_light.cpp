@@ -6,6 +6,7 @@
 
 #include "transport/emitting_polygons.h"
 #include "transport/light_sampling.h"
+#include "transport/shaft.h"
 
 namespace luxel {
 namespace {
@@ -21,9 +22,66 @@ Vec2 rotated(Vec2 u, size_t k) {
   return glm::fract(u + float(k) * step);
 }
 
+// A shaft with more candidate faces than this is left to its rays (the transport's limit, for the
+// same reason: past a few dozen faces the test costs more than the rays it spares).
+constexpr int kMaxShaftCandidates = 48;
+// Above this many faces a shaft rarely comes out clear, and the faces' own BVH costs memory.
+constexpr size_t kMaxShaftFaces = 65536;
+
+enum : uint8_t { kUnknown = 0, kWhole = 1, kBlocked = 2 };
+
+std::vector<Polygon> facePolygons(const SurfaceSet& set) {
+  std::vector<Polygon> out(set.faces.size());
+  for (size_t i = 0; i < set.faces.size(); ++i) out[i] = {set.faces[i].corners, set.faces[i].triangle ? 3 : 4};
+  return out;
+}
+
 }  // namespace
 
-DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
+struct DirectLight::Shafts {
+  Shafts(const SurfaceSet& r, size_t emitters)
+      : receivers(r),
+        faces(facePolygons(r)),
+        tracer(faces),
+        tolerance(2.0f * rayOffsetFor(r.sceneExtent)),
+        emitterCount(emitters),
+        verdicts(std::make_unique<std::atomic<uint8_t>[]>(r.elements.size() * emitters)) {
+    for (size_t i = 0; i < r.elements.size() * emitters; ++i) verdicts[i].store(kUnknown, std::memory_order_relaxed);
+  }
+  const SurfaceSet& receivers;
+  std::vector<Polygon> faces;
+  RayTracer tracer;  // over the faces, for a shaft's candidates
+  float tolerance;   // faces touching a shaft's boundary (the walls a floor element meets) block nothing
+  size_t emitterCount;
+  std::unique_ptr<std::atomic<uint8_t>[]> verdicts;  // element * emitterCount + emitter
+};
+
+DirectLight::~DirectLight() = default;
+
+bool DirectLight::seesWhole(uint32_t element, size_t k) const {
+  std::atomic<uint8_t>& slot = shafts_->verdicts[size_t(element) * shafts_->emitterCount + k];
+  const uint8_t known = slot.load(std::memory_order_relaxed);
+  if (known != kUnknown) return known == kWhole;
+  // Two threads may decide the same pair at once; both reach the same verdict.
+  const Element& el = shafts_->receivers.elements[element];
+  const int32_t twin = shafts_->receivers.faces[el.face].twin;
+  const Shaft shaft(el.polygon, emitters_[k].polygon, shafts_->tolerance);
+  bool whole = shaft.valid();
+  if (whole) {
+    const Vec3 centre = 0.5f * (shaft.boundsMin() + shaft.boundsMax());
+    const float radius = 0.5f * glm::length(shaft.boundsMax() - shaft.boundsMin());
+    int candidates = 0;
+    shafts_->tracer.forEachNear(centre, radius, [&](uint32_t face) {
+      if (face == el.face || int32_t(face) == twin) return true;
+      if (++candidates > kMaxShaftCandidates || shaft.mayIntersect(shafts_->faces[face])) whole = false;
+      return whole;
+    });
+  }
+  slot.store(whole ? kWhole : kBlocked, std::memory_order_relaxed);
+  return whole;
+}
+
+DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces, const SurfaceSet* receivers)
     : scene_(scene), up_(glm::normalize(scene.up)) {
   for (const EmittingPolygon& p : emittingPolygons(surfaces))
     emitters_.push_back({p.polygon, p.normal, p.polygon.area(), p.exitance, Sides::Front});
@@ -33,14 +91,18 @@ DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces)
     cdf_.push_back(total);
   }
   for (float& c : cdf_) c /= total > 0.0f ? total : 1.0f;
+  if (receivers && !emitters_.empty() && emitters_.size() <= kMaxExplicitEmitters &&
+      receivers->faces.size() <= kMaxShaftFaces)
+    shafts_ = std::make_unique<Shafts>(*receivers, emitters_.size());
 }
 
 Rgb DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides,
                                Vec2 u, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
-                               std::vector<Rgb>& values) const {
+                               std::vector<Rgb>& values, bool whole) const {
   const Vec3 pn = em.normal;
   const float f = pointToPolygonFormFactor(x, shading, em.polygon, pn, sides, em.sides);
   if (f <= 0.0f) return Rgb(0.0f);
+  if (whole) return em.exitance * (f * weight);  // V = 1 at every point: F exactly
   // f counts only the part of the emitter above the shading plane; the point is drawn there. The
   // first try is the stratified point; a point behind the receiver's plane is drawn again.
   Vec3 y;
@@ -70,11 +132,15 @@ Rgb DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, 
 }
 
 Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
-                        std::vector<RTCRay>& rays, std::vector<Rgb>& values) const {
+                        std::vector<RTCRay>& rays, std::vector<Rgb>& values, uint32_t element) const {
   Rgb always(0.0f);
+  // A clear shaft proves the element sees the emitter whole; with a normal map's shading normal,
+  // points above its plane may still lie behind the surface's own, so it is not used there.
+  const bool shafts = shafts_ && element != kNoElement && shading == n && sides == Sides::Front;
   if (emitters_.size() <= kMaxExplicitEmitters) {
     for (size_t k = 0; k < emitters_.size(); ++k)
-      always += sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, rotated(u, k), rng, rayOffset, rays, values);
+      always += sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, rotated(u, k), rng, rayOffset, rays, values,
+                              shafts && seesWhole(element, k));
   } else {
     for (int i = 0; i < kSampledEmitters; ++i) {
       size_t k = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.next()) - cdf_.begin());
@@ -82,7 +148,7 @@ Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& 
       float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
       if (p <= 0.0f) continue;
       always += sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, rotated(u, size_t(i)),
-                              rng, rayOffset, rays, values);
+                              rng, rayOffset, rays, values, false);
     }
   }
   for (size_t k = 0; k < scene_.lights.size(); ++k) {

@@ -9,6 +9,7 @@
 // varies (transport/emitting_polygons.h).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "core/random.h"
@@ -19,9 +20,21 @@
 
 namespace luxel {
 
+// sample()'s `element` when the point is on none of the receivers' elements.
+inline constexpr uint32_t kNoElement = 0xffffffffu;
+
 class DirectLight {
  public:
-  DirectLight(const Scene& scene, const SurfaceSet& surfaces);
+  // `receivers`: the elements whose indices sample() is given (none when null). With them, each
+  // element's view of each emitter is shaft-culled on first demand (Haines and Wallace 1991, as
+  // the transport does between patches): where no face reaches into the hull of the two, every
+  // point of the element sees all of the emitter, so its light there is the exact factor F, with
+  // no shadow ray. Scenes of many small faces put more faces in a shaft than are worth testing
+  // (the transport's limit), so there nothing is culled and receivers are not kept.
+  DirectLight(const Scene& scene, const SurfaceSet& surfaces, const SurfaceSet* receivers = nullptr);
+  ~DirectLight();
+  DirectLight(const DirectLight&) = delete;
+  DirectLight& operator=(const DirectLight&) = delete;
 
   // One sample: appends shadow rays and the irradiance each brings if unoccluded, and returns the
   // irradiance that comes whatever the rays find (which may be negative).
@@ -32,8 +45,9 @@ class DirectLight {
   // The same with the point of each light's area (or solid angle) taken from `u`, a stratified
   // sample (core/multi_jitter.h), so that a pixel's samples cover a lamp evenly and penumbrae come
   // out smooth; `rng` draws the rest (emitters by power, retries behind the receiver's plane).
+  // `element`: the receivers' element x lies on, or kNoElement.
   Rgb sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
-             std::vector<RTCRay>& rays, std::vector<Rgb>& values) const;
+             std::vector<RTCRay>& rays, std::vector<Rgb>& values, uint32_t element = kNoElement) const;
   // The same with a shading normal (a normal map's, render/normal_map.h) for the receiver's cosine,
   // max(0, shading . l): the irradiance a surface of that orientation would get. Shadow rays leave
   // from the geometric surface (offset along n), and with Sides::Front light from behind its
@@ -53,8 +67,14 @@ class DirectLight {
     Rgb exitance;
     Sides sides;
   };
+  // `whole`: x's element sees all of the emitter (a clear shaft), so nothing blocks it.
   Rgb sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u,
-                    Rng& rng, float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values) const;
+                    Rng& rng, float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values,
+                    bool whole) const;
+  // Whether element `element` of the receivers sees all of emitter k (decided once, then cached).
+  bool seesWhole(uint32_t element, size_t k) const;
+  struct Shafts;
+  std::unique_ptr<Shafts> shafts_;
 
   const Scene& scene_;
   Vec3 up_;

@@ -103,8 +103,8 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
     // The batch's light points are stratified over each light (as a pixel's samples are), so a
     // vertex's hits in a penumbra see the lamp evenly covered rather than at random points.
     const Vec2 u = lightPattern(uint32_t(k), hashCombine(seed, 0x11647u));
-    *targets[k] += weight * direct_.sample(q, hit.normal, hit.normal, Sides::Front, u, rng,
-                                           rayOffset_, shadowRays, shadowValues);
+    *targets[k] += weight * direct_.sample(q, hit.normal, hit.normal, Sides::Front, u, rng, rayOffset_, shadowRays,
+                                           shadowValues, h);
     for (size_t r = before; r < shadowRays.size(); ++r) {
       shadowValues[r] *= weight;
       shadowTargets.push_back(targets[k]);
@@ -137,7 +137,7 @@ std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer&
         const Vec2 u = pattern(uint32_t(k), hashCombine(seed ^ 0x119u, e));
         const size_t before = rays.size();
         always += direct.sample(polygonPoint(el.polygon, st.x, st.y), el.normal, el.normal, Sides::Front, u, rng,
-                                rayOffset, rays, values);
+                                rayOffset, rays, values, e);
         owners.insert(owners.end(), rays.size() - before, e);
       }
       out[e] = always * perSample;
@@ -172,7 +172,8 @@ enum : uint8_t { kPending = 0, kRunning = 1, kDone = 2 };
 
 }  // namespace
 
-VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed)
+VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed,
+                           std::span<const float> elementWeights)
     : surfaces_(surfaces), gather_(gather), seed_(seed) {
   const CornerGroups groups(surfaces, kDefaultCreaseCosine);
   const size_t ne = surfaces.elements.size();
@@ -193,6 +194,7 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
       Vertex& v = vertices_[it->second];
       v.normal += el.area * el.normal;
       v.centroids += el.centroid;
+      if (!elementWeights.empty()) v.weight += elementWeights[e] / float(el.polygon.count);
       ++v.slots;
       vertexOf_[size_t(e) * 4 + size_t(c)] = it->second;
     }
@@ -201,6 +203,17 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
     rays = int(std::clamp(kVertexGatherRayBudget / std::max<size_t>(vertices_.size(), 1), size_t(16),
                           size_t(kDefaultVertexGatherRays)));
   side_ = strataSide(rays);
+  double total = 0.0;
+  size_t weighted = 0;
+  for (const Vertex& v : vertices_)
+    if (v.weight > 0.0f) total += v.weight, ++weighted;
+  const double mean = weighted > 0 ? total / double(weighted) : 0.0;
+  for (Vertex& v : vertices_) {
+    const double share = mean > 0.0 ? double(v.weight) / mean : 1.0;
+    v.side = mean > 0.0 ? strataSide(int(std::clamp(double(rays) * share, double(std::min(rays, kMinVertexGatherRays)),
+                                                    double(rays) * kMaxRaysOverMean)))
+                        : side_;
+  }
   corners_.assign(ne * 4, Rgb(0.0f));
   vertexState_ = std::make_unique<std::atomic<uint8_t>[]>(vertices_.size());
   elementState_ = std::make_unique<std::atomic<uint8_t>[]>(ne);
@@ -232,9 +245,9 @@ void VertexGather::gatherVertex(uint32_t vi) {
   const Vec3 n = v.normal / length;
   const Vec3 towardsCentroids = v.centroids / float(v.slots) - v.position;
   const Vec3 origin = v.position + 0.01f * towardsCentroids + rayOffsetFor(surfaces_.sceneExtent) * n;
-  const int count = side_ * side_;
+  const int count = v.side * v.side;
   std::vector<Vec3> dirs(static_cast<size_t>(count));
-  HemisphereStrata(n, side_, vi, seed_).directions(HemisphereStrata::Warp::Cosine, dirs);
+  HemisphereStrata(n, v.side, vi, seed_).directions(HemisphereStrata::Warp::Cosine, dirs);
   std::vector<RTCRayHit> hits(dirs.size());
   for (size_t k = 0; k < hits.size(); ++k)
     hits[k].ray = makeRay(origin, dirs[k], 0.0f, std::numeric_limits<float>::infinity());

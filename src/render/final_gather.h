@@ -28,6 +28,8 @@
 namespace luxel {
 
 inline constexpr size_t kVertexGatherRayBudget = size_t(1) << 24;
+inline constexpr int kMinVertexGatherRays = 16;
+inline constexpr float kMaxRaysOverMean = 8.0f;
 // A hit nearer than this many of its element's edge lengths is near: it sees the element large,
 // and with it the element's averaging.
 inline constexpr float kNearHitElements = 2.0f;
@@ -95,7 +97,14 @@ class VertexGather {
   // `rays` per vertex; 0 takes kDefaultVertexGatherRays, fewer (down to 16) where the scene has so
   // many vertices that the gather would pass kVertexGatherRayBudget rays: there the elements are
   // small on screen and neighbouring pixels average the noise.
-  VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed);
+  // `elementWeights` (one per element, or none): the rays go to the vertices in proportion to the
+  // weights of the elements around them, `rays` on average over the vertices of weight above 0, at
+  // least kMinVertexGatherRays and at most kMaxRaysOverMean times that average. An image weights
+  // elements by the pixels they cover, so that each part of it is gathered with as many rays as
+  // any other: uniform rays leave the few vertices of a surface near the eye to carry a whole
+  // region's noise.
+  VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed,
+               std::span<const float> elementWeights = {});
   ~VertexGather();
   VertexGather(const VertexGather&) = delete;
   VertexGather& operator=(const VertexGather&) = delete;
@@ -107,6 +116,11 @@ class VertexGather {
   std::vector<Rgb> all();
   size_t vertexCount() const { return vertices_.size(); }
   int raysPerVertex() const { return side_ * side_; }
+  // The rays corner c of element e is gathered with (elementWeights share them out).
+  int cornerRays(uint32_t e, int c) const {
+    const int side = vertices_[vertexOf_[size_t(e) * 4 + size_t(c)]].side;
+    return side * side;
+  }
   // Whether corner c of element e lies inside a solid (most of its rays met backs); valid once
   // corners(e) has been gathered.
   int cornerCount(uint32_t e) const { return surfaces_.elements[e].polygon.count; }
@@ -122,6 +136,8 @@ class VertexGather {
     Vec3 centroids{0.0f};  // summed over the slots that share it, for the nudge inwards
     uint32_t slots = 0;
     Rgb irradiance{0.0f};
+    float weight = 0.0f;  // from elementWeights
+    int side = 0;         // its rays are side x side strata
     bool inside = false;
   };
   void gatherVertex(uint32_t v);

@@ -95,8 +95,34 @@ void traceStraddlingElements(const VertexGather& gathered, FinalGather::ElementD
   }
 }
 
+// How many of the image's pixels see each element, from a ray through the centre of every pixel
+// (every k-th pixel each way when there are more than kVisibilityRays, each then counting k^2):
+// the vertex gather's rays go by it (VertexGather's element weights), so that a surface near the
+// eye, few vertices over many pixels, gets the rays its share of the image needs.
+constexpr size_t kVisibilityRays = size_t(1) << 18;
+std::vector<float> pixelsSeen(const RayTracer& tracer, const SurfaceSet& shown, const CameraFrame& cam,
+                              const RenderOptions& options) {
+  const size_t pixels = size_t(options.width) * size_t(options.height);
+  const int stride = int(std::ceil(std::sqrt(double(pixels) / double(kVisibilityRays))));
+  const int w = (options.width + stride - 1) / stride, h = (options.height + stride - 1) / stride;
+  std::vector<RTCRayHit> rays(size_t(w) * size_t(h));
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x)
+      rays[size_t(y) * size_t(w) + size_t(x)].ray =
+          makeRay(cam.eye,
+                  cam.direction((float(x * stride) + 0.5f) / float(options.width),
+                                (float(y * stride) + 0.5f) / float(options.height)),
+                  0.0f, std::numeric_limits<float>::infinity());
+  });
+  tracer.intersect(rays);
+  std::vector<float> seen(shown.elements.size(), 0.0f);
+  for (const RTCRayHit& r : rays)
+    if (r.hit.geomID != RTC_INVALID_GEOMETRY_ID) seen[r.hit.primID] += float(stride * stride);
+  return seen;
+}
+
 // Samples of each element's mean direct light (elementDirectLight), for the gather's far hits.
-constexpr int kElementDirectSamples = 16;
+constexpr int kElementDirectSamples = 64;
 
 }  // namespace
 
@@ -195,7 +221,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
 
   const std::vector<Polygon> polygons = elementPolygonsTwinsApart(shown);
   RayTracer tracer(polygons);
-  const DirectLight direct(scene, surfaces);
+  const DirectLight direct(scene, surfaces, &shown);
   // A vertex gather's hits a few elements away read their direct light per element.
   std::optional<FinalGather::ElementDirect> elementDirect;
   if (vertexGather) {
@@ -207,7 +233,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
       elementDirect->tracedWithin[e] = kNearHitElements * std::sqrt(shown.elements[e].area);
   }
   const FinalGather::ElementDirect* readDirect = elementDirect ? &*elementDirect : nullptr;
-  const FinalGather gather(shown, tracer, direct, corners, /*gatherNearHits=*/true, readDirect);
+  const FinalGather gather(shown, tracer, direct, corners, /*gatherNearHits=*/options.gatherBounces < 3, readDirect);
   const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
   // With two bounces or more gathered, the gather's hits read a coarse gather at every vertex
@@ -227,7 +253,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at
   // vertices, each vertex when a pixel first needs it.
   std::optional<VertexGather> vertexGathered;
-  if (vertexGather) vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed);
+  if (vertexGather)
+    vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed,
+                           pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options));
   const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
 
   // Background: the sky where there is one.
@@ -341,7 +369,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
         for (int l = 0; l < weight; ++l) {
           const Vec2 lightPoint = pixelPattern(uint32_t(s * weight + l), hashCombine(pattern, kLightPoints));
           sum += rho * kInvPi * direct.sample(p, el.normal, shading, Sides::Front, lightPoint, rng, rayOffset,
-                                              shadowRays, shadowValues);
+                                              shadowRays, shadowValues, e);
         }
         for (size_t k = before; k < shadowRays.size(); ++k) {
           shadowValues[k] *= rho * kInvPi;

@@ -111,5 +111,65 @@ TEST(DirectLight, StratifiedLightPointsMakePenumbraeSmooth) {
   EXPECT_LT(variance[1], 0.3 * variance[0]) << "stratified " << variance[1] << ", independent " << variance[0];
 }
 
+// Shaft culling (DirectLight's receivers): a 1 x 1 lamp at y = 1 facing down over the origin, a
+// 4 x 4 floor at y = 0 cut into elements, and a sheet at y = 0.5 over x in [1, 2] facing down.
+// Floor elements whose hull with the lamp the sheet stays out of see the lamp whole: their light is
+// the exact factor, with no shadow ray. Elements whose hull the sheet reaches into (the column
+// x in [1.5, 2]) keep their rays.
+TEST(DirectLight, ElementsThatSeeALampWholeNeedNoShadowRays) {
+  Scene s;
+  s.name = "shafts";
+  s.materials = {Material{.name = "lamp", .reflectance = Rgb(0.0f), .emission = Rgb(1.0f)},
+                 Material{.name = "grey", .reflectance = Rgb(0.5f)}};
+  Mesh lamp{.name = "lamp", .material = 0};
+  builtin::addQuad(lamp, {-0.5f, 1, -0.5f}, {0.5f, 1, -0.5f}, {0.5f, 1, 0.5f}, {-0.5f, 1, 0.5f});  // -y
+  lamp.elementGrids = {{1, 1}};
+  Mesh floor{.name = "floor", .material = 1};
+  builtin::addQuad(floor, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2});  // +y
+  floor.elementGrids = {{8, 8}};
+  Mesh sheet{.name = "sheet", .material = 1};
+  builtin::addQuad(sheet, {1, 0.5f, -2}, {2, 0.5f, -2}, {2, 0.5f, 2}, {1, 0.5f, 2});  // -y
+  sheet.elementGrids = {{1, 1}};
+  s.meshes = {lamp, floor, sheet};
+  DiscretiseOptions d;
+  d.orientByLight = false;
+  const SurfaceSet set = discretise(s, d);
+  const DirectLight culled(s, set, &set);
+  const DirectLight traced(s, set);
+  const Polygon lampPolygon{set.faces[0].corners, 4};
+
+  int whole = 0, kept = 0;
+  for (uint32_t e = 0; e < set.elements.size(); ++e) {
+    const Element& el = set.elements[e];
+    if (el.normal.y < 0.5f || std::abs(el.centroid.y) > 1e-4f) continue;  // the floor's elements
+    const Vec3 x = el.centroid, n = el.normal;
+    Rng rng(e);
+    std::vector<RTCRay> rays;
+    std::vector<Rgb> values;
+    const Rgb always = culled.sample(x, n, n, Sides::Front, Vec2(0.3f, 0.6f), rng, 1e-5f, rays, values, e);
+    if (el.centroid.x < 1.5f) {
+      // Nothing between (the sheet's edge at x = 1 is where the hull of the column x in [1, 1.5]
+      // passes): the lamp seen whole, its light the closed form, no ray.
+      const double f = pointToPolygonFormFactor(x, n, lampPolygon, Sides::Front, Sides::Front);
+      EXPECT_TRUE(rays.empty()) << "element " << e;
+      EXPECT_NEAR(always.g, std::numbers::pi * f, 1e-5) << "element " << e;
+      ++whole;
+    }
+    if (el.centroid.x > 1.5f) {
+      EXPECT_FALSE(rays.empty()) << "element " << e << " under the sheet's hull kept no ray";
+      ++kept;
+    }
+    // The same sample without the shafts: a ray, and with it (nothing in the way or not) the same
+    // value where the shaft was clear.
+    Rng rng2(e);
+    std::vector<RTCRay> rays2;
+    std::vector<Rgb> values2;
+    const Rgb always2 = traced.sample(x, n, n, Sides::Front, Vec2(0.3f, 0.6f), rng2, 1e-5f, rays2, values2);
+    if (rays.empty() && !rays2.empty()) EXPECT_NEAR(always.g, always2.g + values2[0].g, 1e-5 * always.g);
+  }
+  EXPECT_EQ(whole, 56);
+  EXPECT_EQ(kept, 8);
+}
+
 }  // namespace
 }  // namespace luxel

@@ -164,6 +164,31 @@ TEST(FinalGather, VertexGatherInAFurnaceIsExact) {
       ASSERT_NEAR(gathered[e * 4 + size_t(c)].g, expected, 2e-3f * expected) << "element " << e << " corner " << c;
 }
 
+// Rays shared out by element weights (an image's pixels per element): the floor weighted 8 times
+// the walls gets several times their rays, within the bounds, and the gather stays exact.
+TEST(FinalGather, VertexRaysFollowTheElementWeights) {
+  Solved s = solveFurnace(builtin::furnace(0.5f, 1.0f), 600);
+  const GatherRig rig(s);
+  std::vector<float> weights(s.surfaces.elements.size(), 1.0f);
+  for (size_t e = 0; e < weights.size(); ++e)
+    if (s.surfaces.elements[e].normal.y > 0.5f) weights[e] = 8.0f;
+  VertexGather vertices(s.surfaces, rig.gather, 64, 3, weights);
+  const std::vector<Rgb> gathered = vertices.all();
+  const float expected = kPi * 1.0f * 0.5f / (1.0f - 0.5f);
+  double floorRays = 0.0, wallRays = 0.0;
+  int floorCorners = 0, wallCorners = 0;
+  for (uint32_t e = 0; e < s.surfaces.elements.size(); ++e)
+    for (int c = 0; c < s.surfaces.elements[e].polygon.count; ++c) {
+      ASSERT_NEAR(gathered[e * 4 + size_t(c)].g, expected, 2e-3f * expected) << "element " << e << " corner " << c;
+      const int rays = vertices.cornerRays(e, c);
+      ASSERT_GE(rays, kMinVertexGatherRays);
+      ASSERT_LE(rays, int(64 * kMaxRaysOverMean));
+      if (s.surfaces.elements[e].normal.y > 0.5f) floorRays += rays, ++floorCorners;
+      else if (std::abs(s.surfaces.elements[e].normal.y) < 0.5f) wallRays += rays, ++wallCorners;
+    }
+  EXPECT_GT(floorRays / floorCorners, 3.0 * wallRays / wallCorners);
+}
+
 // The bias the gather removes: floor elements that a block half covers average the dark part
 // under it into their irradiance, and nodal averaging carries that into their neighbours' corners
 // (measured: corners beside the block at 27% of the closed form). Gathered at the vertices, the
