@@ -3,6 +3,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "mesh/element_split.h"
@@ -13,8 +14,9 @@ namespace luxel {
 int GatherMesh::splitsFor(size_t solved, size_t wanted) {
   if (solved == 0 || wanted <= solved) return 0;
   // Each split multiplies the elements by 4: the nearest power in the ratio's logarithm.
-  const double splits = std::round(std::log(double(wanted) / double(solved)) / std::log(4.0));
-  return int(std::clamp(splits, 0.0, 4.0));
+  int splits = int(std::clamp(std::round(std::log(double(wanted) / double(solved)) / std::log(4.0)), 0.0, 4.0));
+  while (splits > 0 && (solved << (2 * splits)) > kMaxGatherElements) --splits;
+  return splits;
 }
 
 GatherMesh::GatherMesh(const Scene& scene, const SurfaceSet& solved, int splits)

@@ -17,10 +17,13 @@
 
 namespace luxel {
 
+// The most elements a split may make (each takes about 100 bytes beside its gathered corners).
+inline constexpr size_t kMaxGatherElements = size_t(1) << 22;
+
 class GatherMesh {
  public:
   // The splits that bring `solved` elements nearest `wanted` (by their ratio; none when wanted is
-  // 0 or not above solved).
+  // 0 or not above solved), at most 4 and never past kMaxGatherElements.
   static int splitsFor(size_t solved, size_t wanted);
 
   // `solved` split `splits` times (0: the solved elements themselves, nothing copied). The split

@@ -122,7 +122,7 @@ std::vector<float> pixelsSeen(const RayTracer& tracer, const SurfaceSet& shown, 
 }
 
 // Samples of each element's mean direct light (elementDirectLight), for the gather's far hits.
-constexpr int kElementDirectSamples = 64;
+constexpr int kElementDirectSamples = 16;
 
 }  // namespace
 

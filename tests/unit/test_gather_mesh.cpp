@@ -22,8 +22,9 @@ TEST(GatherMesh, SplitsBringTheElementsNearestTheWantedCount) {
   EXPECT_EQ(GatherMesh::splitsFor(1000, 1500), 0);  // a split would overshoot by more
   EXPECT_EQ(GatherMesh::splitsFor(1000, 0), 0);
   EXPECT_EQ(GatherMesh::splitsFor(0, 10000), 0);
-  EXPECT_EQ(GatherMesh::splitsFor(1, size_t(1) << 40),
-            4);  // never more than 4 (256 a solved element)
+  // Never more than 4 (256 a solved element), nor past kMaxGatherElements (4,194,304).
+  EXPECT_EQ(GatherMesh::splitsFor(1, size_t(1) << 40), 4);
+  EXPECT_EQ(GatherMesh::splitsFor(1000000, 100000000), 1);
 }
 
 // Whether p lies in the convex polygon (on its plane), within `slack` of its edges.
