@@ -222,9 +222,11 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const std::vector<Polygon> polygons = elementPolygonsTwinsApart(shown);
   RayTracer tracer(polygons);
   const DirectLight direct(scene, surfaces, &shown);
-  // A vertex gather's hits a few elements away read their direct light per element.
+  // A vertex gather's hits a few elements away read their direct light per element; past a million
+  // elements the estimates would cost more rays than the hits they spare (the gather's own rays
+  // per vertex fall there, kVertexGatherRayBudget), and every hit traces its own.
   std::optional<FinalGather::ElementDirect> elementDirect;
-  if (vertexGather) {
+  if (vertexGather && shown.elements.size() * kElementDirectSamples <= kVertexGatherRayBudget) {
     elementDirect.emplace();
     elementDirect->irradiance =
         elementDirectLight(shown, tracer, direct, kElementDirectSamples, hashCombine(options.seed, 0xe1d1u));
