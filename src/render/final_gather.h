@@ -121,9 +121,9 @@ class VertexGather {
     const int side = vertices_[vertexOf_[size_t(e) * 4 + size_t(c)]].side;
     return side * side;
   }
+  int cornerCount(uint32_t e) const { return surfaces_.elements[e].polygon.count; }
   // Whether corner c of element e lies inside a solid (most of its rays met backs); valid once
   // corners(e) has been gathered.
-  int cornerCount(uint32_t e) const { return surfaces_.elements[e].polygon.count; }
   bool cornerInside(uint32_t e, int c) const {
     return vertices_[vertexOf_[size_t(e) * 4 + size_t(c)]].inside;
   }

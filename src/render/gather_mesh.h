@@ -1,6 +1,6 @@
 // The mesh an hq render's vertex gather runs on (render/final_gather.h): the solution's elements,
-// each split into 4^k by SurfaceSet::splitElement. A vertex gather reads the solution two bounces
-// away, where its discretisation hardly shows, but interpolates its own result over elements, so
+// each split into 4^k by SurfaceSet::splitElement. A vertex gather reads the solution two or three
+// bounces away, where its discretisation hardly shows, but interpolates its own result over elements, so
 // the picture wants finer elements than the solve does: beside a crease or a contact the gathered
 // light bends within an element, and coarse elements show it as dark bands. Splitting decouples
 // the two, so the solve (whose cost grows with elements times patches) runs on a quarter or a
