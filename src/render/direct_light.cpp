@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "trace/element_polygons.h"
 #include "transport/emitting_polygons.h"
 #include "transport/light_sampling.h"
 #include "transport/shaft.h"
@@ -22,19 +23,10 @@ Vec2 rotated(Vec2 u, size_t k) {
   return glm::fract(u + float(k) * step);
 }
 
-// A shaft with more candidate faces than this is left to its rays (the transport's limit, for the
-// same reason: past a few dozen faces the test costs more than the rays it spares).
-constexpr int kMaxShaftCandidates = 48;
 // Above this many faces a shaft rarely comes out clear, and the faces' own BVH costs memory.
 constexpr size_t kMaxShaftFaces = 65536;
 
 enum : uint8_t { kUnknown = 0, kWhole = 1, kBlocked = 2 };
-
-std::vector<Polygon> facePolygons(const SurfaceSet& set) {
-  std::vector<Polygon> out(set.faces.size());
-  for (size_t i = 0; i < set.faces.size(); ++i) out[i] = {set.faces[i].corners, set.faces[i].triangle ? 3 : 4};
-  return out;
-}
 
 }  // namespace
 
@@ -65,18 +57,8 @@ bool DirectLight::seesWhole(uint32_t element, size_t k) const {
   // Two threads may decide the same pair at once; both reach the same verdict.
   const Element& el = shafts_->receivers.elements[element];
   const int32_t twin = shafts_->receivers.faces[el.face].twin;
-  const Shaft shaft(el.polygon, emitters_[k].polygon, shafts_->tolerance);
-  bool whole = shaft.valid();
-  if (whole) {
-    const Vec3 centre = 0.5f * (shaft.boundsMin() + shaft.boundsMax());
-    const float radius = 0.5f * glm::length(shaft.boundsMax() - shaft.boundsMin());
-    int candidates = 0;
-    shafts_->tracer.forEachNear(centre, radius, [&](uint32_t face) {
-      if (face == el.face || int32_t(face) == twin) return true;
-      if (++candidates > kMaxShaftCandidates || shaft.mayIntersect(shafts_->faces[face])) whole = false;
-      return whole;
-    });
-  }
+  const bool whole = shaftIsClear(Shaft(el.polygon, emitters_[k].polygon, shafts_->tolerance), shafts_->tracer,
+                                  [&](uint32_t face) { return shafts_->faces[face]; }, el.face, uint32_t(twin));
   slot.store(whole ? kWhole : kBlocked, std::memory_order_relaxed);
   return whole;
 }

@@ -200,9 +200,9 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
     }
   }
   if (rays <= 0)
-    rays = int(std::clamp(kVertexGatherRayBudget / std::max<size_t>(vertices_.size(), 1), size_t(16),
+    rays = int(std::clamp(kVertexGatherRayBudget / std::max<size_t>(vertices_.size(), 1), size_t(kMinVertexGatherRays),
                           size_t(kDefaultVertexGatherRays)));
-  side_ = strataSide(rays);
+  const int uniformSide = strataSide(rays);
   double total = 0.0;
   size_t weighted = 0;
   for (const Vertex& v : vertices_)
@@ -212,7 +212,7 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
     const double share = mean > 0.0 ? double(v.weight) / mean : 1.0;
     v.side = mean > 0.0 ? strataSide(int(std::clamp(double(rays) * share, double(std::min(rays, kMinVertexGatherRays)),
                                                     double(rays) * kMaxRaysOverMean)))
-                        : side_;
+                        : uniformSide;
   }
   corners_.assign(ne * 4, Rgb(0.0f));
   vertexState_ = std::make_unique<std::atomic<uint8_t>[]>(vertices_.size());

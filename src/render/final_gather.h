@@ -115,7 +115,6 @@ class VertexGather {
   // Every element's corners, gathered in parallel: 4 slots per element.
   std::vector<Rgb> all();
   size_t vertexCount() const { return vertices_.size(); }
-  int raysPerVertex() const { return side_ * side_; }
   // The rays corner c of element e is gathered with (elementWeights share them out).
   int cornerRays(uint32_t e, int c) const {
     const int side = vertices_[vertexOf_[size_t(e) * 4 + size_t(c)]].side;
@@ -146,7 +145,6 @@ class VertexGather {
 
   const SurfaceSet& surfaces_;
   const FinalGather& gather_;
-  int side_;
   uint32_t seed_;
   std::vector<uint32_t> vertexOf_;  // 4 slots per element
   std::vector<Vertex> vertices_;

@@ -20,7 +20,7 @@ int GatherMesh::splitsFor(size_t solved, size_t wanted) {
 }
 
 GatherMesh::GatherMesh(const Scene& scene, const SurfaceSet& solved, int splits)
-    : solved_(solved), splits_(splits) {
+    : solved_(solved) {
   if (splits <= 0) return;
   SurfaceSet& set = split_.emplace();
   set.faces = solved.faces;

@@ -31,7 +31,6 @@ class GatherMesh {
   GatherMesh(const Scene& scene, const SurfaceSet& solved, int splits);
 
   const SurfaceSet& surfaces() const { return split_ ? *split_ : solved_; }
-  int splits() const { return splits_; }
   // The solved element that element e of surfaces() lies in.
   uint32_t parent(uint32_t e) const { return split_ ? parent_[e] : e; }
   // A corner field of the solved elements (4 slots each, as elementCornerValues lays them out),
@@ -42,7 +41,6 @@ class GatherMesh {
 
  private:
   const SurfaceSet& solved_;
-  int splits_ = 0;
   std::optional<SurfaceSet> split_;
   std::vector<uint32_t> parent_;
   std::vector<std::array<Vec2, 4>> local_;  // each element's corners in its parent's coordinates

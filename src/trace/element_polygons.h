@@ -1,4 +1,5 @@
-// The elements as polygons for a ray tracer that must tell the two sides of a two-sided face apart.
+// The surfaces as polygons for ray tracers: the faces whole, or the elements with the two sides of a
+// two-sided face apart.
 #pragma once
 
 #include <vector>
@@ -7,6 +8,14 @@
 #include "trace/ray_tracer.h"
 
 namespace luxel {
+
+// Every face as a polygon, in SurfaceSet::faces' order.
+inline std::vector<Polygon> facePolygons(const SurfaceSet& surfaces) {
+  std::vector<Polygon> polygons(surfaces.faces.size());
+  for (size_t i = 0; i < polygons.size(); ++i)
+    polygons[i] = Polygon{surfaces.faces[i].corners, surfaces.faces[i].triangle ? 3 : 4};
+  return polygons;
+}
 
 // Coplanar twins (the two sides of a two-sided face) would be hit at random. Each is nudged half a
 // ray offset (rayOffsetFor) along its own normal, so that a ray from either side meets the side

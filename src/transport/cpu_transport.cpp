@@ -19,6 +19,7 @@
 #include "transport/light_sampling.h"
 #include "transport/shaft.h"
 #include "trace/convex_solid.h"
+#include "trace/element_polygons.h"
 
 namespace luxel {
 namespace {
@@ -35,7 +36,6 @@ constexpr int kMaxAnalyticSide = 2;
 // Receiver patches with fewer elements than this are not shaft-tested.
 constexpr size_t kMinElementsToClassify = 4;
 // Faces a shaft test examines before it gives up on proving a pair clear.
-constexpr int kMaxShaftCandidates = 48;
 // Patch-pair classification keeps one byte per pair: up to 64 MiB.
 constexpr size_t kMaxClassifiedPatches = 8192;
 
@@ -43,16 +43,6 @@ float polygonRadius(const Polygon& p, Vec3 centre) {
   float r = 0.0f;
   for (int i = 0; i < p.count; ++i) r = std::max(r, glm::length(p.v[size_t(i)] - centre));
   return r;
-}
-
-std::vector<Polygon> facePolygons(const SurfaceSet& set) {
-  std::vector<Polygon> polys(set.faces.size());
-  for (size_t i = 0; i < set.faces.size(); ++i) {
-    const SurfaceFace& f = set.faces[i];
-    polys[i].count = f.triangle ? 3 : 4;
-    polys[i].v = f.corners;
-  }
-  return polys;
 }
 
 // Per face, the ray tracer instance it belongs to: the index among the scene's dynamic objects of
@@ -315,21 +305,8 @@ CpuTransport::PairVisibility CpuTransport::classify(uint32_t q, uint32_t p) {
 }
 
 bool CpuTransport::shaftIsEmpty(const Patch& a, const Patch& b) const {
-  const Shaft shaft(a.polygon, b.polygon, 2.0f * rayOffset_);
-  if (!shaft.valid()) return false;
-  const Vec3 centre = 0.5f * (shaft.boundsMin() + shaft.boundsMax());
-  const float radius = 0.5f * glm::length(shaft.boundsMax() - shaft.boundsMin());
-  // Scenes of many small faces (a wall cut into a thousand quads) put hundreds of faces in every
-  // shaft's bounds; past a few dozen the test costs more than the rays it saves, so the pair is
-  // left to its rays.
-  bool empty = true;
-  int candidates = 0;
-  tracer_.forEachNear(centre, radius, [&](uint32_t face) {
-    if (face == a.face || face == b.face) return true;
-    if (++candidates > kMaxShaftCandidates || shaft.mayIntersect(facePolygon(face))) empty = false;
-    return empty;
-  });
-  return empty;
+  return shaftIsClear(Shaft(a.polygon, b.polygon, 2.0f * rayOffset_), tracer_,
+                      [&](uint32_t face) { return facePolygon(face); }, a.face, b.face);
 }
 
 CpuTransport::Workspace& CpuTransport::workspace() { return threadLocal_->workspaces.local(); }

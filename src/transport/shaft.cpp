@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <span>
 
+#include "trace/ray_tracer.h"
+
 namespace luxel {
 
 Shaft::Shaft(const Polygon& a, const Polygon& b, float tolerance) : tolerance_(tolerance) {
@@ -75,6 +77,21 @@ bool Shaft::mayIntersect(const Polygon& poly) const {
     below |= d < -tolerance_;
   }
   return above && below;
+}
+
+bool shaftIsClear(const Shaft& shaft, const RayTracer& faces, const std::function<Polygon(uint32_t)>& polygonOf,
+                  uint32_t skipA, uint32_t skipB) {
+  if (!shaft.valid()) return false;
+  const Vec3 centre = 0.5f * (shaft.boundsMin() + shaft.boundsMax());
+  const float radius = 0.5f * glm::length(shaft.boundsMax() - shaft.boundsMin());
+  bool clear = true;
+  int candidates = 0;
+  faces.forEachNear(centre, radius, [&](uint32_t face) {
+    if (face == skipA || face == skipB) return true;
+    if (++candidates > kMaxShaftCandidates || shaft.mayIntersect(polygonOf(face))) clear = false;
+    return clear;
+  });
+  return clear;
 }
 
 }  // namespace luxel

@@ -6,12 +6,21 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <functional>
 
 #include <glm/glm.hpp>
 
 #include "luxel/surface.h"
 
 namespace luxel {
+
+class RayTracer;
+
+// A shaft with more candidate faces than this is left to its rays: scenes of many small faces (a
+// wall cut into a thousand quads) put hundreds in every shaft's bounds, and past a few dozen the
+// test costs more than the rays it spares.
+inline constexpr int kMaxShaftCandidates = 48;
 
 class Shaft {
  public:
@@ -38,5 +47,11 @@ class Shaft {
   Vec3 lo_{0.0f}, hi_{0.0f};
   float tolerance_ = 0.0f;
 };
+
+// Whether no face but `skipA` and `skipB` reaches into `shaft`: the candidates are the faces
+// `faces` (a ray tracer over them) finds near the shaft's bounds, each one's polygon from
+// `polygonOf`. False for a degenerate shaft, and past kMaxShaftCandidates candidates.
+bool shaftIsClear(const Shaft& shaft, const RayTracer& faces, const std::function<Polygon(uint32_t)>& polygonOf,
+                  uint32_t skipA, uint32_t skipB);
 
 }  // namespace luxel
