@@ -2,6 +2,7 @@
 // same surfaces (the viewer: three fields each time the solution changes) and build the groups once.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "luxel/surface.h"
@@ -15,6 +16,12 @@ template <typename T>
 T interpolateCorners(const T* c, int count, float u, float v) {
   if (count == 3) return (1.0f - u - v) * c[0] + u * c[1] + v * c[2];
   return (1.0f - u) * (1.0f - v) * c[0] + u * (1.0f - v) * c[1] + u * v * c[2] + (1.0f - u) * v * c[3];
+}
+
+// The weight interpolateCorners gives each corner at (u, v); 0 past `count`.
+inline std::array<float, 4> cornerWeights(int count, float u, float v) {
+  if (count == 3) return {1.0f - u - v, u, v, 0.0f};
+  return {(1.0f - u) * (1.0f - v), u * (1.0f - v), u * v, (1.0f - u) * v};
 }
 
 // elementCornerValues (luxel/render.h) over `groups`, built from the same surfaces.

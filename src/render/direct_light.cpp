@@ -79,72 +79,81 @@ DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces, const S
 }
 
 Rgb DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides,
-                               Vec2 u, Rng& rng, float rayOffset, std::vector<RTCRay>& rays,
-                               std::vector<Rgb>& values, bool whole) const {
+                               std::span<const Vec2> points, size_t rotation, Rng& rng, float rayOffset,
+                               std::vector<RTCRay>& rays, std::vector<Rgb>& values, bool whole) const {
   const Vec3 pn = em.normal;
+  // F and the area in front depend on x alone: once for all of x's light points.
   const float f = pointToPolygonFormFactor(x, shading, em.polygon, pn, sides, em.sides);
   if (f <= 0.0f) return Rgb(0.0f);
-  if (whole) return em.exitance * (f * weight);  // V = 1 at every point: F exactly
-  // f counts only the part of the emitter above the shading plane; the point is drawn there. The
-  // first try is the stratified point; a point behind the receiver's plane is drawn again.
-  Vec3 y;
-  int drawn = 0;
-  const auto next = [&] { return drawn < 2 ? u[drawn++] : rng.next(); };
-  if (!pointInFront(em.polygon, x, shading, next, y)) return Rgb(0.0f);  // a sliver
-  const Vec3 d = y - x;
-  const float r2 = glm::dot(d, d);
-  if (!(r2 > 0.0f)) return Rgb(0.0f);
-  const Vec3 w = d / std::sqrt(r2);
-  const float cosReceiver = sides == Sides::Both ? std::abs(glm::dot(shading, w)) : std::max(0.0f, glm::dot(shading, w));
-  const float cosEmitter = em.sides == Sides::Both ? std::abs(glm::dot(pn, w)) : std::max(0.0f, -glm::dot(pn, w));
-  // What the shadow ray decides: this point's estimate of the factor, A k(y) (uniform points: the
-  // bilinear map of polygonPoint is uniform on triangles and parallelograms, as emitters are).
+  const float count = float(points.size());
+  if (whole) return em.exitance * (f * weight * count);  // V = 1 at every point: F exactly
   bool wholeInFront = true;
   for (int c = 0; c < em.polygon.count; ++c) wholeInFront &= glm::dot(em.polygon.v[size_t(c)] - x, shading) >= 0.0f;
   const float area = wholeInFront ? em.area : areaInFront(em.polygon, x, shading);
-  const float decided = area * cosReceiver * cosEmitter * std::numbers::inv_pi_v<float> / r2;
-  const Rgb always = em.exitance * ((f - decided) * weight);
-  // A point below the geometric plane is hidden by the surface itself: blocked, without a ray.
-  if (sides == Sides::Front && glm::dot(n, d) < 0.0f) return always;
-  const Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
-  const Vec3 yo = y + pn * (glm::dot(pn, d) <= 0.0f ? rayOffset : -rayOffset);
-  rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
-  values.push_back(em.exitance * (decided * weight));
+  Rgb always(0.0f);
+  for (const Vec2 point : points) {
+    // f counts only the part of the emitter above the shading plane; the point is drawn there. The
+    // first try is the stratified point; a point behind the receiver's plane is drawn again.
+    const Vec2 u = rotated(point, rotation);
+    Vec3 y;
+    int drawn = 0;
+    const auto next = [&] { return drawn < 2 ? u[drawn++] : rng.next(); };
+    if (!pointInFront(em.polygon, x, shading, next, y)) continue;  // a sliver
+    const Vec3 d = y - x;
+    const float r2 = glm::dot(d, d);
+    if (!(r2 > 0.0f)) continue;
+    const Vec3 w = d / std::sqrt(r2);
+    const float cosReceiver =
+        sides == Sides::Both ? std::abs(glm::dot(shading, w)) : std::max(0.0f, glm::dot(shading, w));
+    const float cosEmitter = em.sides == Sides::Both ? std::abs(glm::dot(pn, w)) : std::max(0.0f, -glm::dot(pn, w));
+    // What the shadow ray decides: this point's estimate of the factor, A k(y) (uniform points: the
+    // bilinear map of polygonPoint is uniform on triangles and parallelograms, as emitters are).
+    const float decided = area * cosReceiver * cosEmitter * std::numbers::inv_pi_v<float> / r2;
+    always += em.exitance * ((f - decided) * weight);
+    // A point below the geometric plane is hidden by the surface itself: blocked, without a ray.
+    if (sides == Sides::Front && glm::dot(n, d) < 0.0f) continue;
+    const Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
+    const Vec3 yo = y + pn * (glm::dot(pn, d) <= 0.0f ? rayOffset : -rayOffset);
+    rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
+    values.push_back(em.exitance * (decided * weight));
+  }
   return always;
 }
 
-Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
-                        std::vector<RTCRay>& rays, std::vector<Rgb>& values, uint32_t element) const {
+Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, std::span<const Vec2> points, Rng& rng,
+                        float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values, uint32_t element) const {
   Rgb always(0.0f);
   // A clear shaft proves the element sees the emitter whole; with a normal map's shading normal,
   // points above its plane may still lie behind the surface's own, so it is not used there.
   const bool shafts = shafts_ && element != kNoElement && shading == n && sides == Sides::Front;
   if (emitters_.size() <= kMaxExplicitEmitters) {
     for (size_t k = 0; k < emitters_.size(); ++k)
-      always += sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, rotated(u, k), rng, rayOffset, rays, values,
+      always += sampleEmitter(emitters_[k], 1.0f, x, n, shading, sides, points, k, rng, rayOffset, rays, values,
                               shafts && seesWhole(element, k));
   } else {
-    for (int i = 0; i < kSampledEmitters; ++i) {
-      size_t k = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.next()) - cdf_.begin());
-      k = std::min(k, emitters_.size() - 1);
-      float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
-      if (p <= 0.0f) continue;
-      always += sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, rotated(u, size_t(i)),
-                              rng, rayOffset, rays, values, false);
+    for (const Vec2& u : points)
+      for (int i = 0; i < kSampledEmitters; ++i) {
+        size_t k = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.next()) - cdf_.begin());
+        k = std::min(k, emitters_.size() - 1);
+        float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
+        if (p <= 0.0f) continue;
+        always += sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, std::span<const Vec2>(&u, 1), size_t(i),
+                                rng, rayOffset, rays, values, false);
+      }
+  }
+  for (const Vec2& u : points)
+    for (size_t k = 0; k < scene_.lights.size(); ++k) {
+      const Light& light = scene_.lights[k];
+      // The cosine at the shading normal; a direction behind the geometric plane is blocked by the
+      // surface (never the case when shading == n: sampleLight gives those no light).
+      const Vec2 ul = rotated(u, emitters_.size() + k);
+      LightSample ls = sampleLight(light, x, shading, sides, up_, ul.x, ul.y);
+      if (!ls.valid()) continue;
+      if (sides == Sides::Front && glm::dot(n, ls.direction) < 0.0f) continue;
+      Vec3 xo = x + n * (glm::dot(n, ls.direction) >= 0.0f ? rayOffset : -rayOffset);
+      rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
+      values.push_back(ls.irradiance);
     }
-  }
-  for (size_t k = 0; k < scene_.lights.size(); ++k) {
-    const Light& light = scene_.lights[k];
-    // The cosine at the shading normal; a direction behind the geometric plane is blocked by the
-    // surface (never the case when shading == n: sampleLight gives those no light).
-    const Vec2 ul = rotated(u, emitters_.size() + k);
-    LightSample ls = sampleLight(light, x, shading, sides, up_, ul.x, ul.y);
-    if (!ls.valid()) continue;
-    if (sides == Sides::Front && glm::dot(n, ls.direction) < 0.0f) continue;
-    Vec3 xo = x + n * (glm::dot(n, ls.direction) >= 0.0f ? rayOffset : -rayOffset);
-    rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
-    values.push_back(ls.irradiance);
-  }
   return always;
 }
 

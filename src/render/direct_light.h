@@ -10,6 +10,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/random.h"
@@ -47,6 +48,12 @@ class DirectLight {
   // out smooth; `rng` draws the rest (emitters by power, retries behind the receiver's plane).
   // `element`: the receivers' element x lies on, or kNoElement.
   Rgb sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u, Rng& rng, float rayOffset,
+             std::vector<RTCRay>& rays, std::vector<Rgb>& values, uint32_t element = kNoElement) const {
+    return sample(x, n, shading, sides, std::span<const Vec2>(&u, 1), rng, rayOffset, rays, values, element);
+  }
+  // The sum of the samples at each of `points`, one light point each: the emitters' factors at x
+  // are found once for all of them.
+  Rgb sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, std::span<const Vec2> points, Rng& rng, float rayOffset,
              std::vector<RTCRay>& rays, std::vector<Rgb>& values, uint32_t element = kNoElement) const;
   // The same with a shading normal (a normal map's, render/normal_map.h) for the receiver's cosine,
   // max(0, shading . l): the irradiance a surface of that orientation would get. Shadow rays leave
@@ -68,9 +75,10 @@ class DirectLight {
     Sides sides;
   };
   // `whole`: x's element sees all of the emitter (a clear shaft), so nothing blocks it.
-  Rgb sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides, Vec2 u,
-                    Rng& rng, float rayOffset, std::vector<RTCRay>& rays, std::vector<Rgb>& values,
-                    bool whole) const;
+  // Each of `points` rotated by `rotation` (so that each light takes its own stratification).
+  Rgb sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, Vec3 shading, Sides sides,
+                    std::span<const Vec2> points, size_t rotation, Rng& rng, float rayOffset,
+                    std::vector<RTCRay>& rays, std::vector<Rgb>& values, bool whole) const;
   // Whether element `element` of the receivers sees all of emitter k (decided once, then cached).
   bool seesWhole(uint32_t element, size_t k) const;
   struct Shafts;

@@ -16,6 +16,7 @@
 #include "core/random.h"
 #include "mesh/corner_groups.h"
 #include "render/corner_values.h"
+#include "render/gather_mesh.h"
 #include "trace/hemisphere_rays.h"
 #include "transport/form_factor.h"
 
@@ -173,8 +174,8 @@ enum : uint8_t { kPending = 0, kRunning = 1, kDone = 2 };
 }  // namespace
 
 VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed,
-                           std::span<const float> elementWeights)
-    : surfaces_(surfaces), gather_(gather), seed_(seed) {
+                           std::span<const float> elementWeights, const GatherMesh* refined)
+    : surfaces_(surfaces), gather_(gather), seed_(seed), refined_(refined && refined->isSplit() ? refined : nullptr) {
   const CornerGroups groups(surfaces, kDefaultCreaseCosine);
   const size_t ne = surfaces.elements.size();
   // Slots that share a position and a smooth surface (the group's first member names it) are one
@@ -198,6 +199,32 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
       ++v.slots;
       vertexOf_[size_t(e) * 4 + size_t(c)] = it->second;
     }
+  }
+  if (refined_) {
+    // Which vertices are solved elements' corners (weight 1 on one of them: the splits' coordinates
+    // are exact binary fractions), and where the others lie in a solved element.
+    const SurfaceSet& solved = refined_->solved();
+    solvedCorners_.assign(solved.elements.size() * 4, kNoParent);
+    std::vector<uint8_t> isCorner(vertices_.size(), 0);
+    for (uint32_t e = 0; e < ne; ++e) {
+      const uint32_t parent = refined_->parent(e);
+      const int parentCount = solved.elements[parent].polygon.count;
+      for (int c = 0; c < surfaces.elements[e].polygon.count; ++c) {
+        const uint32_t vi = vertexOf_[size_t(e) * 4 + size_t(c)];
+        const Vec2 st = refined_->local(e, c);
+        const std::array<float, 4> w = cornerWeights(parentCount, st.x, st.y);
+        const auto k = std::find(w.begin(), w.end(), 1.0f);
+        if (k != w.end()) {
+          solvedCorners_[size_t(parent) * 4 + size_t(k - w.begin())] = vi;
+          isCorner[vi] = 1;
+        } else if (vertices_[vi].parent == kNoParent) {
+          vertices_[vi].parent = parent;
+          vertices_[vi].local = st;
+        }
+      }
+    }
+    for (size_t v = 0; v < vertices_.size(); ++v)
+      if (isCorner[v]) vertices_[v].parent = kNoParent;
   }
   if (rays <= 0)
     rays = int(std::clamp(kVertexGatherRayBudget / std::max<size_t>(vertices_.size(), 1), size_t(kMinVertexGatherRays),
@@ -224,7 +251,8 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
 VertexGather::~VertexGather() = default;
 
 // Runs `publish` once for `state`: the first caller runs it, later ones wait until it is done.
-// The work never waits on other work, so the wait always ends.
+// Work waits only on solved corners' gathers (resolveVertex), which wait on nothing, so the wait
+// always ends.
 template <typename Publish>
 void VertexGather::once(std::atomic<uint8_t>& state, Publish&& publish) {
   if (state.load(std::memory_order_acquire) == kDone) return;
@@ -258,13 +286,39 @@ void VertexGather::gatherVertex(uint32_t vi) {
   const size_t backs = gather_.add(hits, weights, targets, hashCombine(seed_, vi));
   v.irradiance = sum;
   v.inside = 2 * backs > size_t(count);
+  for (const RTCRayHit& h : hits)
+    if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID) v.reach = std::min(v.reach, h.ray.tfar);
+  v.traced = true;
+  traced_.fetch_add(1, std::memory_order_relaxed);
+}
+
+// A vertex the splits made is interpolated from its solved element's corners (gathered first: they
+// wait on nothing, so this wait ends) unless a corner is inside a solid or saw a surface nearer
+// than the vertex's distance from it over kInterpolationReach.
+void VertexGather::resolveVertex(uint32_t vi) {
+  once(vertexState_[vi], [&] {
+    Vertex& v = vertices_[vi];
+    if (v.parent == kNoParent) return gatherVertex(vi);
+    const uint32_t* corner = &solvedCorners_[size_t(v.parent) * 4];
+    const std::array<float, 4> w =
+        cornerWeights(refined_->solved().elements[v.parent].polygon.count, v.local.x, v.local.y);
+    Rgb interpolated(0.0f);
+    for (size_t k = 0; k < 4; ++k) {
+      if (w[k] <= 0.0f) continue;
+      once(vertexState_[corner[k]], [&] { gatherVertex(corner[k]); });
+      const Vertex& c = vertices_[corner[k]];
+      if (c.inside || glm::length(v.position - c.position) * kInterpolationReach > c.reach) return gatherVertex(vi);
+      interpolated += w[k] * c.irradiance;
+    }
+    v.irradiance = interpolated;
+  });
 }
 
 const Rgb* VertexGather::corners(uint32_t e) {
   once(elementState_[e], [&] {
     const int n = surfaces_.elements[e].polygon.count;
     const uint32_t* vs = &vertexOf_[size_t(e) * 4];
-    for (int c = 0; c < n; ++c) once(vertexState_[vs[c]], [&] { gatherVertex(vs[c]); });
+    for (int c = 0; c < n; ++c) resolveVertex(vs[c]);
     Rgb outside(0.0f);
     int outsideCount = 0;
     for (int c = 0; c < n; ++c) {

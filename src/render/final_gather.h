@@ -17,6 +17,7 @@
 #pragma once
 
 #include <atomic>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -27,12 +28,18 @@
 
 namespace luxel {
 
+class GatherMesh;
+
 inline constexpr size_t kVertexGatherRayBudget = size_t(1) << 24;
 inline constexpr int kMinVertexGatherRays = 16;
 inline constexpr float kMaxRaysOverMean = 8.0f;
 // A hit nearer than this many of its element's edge lengths is near: it sees the element large,
 // and with it the element's averaging.
 inline constexpr float kNearHitElements = 2.0f;
+// On a split mesh (VertexGather's `refined`), a vertex inside a solved element is interpolated from
+// the element's corners when it lies within this fraction of each corner's reach (the nearest
+// surface its rays met), and gathered otherwise.
+inline constexpr float kInterpolationReach = 0.5f;
 
 class FinalGather {
  public:
@@ -103,8 +110,16 @@ class VertexGather {
   // elements by the pixels they cover, so that each part of it is gathered with as many rays as
   // any other: uniform rays leave the few vertices of a surface near the eye to carry a whole
   // region's noise.
+  // `refined` (or null): `surfaces` are this GatherMesh's split of the solved elements. Then the
+  // vertices at the solved elements' corners are gathered, and a vertex the splits made is gathered
+  // only where its solved element's corners found a surface near (a crease, a contact, a block
+  // beside them: within 1 / kInterpolationReach of its distance from them), and interpolated from
+  // those corners elsewhere: the irradiance a corner gathers is good over a fraction of the
+  // distance to the nearest surface its rays meet (Ward, Rubinstein and Clear, "A Ray Tracing
+  // Solution for Diffuse Interreflection", SIGGRAPH 1988: irradiance caching's error bound).
+  // The split's interior vertices are most of them, and most of them are far from everything.
   VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed,
-               std::span<const float> elementWeights = {});
+               std::span<const float> elementWeights = {}, const GatherMesh* refined = nullptr);
   ~VertexGather();
   VertexGather(const VertexGather&) = delete;
   VertexGather& operator=(const VertexGather&) = delete;
@@ -126,7 +141,14 @@ class VertexGather {
   bool cornerInside(uint32_t e, int c) const {
     return vertices_[vertexOf_[size_t(e) * 4 + size_t(c)]].inside;
   }
+  // Whether corner c of element e was gathered by rays (not interpolated); valid once corners(e)
+  // has been gathered.
+  bool cornerTraced(uint32_t e, int c) const {
+    return vertices_[vertexOf_[size_t(e) * 4 + size_t(c)]].traced;
+  }
+  // Vertices resolved so far (gathered or interpolated), and of them those gathered by rays.
   size_t verticesGathered() const;
+  size_t verticesTraced() const { return traced_.load(std::memory_order_relaxed); }
 
  private:
   struct Vertex {
@@ -138,8 +160,16 @@ class VertexGather {
     float weight = 0.0f;  // from elementWeights
     int side = 0;         // its rays are side x side strata
     bool inside = false;
+    bool traced = false;
+    float reach = std::numeric_limits<float>::infinity();  // the nearest hit of its rays
+    // On a split mesh, a vertex that is not a solved element's corner: the solved element it may
+    // be interpolated in, and its coordinates there.
+    uint32_t parent = kNoParent;
+    Vec2 local{0.0f};
   };
+  static constexpr uint32_t kNoParent = ~uint32_t(0);
   void gatherVertex(uint32_t v);
+  void resolveVertex(uint32_t v);
   template <typename Publish>
   void once(std::atomic<uint8_t>& state, Publish&& publish);
 
@@ -148,6 +178,9 @@ class VertexGather {
   uint32_t seed_;
   std::vector<uint32_t> vertexOf_;  // 4 slots per element
   std::vector<Vertex> vertices_;
+  const GatherMesh* refined_;
+  std::vector<uint32_t> solvedCorners_;  // on a split mesh: 4 vertices per solved element
+  std::atomic<size_t> traced_{0};
   std::vector<Rgb> corners_;  // 4 slots per element, valid once the element's state is done
   std::unique_ptr<std::atomic<uint8_t>[]> vertexState_, elementState_;
 };

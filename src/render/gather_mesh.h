@@ -31,8 +31,13 @@ class GatherMesh {
   GatherMesh(const Scene& scene, const SurfaceSet& solved, int splits);
 
   const SurfaceSet& surfaces() const { return split_ ? *split_ : solved_; }
+  const SurfaceSet& solved() const { return solved_; }
+  bool isSplit() const { return split_.has_value(); }
   // The solved element that element e of surfaces() lies in.
   uint32_t parent(uint32_t e) const { return split_ ? parent_[e] : e; }
+  // Corner c of element e of surfaces() in its parent's coordinates (as interpolateCorners takes
+  // them); only when isSplit().
+  Vec2 local(uint32_t e, int c) const { return local_[e][size_t(c)]; }
   // A corner field of the solved elements (4 slots each, as elementCornerValues lays them out),
   // at the corners of surfaces()'s elements: each interpolated in its parent the way a hit there
   // is (barycentric on triangles, bilinear on quads), so the field is the same function of

@@ -8,6 +8,7 @@
 // Normal maps (render/normal_map.h) tilt the receiver cosine of what is found per pixel (the
 // direct light, and a per-pixel gather); radiosity mode ignores them.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -246,7 +247,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   std::optional<FinalGather> fromCoarse;
   for (int level = 2; (vertexGather || pixelGather) && level <= options.gatherBounces; ++level) {
     VertexGather lower(shown, fromCoarse ? *fromCoarse : gather, kCoarseGatherRays,
-                       hashCombine(options.seed, 0xc0a25eu + uint32_t(level - 2)));
+                       hashCombine(options.seed, 0xc0a25eu + uint32_t(level - 2)), {}, &mesh);
     coarse = lower.all();  // the level below read the previous `coarse` until all() returned
     if (level == 2 && elementDirect) traceStraddlingElements(lower, *elementDirect);
     fromCoarse.emplace(shown, tracer, direct, coarse, /*gatherNearHits=*/false, readDirect);
@@ -257,7 +258,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   std::optional<VertexGather> vertexGathered;
   if (vertexGather)
     vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed,
-                           pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options));
+                           pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options),
+                           &mesh);
   const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
 
   // Background: the sky where there is one.
@@ -368,11 +370,12 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
                                                   : el.normal;
         Rng rng(hashCombine(hashCombine(options.seed ^ 0x5bd1e995u, pixel), uint32_t(s)));
         const size_t before = shadowRays.size();
-        for (int l = 0; l < weight; ++l) {
-          const Vec2 lightPoint = pixelPattern(uint32_t(s * weight + l), hashCombine(pattern, kLightPoints));
-          sum += rho * kInvPi * direct.sample(p, el.normal, shading, Sides::Front, lightPoint, rng, rayOffset,
-                                              shadowRays, shadowValues, e);
-        }
+        std::array<Vec2, kLightsPerCameraSample> lightPoints;
+        for (int l = 0; l < weight; ++l)
+          lightPoints[size_t(l)] = pixelPattern(uint32_t(s * weight + l), hashCombine(pattern, kLightPoints));
+        sum += rho * kInvPi *
+               direct.sample(p, el.normal, shading, Sides::Front, std::span(lightPoints.data(), size_t(weight)), rng,
+                             rayOffset, shadowRays, shadowValues, e);
         for (size_t k = before; k < shadowRays.size(); ++k) {
           shadowValues[k] *= rho * kInvPi;
           shadowTargets.push_back(&sum);

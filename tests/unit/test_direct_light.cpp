@@ -1,6 +1,8 @@
 // Per-pixel direct light (hq mode) where the receiver's plane cuts through an emitter: the shadow
 // rays must only aim at the emitter's part in front of the receiver. Found by the Cycles
 // comparison: the Cornell tall block's front face got 62% of its direct light.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -169,6 +171,51 @@ TEST(DirectLight, ElementsThatSeeALampWholeNeedNoShadowRays) {
   }
   EXPECT_EQ(whole, 56);
   EXPECT_EQ(kept, 8);
+}
+
+// Several light points at one receiver point (an interior pixel's camera sample): the emitters'
+// factors found once, the samples those of one light point at a time, in the same order. In the
+// Cornell box, one lamp and every receiver, and with a sun beside it (analytic lights per point).
+TEST(DirectLight, SeveralLightPointsAreTheSumOfOneAtATime) {
+  for (const bool sun : {false, true}) {
+    Scene s = builtin::cornellBox();
+    if (sun)
+      s.lights.push_back(Light{.type = Light::Type::Directional, .color = Rgb(1.0f), .intensity = 2.0f,
+                               .direction = glm::normalize(Vec3(0.3f, -1.0f, 0.2f))});
+    const SurfaceSet set = discretise(s, DiscretiseOptions{});
+    const DirectLight direct(s, set, &set);
+    Rng pick(7);
+    int withRays = 0;
+    for (int i = 0; i < 200; ++i) {
+      const uint32_t e = uint32_t(pick.next() * float(set.elements.size())) % uint32_t(set.elements.size());
+      const Element& el = set.elements[e];
+      const Vec3 x = polygonPoint(el.polygon, pick.next(), pick.next());
+      std::array<Vec2, 4> points;
+      for (uint32_t k = 0; k < 4; ++k) points[k] = multiJitter(k, 4, e);
+      Rng one(e), all(e);
+      std::vector<RTCRay> oneRays, allRays;
+      std::vector<Rgb> oneValues, allValues;
+      Rgb oneAlways(0.0f);
+      for (const Vec2& u : points)
+        oneAlways += direct.sample(x, el.normal, el.normal, Sides::Front, u, one, 1e-5f, oneRays, oneValues, e);
+      const Rgb allAlways =
+          direct.sample(x, el.normal, el.normal, Sides::Front, points, all, 1e-5f, allRays, allValues, e);
+      ASSERT_EQ(oneRays.size(), allRays.size()) << "element " << e;
+      withRays += !oneRays.empty();
+      EXPECT_NEAR(allAlways.g, oneAlways.g, 1e-5f * std::max(1.0f, std::abs(oneAlways.g))) << "element " << e;
+      // The same rays (emitters first, then analytic lights, so in another order with the sun).
+      Rgb oneSum(0.0f), allSum(0.0f);
+      std::vector<float> oneDirections, allDirections;
+      for (size_t r = 0; r < oneRays.size(); ++r) {
+        oneSum += oneValues[r], allSum += allValues[r];
+        oneDirections.push_back(oneRays[r].dir_x), allDirections.push_back(allRays[r].dir_x);
+      }
+      std::sort(oneDirections.begin(), oneDirections.end());
+      std::sort(allDirections.begin(), allDirections.end());
+      EXPECT_EQ(oneDirections, allDirections) << "element " << e;
+      EXPECT_NEAR(allSum.g, oneSum.g, 1e-5f * std::max(1.0f, oneSum.g)) << "element " << e;
+    }
+  }
 }
 
 }  // namespace

@@ -3,14 +3,19 @@
 // unchanged as functions of position, and leave the closed forms of the furnace where they were.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include "luxel/render.h"
 #include "luxel/solve.h"
 #include "render/corner_values.h"
+#include "render/direct_light.h"
+#include "render/final_gather.h"
 #include "render/gather_mesh.h"
 #include "scene/builtin/builtin_scenes.h"
+#include "trace/element_polygons.h"
 
 namespace luxel {
 namespace {
@@ -150,6 +155,90 @@ TEST(GatherMesh, TheFurnaceGatheredOnASplitMeshRendersAtItsClosedForm) {
     const Image image = render(scene, surfaces, solution, ro);
     for (const Rgb& p : image.pixels) ASSERT_NEAR(p.g, 2.0f, 4e-3f) << bounces << " bounces";
   }
+}
+
+// The vertex gather on a split mesh (VertexGather's `refined`): the solved elements' corners are
+// gathered, and so is every vertex that one of its solved corners saw a surface near (creases,
+// the blocks); the rest are the solved corners' values interpolated as a hit interpolates them.
+// Against gathering every vertex with the same rays and seed: the gathered vertices are the same
+// numbers, and the interpolated ones differ by the field's curvature over a solved element and the
+// full gather's noise (measured: 5.7% rms a vertex, means 0.6% apart over the box).
+TEST(GatherMesh, OnASplitMeshOnlyVerticesNearSurfacesAreGatheredBesideTheSolvedCorners) {
+  const Scene scene = builtin::cornellBox();
+  DiscretiseOptions d;
+  d.elementBudget = 300;
+  SurfaceSet surfaces = discretise(scene, d);
+  const Solution solution = solve(scene, surfaces, SolveOptions{});
+  std::vector<Rgb> indirect(solution.irradiance.size());
+  for (size_t e = 0; e < indirect.size(); ++e)
+    indirect[e] = glm::max(solution.irradiance[e] - solution.directIrradiance[e], Rgb(0.0f));
+  const GatherMesh mesh(scene, surfaces, 2);
+  const SurfaceSet& shown = mesh.surfaces();
+  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(shown);
+  const RayTracer tracer(polygons);
+  const DirectLight direct(scene, surfaces, &shown);
+  const std::vector<Rgb> corners = mesh.corners(elementCornerValues(surfaces, indirect));
+  const FinalGather gather(shown, tracer, direct, corners);
+  VertexGather adaptive(shown, gather, 256, 5, {}, &mesh);
+  VertexGather full(shown, gather, 256, 5);
+  const std::vector<Rgb> a = adaptive.all(), f = full.all();
+  ASSERT_EQ(full.verticesTraced(), full.vertexCount());
+
+  // The solved corners' values, from the split elements that have them (outside solids: a slot of
+  // an element with a corner inside one is replaced by the mean of its others).
+  const auto outside = [&](uint32_t e) {
+    for (int c = 0; c < shown.elements[e].polygon.count; ++c)
+      if (adaptive.cornerInside(e, c)) return false;
+    return true;
+  };
+  std::map<std::pair<uint32_t, int>, Rgb> solvedCorner;
+  for (uint32_t e = 0; e < shown.elements.size(); ++e)
+    for (int c = 0; c < shown.elements[e].polygon.count; ++c) {
+      const Vec2 st = mesh.local(e, c);
+      const auto w = cornerWeights(surfaces.elements[mesh.parent(e)].polygon.count, st.x, st.y);
+      const auto k = std::find(w.begin(), w.end(), 1.0f);
+      if (k == w.end()) continue;
+      EXPECT_TRUE(adaptive.cornerTraced(e, c)) << "element " << e << " corner " << c << " is a solved corner";
+      if (outside(e)) solvedCorner[{mesh.parent(e), int(k - w.begin())}] = a[size_t(e) * 4 + size_t(c)];
+    }
+
+  size_t checked = 0, creaseCorners = 0;
+  double adaptiveSum = 0.0, fullSum = 0.0;
+  for (uint32_t e = 0; e < shown.elements.size(); ++e) {
+    const Element& el = shown.elements[e];
+    for (int c = 0; c < el.polygon.count; ++c) {
+      const size_t slot = size_t(e) * 4 + size_t(c);
+      // The floor's edge along the right wall (x = 0) is a crease: its vertices see the wall at once.
+      if (el.normal.y > 0.99f && std::abs(el.polygon.v[size_t(c)].x) < 1e-6f) {
+        ++creaseCorners;
+        EXPECT_TRUE(adaptive.cornerTraced(e, c)) << "element " << e << " corner " << c << " on the floor's crease";
+      }
+      if (!outside(e)) continue;
+      if (adaptive.cornerTraced(e, c)) {
+        ASSERT_EQ(a[slot], f[slot]) << "element " << e << " corner " << c;
+        continue;
+      }
+      const Vec2 st = mesh.local(e, c);
+      const uint32_t parent = mesh.parent(e);
+      const auto w = cornerWeights(surfaces.elements[parent].polygon.count, st.x, st.y);
+      Rgb expected(0.0f);
+      bool known = true;
+      for (int k = 0; k < 4; ++k) {
+        if (w[size_t(k)] <= 0.0f) continue;
+        const auto it = solvedCorner.find({parent, k});
+        if (it == solvedCorner.end()) known = false;
+        else expected += w[size_t(k)] * it->second;
+      }
+      if (!known) continue;
+      ++checked;
+      ASSERT_NEAR(a[slot].g, expected.g, 1e-5f * std::max(1.0f, expected.g)) << "element " << e << " corner " << c;
+      adaptiveSum += a[slot].g, fullSum += f[slot].g;
+    }
+  }
+  EXPECT_GT(creaseCorners, 10u);
+  EXPECT_GT(checked, shown.elements.size());  // measured: 1,792 of 3,795 vertices interpolated
+  EXPECT_GT(adaptive.verticesTraced(), solvedCorner.size());
+  EXPECT_NEAR(adaptiveSum / fullSum, 1.0, 0.01);
 }
 
 }  // namespace
