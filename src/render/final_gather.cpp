@@ -305,6 +305,7 @@ void VertexGather::resolveVertex(uint32_t vi) {
     Rgb interpolated(0.0f);
     for (size_t k = 0; k < 4; ++k) {
       if (w[k] <= 0.0f) continue;
+      if (corner[k] == kNoParent) return gatherVertex(vi);  // a solved corner no split element has
       once(vertexState_[corner[k]], [&] { gatherVertex(corner[k]); });
       const Vertex& c = vertices_[corner[k]];
       if (c.inside || glm::length(v.position - c.position) * kInterpolationReach > c.reach) return gatherVertex(vi);
