@@ -6,7 +6,7 @@ FUZZ_SECONDS ?= 60
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: deps configure build demo test asan fuzz fuzz-smoke bench bench-suite bench-peer clean
+.PHONY: deps configure build demo test asan fuzz fuzz-smoke bench bench-suite bench-peer bench-peer-room clean
 
 deps:
 	./scripts/install-deps.sh
@@ -62,6 +62,9 @@ bench-suite: build
 # luxel beside Blender Cycles on the Cornell box (needs blender and python3-numpy).
 bench-peer: build
 	./bench/peers/run_cornell.sh
+
+bench-peer-room: build
+	./bench/peers/run_room.sh
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ) out

@@ -288,6 +288,22 @@ def fit_inverse_sqrt(spps, errors):
     return math.exp(logc)
 
 
+def matched_cycles(pts, b, err):
+    """Cycles' spp and time for the error `err`, from its measured (error, spp, seconds) `pts`
+    (error ascending) and its seconds per sample `b`: interpolated log-log and piecewise linear
+    between the measured sample counts; beyond them, extrapolated from the nearest measured point
+    with error ~ 1/sqrt(spp) and time ~ a + b * spp."""
+    if err <= pts[0][0] or err >= pts[-1][0] or len(pts) == 1:
+        e0, s0, t0 = pts[0] if err <= pts[0][0] else pts[-1]
+        spp = s0 * (e0 / err) ** 2
+        return spp, max(t0 + b * (spp - s0), 0.0)
+    for (e0, s0, t0), (e1, s1, t1) in zip(pts, pts[1:]):
+        if e0 <= err <= e1:
+            w = math.log(err / e0) / math.log(e1 / e0)
+            return (math.exp(math.log(s0) + w * (math.log(s1) - math.log(s0))),
+                    math.exp(math.log(t0) + w * (math.log(t1) - math.log(t0))))
+
+
 def main():
     args = parse_args()
     os.makedirs(args.outdir, exist_ok=True)
@@ -368,21 +384,10 @@ def main():
     else:
         a, b = 0.0, cyc[0]["seconds"] / cyc[0]["spp"]
 
-    # Matched error: interpolate Cycles' measured (spp, time) against error, log-log and
-    # piecewise linear between the measured sample counts; beyond them, extrapolate from
-    # the nearest measured point with error ~ 1/sqrt(spp) and time ~ a + b * spp.
     pts = sorted((r["err"][1], r["spp"], r["seconds"]) for r in cyc)  # error ascending
 
     def cycles_time_for(err):
-        if err <= pts[0][0] or err >= pts[-1][0] or len(pts) == 1:
-            e0, s0, t0 = pts[0] if err <= pts[0][0] else pts[-1]
-            spp = s0 * (e0 / err) ** 2
-            return spp, max(t0 + b * (spp - s0), 0.0)
-        for (e0, s0, t0), (e1, s1, t1) in zip(pts, pts[1:]):
-            if e0 <= err <= e1:
-                w = math.log(err / e0) / math.log(e1 / e0)
-                return (math.exp(math.log(s0) + w * (math.log(s1) - math.log(s0))),
-                        math.exp(math.log(t0) + w * (math.log(t1) - math.log(t0))))
+        return matched_cycles(pts, b, err)
 
     out(f"| renderer | settings | time (s) | rel. RMSE (raw) | rel. RMSE (noise-corrected) "
         f"| mean bias | Cycles spp for same error | Cycles time for same error (s) "

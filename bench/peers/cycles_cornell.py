@@ -40,6 +40,7 @@ import argparse
 import json
 import math
 import os
+import struct
 import sys
 import time
 
@@ -66,6 +67,9 @@ def parse_args():
     p.add_argument("--json", help="write render settings and time here")
     p.add_argument("--obj", help="render this OBJ (and its MTL: Kd, Ke) instead of the built-in box, "
                                  "from obj_scene.MCGUIRE_CAMERA; for McGuire's Cornell boxes")
+    p.add_argument("--glb", help="render this glTF binary as luxel writes it (`luxel bake`): its geometry and "
+                                 "camera; Lambertian base colours, emissive factor x strength emitted "
+                                 "from the front face only; for scenes too large to rebuild here")
     p.add_argument("--two-sided-light", action="store_true",
                    help="let the light emit from both faces (Cycles' default), for checking")
     p.add_argument("--emission-test", choices=["direct", "indirect"],
@@ -204,6 +208,57 @@ def build_obj(path, two_sided_light):
     add_camera(**obj_scene.MCGUIRE_CAMERA)
 
 
+def glb_json(path):
+    """The JSON chunk of a glTF binary."""
+    with open(path, "rb") as f:
+        head = f.read(20)
+        magic, _, _, length, kind = struct.unpack("<4sIIII", head)
+        if magic != b"glTF" or kind != 0x4E4F534A:
+            raise SystemExit(f"{path}: not a glTF binary with a JSON chunk first")
+        return json.loads(f.read(length))
+
+
+def build_glb(path, two_sided_light):
+    """A glb as luxel writes it: each material Lambertian in its base colour, and where it has an
+    emissive factor (times KHR_materials_emissive_strength) emitting that radiance from its front
+    face only, as luxel's emitters do. Baked vertex colours are left out: Cycles computes the
+    light itself. The camera is the file's first (luxel's view of the scene)."""
+    doc = glb_json(path)
+    # Debian 12's Blender 3.4 glTF importer still uses np.bool, which NumPy 1.24 removed.
+    import numpy as np
+    if "bool" not in np.__dict__:
+        np.bool = bool
+    bpy.ops.import_scene.gltf(filepath=os.path.abspath(path))
+    mats = {}
+    for m in doc.get("materials", []):
+        rgb = tuple(m.get("pbrMetallicRoughness", {}).get("baseColorFactor", [1, 1, 1, 1])[:3])
+        strength = m.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
+        emission = tuple(c * strength for c in m.get("emissiveFactor", [0, 0, 0]))
+        name = m.get("name", "")
+        mats[name] = (light_material(name + " (luxel)", emission, rgb, two_sided_light) if max(emission) > 0
+                      else diffuse_material(name + " (luxel)", rgb))
+    for obj in bpy.context.scene.objects:
+        if obj.type != "MESH":
+            continue
+        for slot in obj.material_slots:
+            # The importer names materials as the file does, with ".001" where names repeat.
+            name = slot.material.name if slot.material else ""
+            base = name if name in mats else name.rsplit(".", 1)[0]
+            if base not in mats:
+                raise SystemExit(f"{path}: material '{slot.material.name if slot.material else None}' "
+                                 "is not one of the file's")
+            slot.material = mats[base]
+    cameras = [o for o in bpy.context.scene.objects if o.type == "CAMERA"]
+    if not cameras or not doc.get("cameras"):
+        raise SystemExit(f"{path}: no camera")
+    cam = cameras[0]
+    cam.data.sensor_fit = "VERTICAL"
+    cam.data.angle_y = doc["cameras"][0]["perspective"]["yfov"]
+    cam.data.clip_start = 0.001
+    cam.data.clip_end = 1000.0
+    bpy.context.scene.camera = cam
+
+
 def build_emission_test(kind):
     """A 100 m x 100 m quad of Emission strength 1, colour (1, 0.5, 0.25)."""
     mat = bpy.data.materials.new("emit")
@@ -319,6 +374,8 @@ def main():
         build_emission_test(args.emission_test)
     elif args.obj:
         build_obj(args.obj, args.two_sided_light)
+    elif args.glb:
+        build_glb(args.glb, args.two_sided_light)
     else:
         build_cornell(args.two_sided_light)
     t0 = time.perf_counter()
@@ -331,7 +388,8 @@ def main():
                        "spp": args.spp, "size": args.size, "threads": args.threads,
                        "seed": args.seed, "sampling_pattern": bpy.context.scene.cycles.sampling_pattern,
                        "two_sided_light": args.two_sided_light,
-                       "emission_test": args.emission_test, "obj": args.obj, "output": args.out,
+                       "emission_test": args.emission_test, "obj": args.obj, "glb": args.glb,
+                       "output": args.out,
                        "render_seconds": seconds}, f, indent=2)
 
 
