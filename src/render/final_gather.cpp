@@ -40,6 +40,16 @@ FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer,
       elementDirect_(elementDirect),
       rayOffset_(rayOffsetFor(surfaces.sceneExtent)) {}
 
+namespace {
+const std::vector<Rgb> kNoCorners;
+}
+
+FinalGather::FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
+                         VertexGather& lowerLevel, const ElementDirect* elementDirect)
+    : FinalGather(surfaces, tracer, direct, kNoCorners, /*gatherNearHits=*/false, elementDirect) {
+  lowerLevel_ = &lowerLevel;
+}
+
 size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
                         uint32_t seed) const {
   return add(rays, weights, targets, seed, gatherNearHits_);
@@ -48,7 +58,8 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
 size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
                         uint32_t seed, bool gatherNearHits) const {
   tracer_.intersect(rays, false);
-  // Per thread and per level (the near hits' gathers are a second level), kept between calls.
+  // Per thread and per depth of nesting (a near hit's own gather, or a lazy lower level gathering
+  // a vertex for a hit, calls add again before this call is done), kept between calls.
   struct Scratch {
     std::vector<RTCRay> shadowRays;
     std::vector<Rgb> shadowValues;
@@ -57,8 +68,15 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
     std::vector<Rgb> secondWeights;
     std::vector<Rgb*> secondTargets;
   };
-  thread_local Scratch levels[2];
-  Scratch& scratch = levels[gatherNearHits ? 0 : 1];
+  thread_local std::vector<std::unique_ptr<Scratch>> levels;
+  thread_local size_t depth = 0;
+  struct Nested {
+    size_t& depth;
+    explicit Nested(size_t& d) : depth(d) { ++depth; }
+    ~Nested() { --depth; }
+  } nested(depth);
+  if (levels.size() < depth) levels.push_back(std::make_unique<Scratch>());
+  Scratch& scratch = *levels[depth - 1];
   auto& [shadowRays, shadowValues, shadowTargets, second, secondWeights, secondTargets] = scratch;
   shadowRays.clear(), shadowValues.clear(), shadowTargets.clear();
   second.clear(), secondWeights.clear(), secondTargets.clear();
@@ -91,7 +109,8 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
         secondTargets.push_back(targets[k]);
       }
     } else {
-      *targets[k] += weight * interpolateCorners(&corners_[size_t(h) * 4], hit.polygon.count, rh.hit.u, rh.hit.v);
+      const Rgb* corners = lowerLevel_ ? lowerLevel_->corners(h) : &corners_[size_t(h) * 4];
+      *targets[k] += weight * interpolateCorners(corners, hit.polygon.count, rh.hit.u, rh.hit.v);
     }
     if (elementDirect_ && rh.ray.tfar >= elementDirect_->tracedWithin[h]) {
       *targets[k] += weight * elementDirect_->irradiance[h];
@@ -226,8 +245,14 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
     for (size_t v = 0; v < vertices_.size(); ++v)
       if (isCorner[v]) vertices_[v].parent = kNoParent;
   }
+  // The budget is shared by the vertices that will be gathered: with element weights (an image's
+  // pixels), those the image sees.
+  size_t sharing = vertices_.size();
+  if (!elementWeights.empty()) sharing = size_t(std::count_if(vertices_.begin(), vertices_.end(), [](const Vertex& v) {
+                                 return v.weight > 0.0f;
+                               }));
   if (rays <= 0)
-    rays = int(std::clamp(kVertexGatherRayBudget / std::max<size_t>(vertices_.size(), 1), size_t(kMinVertexGatherRays),
+    rays = int(std::clamp(kVertexGatherRayBudget / std::max<size_t>(sharing, 1), size_t(kMinVertexGatherRays),
                           size_t(kDefaultVertexGatherRays)));
   const int uniformSide = strataSide(rays);
   double total = 0.0;

@@ -29,6 +29,7 @@
 namespace luxel {
 
 class GatherMesh;
+class VertexGather;
 
 inline constexpr size_t kVertexGatherRayBudget = size_t(1) << 24;
 inline constexpr int kMinVertexGatherRays = 16;
@@ -65,6 +66,11 @@ class FinalGather {
   FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
               const std::vector<Rgb>& indirectCorners, bool gatherNearHits = true,
               const ElementDirect* elementDirect = nullptr);
+  // The same reading a coarse gather's corners as it gathers them, each element's when a hit
+  // first lands on it (`lowerLevel` must outlive this): a scene of millions of elements, whose
+  // gather rays meet a fraction of them, gathers only those.
+  FinalGather(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
+              VertexGather& lowerLevel, const ElementDirect* elementDirect = nullptr);
 
   // One batch of gather rays, traced here. Adds weights[i] * L_i to *targets[i], where L_i is the
   // reflected radiance (rho / pi times the irradiance) at the point rays[i] lands on; misses and
@@ -83,6 +89,7 @@ class FinalGather {
   const RayTracer& tracer_;
   const DirectLight& direct_;
   const std::vector<Rgb>& corners_;
+  VertexGather* lowerLevel_ = nullptr;  // read instead of corners_ when set
   const ElementDirect* elementDirect_;
   float rayOffset_;
 };

@@ -19,9 +19,11 @@ int GatherMesh::splitsFor(size_t solved, size_t wanted) {
   return splits;
 }
 
-GatherMesh::GatherMesh(const Scene& scene, const SurfaceSet& solved, int splits)
+GatherMesh::GatherMesh(const Scene& scene, const SurfaceSet& solved, int splits, float maxArea)
     : solved_(solved) {
-  if (splits <= 0) return;
+  bool large = false;
+  for (const Element& e : solved.elements) large |= e.area > maxArea;
+  if (splits <= 0 && !large) return;
   SurfaceSet& set = split_.emplace();
   set.faces = solved.faces;
   set.elements = solved.elements;
@@ -34,21 +36,27 @@ GatherMesh::GatherMesh(const Scene& scene, const SurfaceSet& solved, int splits)
   local_.resize(n);
   for (uint32_t e = 0; e < n; ++e) {
     parent_[e] = e;
-    local_[e] = {Vec2(0.0f, 0.0f), Vec2(1.0f, 0.0f), Vec2(1.0f, 1.0f), Vec2(0.0f, 1.0f)};
-    if (set.faces[set.elements[e].face].triangle) local_[e][2] = local_[e][3] = Vec2(0.0f, 1.0f);
+    local_[e] = wholeCorners(set.faces[set.elements[e].face].triangle);
   }
-  set.elements.reserve(n << (2 * splits));
+  set.elements.reserve(n << (2 * std::max(splits, 0)));
+  const auto split = [&](uint32_t e) {
+    const auto children = splitCorners(local_[e], set.faces[set.elements[e].face].triangle);
+    set.splitElement(e, scene);  // child 0 stays at e, children 1 to 3 are appended in order
+    local_[e] = children[0];
+    for (int c = 1; c < 4; ++c) {
+      local_.push_back(children[size_t(c)]);
+      parent_.push_back(parent_[e]);
+    }
+  };
   for (int s = 0; s < splits; ++s) {
     const size_t count = set.elements.size();
-    for (uint32_t e = 0; e < count; ++e) {
-      const auto children = splitCorners(local_[e], set.faces[set.elements[e].face].triangle);
-      set.splitElement(e, scene);  // child 0 stays at e, children 1 to 3 are appended in order
-      local_[e] = children[0];
-      for (int c = 1; c < 4; ++c) {
-        local_.push_back(children[size_t(c)]);
-        parent_.push_back(parent_[e]);
-      }
-    }
+    for (uint32_t e = 0; e < count; ++e) split(e);
+  }
+  for (int s = 0; s < kMaxLargeSplits && large; ++s) {
+    large = false;
+    const size_t count = set.elements.size();
+    for (uint32_t e = 0; e < count; ++e)
+      if (set.elements[e].area > maxArea) split(e), large = true;
   }
 }
 

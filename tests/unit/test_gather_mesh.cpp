@@ -123,6 +123,40 @@ TEST(GatherMesh, SplitElementsCoverTheSolvedElementsAndCarryFieldsOver) {
   }
 }
 
+// Elements larger than maxArea are split until they are not, the rest kept whole: the Cornell box
+// solved with its faces whole (a wall of 0.3 m^2 one element), the largest split into pieces
+// under a fortieth of a square metre, the small ones (the light, the blocks' sides) whole.
+TEST(GatherMesh, ElementsLargerThanAskedAreSplitUntilTheyAreNot) {
+  const Scene scene = builtin::cornellBox();
+  DiscretiseOptions d;
+  d.elementBudget = 1;  // every face one element
+  const SurfaceSet solved = discretise(scene, d);
+  const float maxArea = 0.025f;
+  size_t large = 0;
+  for (const Element& e : solved.elements) large += e.area > maxArea;
+  ASSERT_GT(large, 4u);
+  ASSERT_LT(large, solved.elements.size());
+  const GatherMesh mesh(scene, solved, 0, maxArea);
+  ASSERT_TRUE(mesh.isSplit());
+  const SurfaceSet& split = mesh.surfaces();
+  std::vector<double> areaOf(solved.elements.size(), 0.0);
+  std::vector<int> pieces(solved.elements.size(), 0);
+  for (uint32_t e = 0; e < split.elements.size(); ++e) {
+    EXPECT_LE(split.elements[e].area, maxArea * 1.0001f) << "element " << e;
+    areaOf[mesh.parent(e)] += split.elements[e].area;
+    ++pieces[mesh.parent(e)];
+  }
+  for (uint32_t p = 0; p < solved.elements.size(); ++p) {
+    EXPECT_NEAR(areaOf[p], solved.elements[p].area, 1e-5 * solved.elements[p].area) << "element " << p;
+    const bool wasLarge = solved.elements[p].area > maxArea;
+    EXPECT_EQ(pieces[p] > 1, wasLarge) << "element " << p;
+    // Each split takes a quarter: the fewest that bring it under maxArea.
+    if (wasLarge) EXPECT_GT(solved.elements[p].area / float(pieces[p]) * 4.0f, maxArea) << "element " << p;
+  }
+  for (uint32_t e = 0; e < split.elements.size(); ++e)
+    EXPECT_EQ(mesh.whole(e), pieces[mesh.parent(e)] == 1) << "element " << e;
+}
+
 TEST(GatherMesh, NoSplitsIsTheSolvedSetItself) {
   const Scene scene = builtin::furnace();
   const SurfaceSet solved = discretise(scene, {});
@@ -239,6 +273,37 @@ TEST(GatherMesh, OnASplitMeshOnlyVerticesNearSurfacesAreGatheredBesideTheSolvedC
   EXPECT_GT(checked, shown.elements.size());  // measured: 1,792 of 3,795 vertices interpolated
   EXPECT_GT(adaptive.verticesTraced(), solvedCorner.size());
   EXPECT_NEAR(adaptiveSum / fullSum, 1.0, 0.01);
+}
+
+// A gather reading a coarse gather as it goes (FinalGather over a VertexGather) reads the same
+// numbers as one reading that coarse gather done first: each vertex's gather is the same
+// whenever it runs.
+TEST(GatherMesh, ACoarseGatherReadAsItGoesIsTheOneGatheredFirst) {
+  const Scene scene = builtin::cornellBox();
+  DiscretiseOptions d;
+  d.elementBudget = 300;
+  SurfaceSet surfaces = discretise(scene, d);
+  const Solution solution = solve(scene, surfaces, SolveOptions{});
+  std::vector<Rgb> indirect(solution.irradiance.size());
+  for (size_t e = 0; e < indirect.size(); ++e)
+    indirect[e] = glm::max(solution.irradiance[e] - solution.directIrradiance[e], Rgb(0.0f));
+  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(surfaces);
+  const RayTracer tracer(polygons);
+  const DirectLight direct(scene, surfaces, &surfaces);
+  const std::vector<Rgb> corners = elementCornerValues(surfaces, indirect);
+  const FinalGather fromSolution(surfaces, tracer, direct, corners, /*gatherNearHits=*/false);
+  VertexGather first(surfaces, fromSolution, 16, 9);
+  const std::vector<Rgb> coarse = first.all();
+  const FinalGather fromCoarse(surfaces, tracer, direct, coarse, /*gatherNearHits=*/false);
+  VertexGather asItGoes(surfaces, fromSolution, 16, 9);
+  const FinalGather fromLazy(surfaces, tracer, direct, asItGoes);
+  VertexGather a(surfaces, fromCoarse, 64, 4), b(surfaces, fromLazy, 64, 4);
+  const std::vector<Rgb> fromFirst = a.all(), fromAsItGoes = b.all();
+  ASSERT_EQ(fromFirst.size(), fromAsItGoes.size());
+  for (size_t i = 0; i < fromFirst.size(); ++i) ASSERT_EQ(fromFirst[i], fromAsItGoes[i]) << "slot " << i;
+  // Only the vertices the upper gather's rays met were gathered below.
+  EXPECT_GT(asItGoes.verticesGathered(), asItGoes.vertexCount() / 2);
+  EXPECT_LE(asItGoes.verticesGathered(), asItGoes.vertexCount());
 }
 
 }  // namespace
