@@ -95,6 +95,9 @@ nlohmann::json caseJson(const CaseResult& r) {
                    {"reference", probeJson(r.referenceProbeError)},
                    {"solution_direct", probeJson(r.probeDirectError)},
                    {"solution_indirect", probeJson(r.probeIndirectError)},
+                   {"gathered", probeJson(r.probeGatheredError)},
+                   {"gathered_indirect", probeJson(r.probeGatheredIndirectError)},
+                   {"gather_seconds", r.probeGatherSeconds},
                    {"paths", r.probePaths},
                    {"each", probeSamplesJson(r.probeSamples)},
                    {"seconds", r.probeSeconds}};
@@ -130,6 +133,10 @@ void printRow(const CaseResult& r) {
     if (r.probeDirectError && r.probeIndirectError)
       std::cout << fmt::format("    (its direct light: {}; the rest: {})\n", probeText(*r.probeDirectError),
                                probeText(*r.probeIndirectError));
+    if (r.probeGatheredError && r.probeGatheredIndirectError)
+      std::cout << fmt::format("    (as an hq render gathers it, {:.1f} s: {}; its indirect light: {})\n",
+                               r.probeGatherSeconds, probeText(*r.probeGatheredError),
+                               probeText(*r.probeGatheredIndirectError));
     if (r.referenceProbeError)
       std::cout << fmt::format("    (the reference against the same probes: {})\n", probeText(*r.referenceProbeError));
   }

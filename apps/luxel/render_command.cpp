@@ -235,8 +235,8 @@ int runRender(const RenderArgs& a) {
     DiscretiseOptions discretise = discretiseOptions(a.solve);
     // An hq render reads its solution three bounces away and gathers on a mesh of its own
     // (RenderOptions::gatherElements), so its solve, unless asked otherwise, is a smaller one;
-    // not where the smaller budget would leave faces uncut (at least two elements a face), which
-    // turns the vertex gather off (RenderOptions::Indirect::Auto).
+    // not where the smaller budget would leave faces uncut (at least two elements a face): there
+    // the solution would be no finer than the model.
     size_t faces = 0;
     for (const Mesh& m : scene.meshes) faces += m.faces.size();
     if (ro.mode == RenderOptions::Mode::HighQuality && a.solve.elements == 0 && a.solve.elementSize == 0.0f &&

@@ -109,6 +109,11 @@ struct CaseResult {
   // The solution's direct irradiance against probes of the direct light alone, and the rest
   // (the indirect light) against the difference of the two sets of probes.
   std::optional<ProbeError> probeDirectError, probeIndirectError;
+  // What an hq render shows of the same elements (render/gather_pipeline.h: the indirect light
+  // gathered at vertices from the solution, three bounces, averaged over each probe element, with
+  // the solution's direct light): all of it, and its indirect part; and the seconds it took.
+  std::optional<ProbeError> probeGatheredError, probeGatheredIndirectError;
+  double probeGatherSeconds = 0.0;
   // Each probe, for a look at where the differences are (channels summed, W/m^2): the element,
   // its centroid, the path-traced irradiance and its standard error, the path-traced direct
   // light, and the solution's irradiance and direct irradiance (NaN where it has none).

@@ -30,11 +30,10 @@ struct RenderOptions {
   };
   // Where HighQuality finds the indirect light (render/final_gather.h).
   enum class Indirect {
-    // VertexGather where the discretisation cut the faces into elements (at least twice as many
-    // elements as faces), Interpolated where elements are whole faces. A vertex gather is
-    // interpolated over elements: over faces of many square metres (Sibenik's walls, which the
-    // hierarchical solver keeps whole) it shows the triangles, and its few vertices sample the
-    // light poorly.
+    // VertexGather. (It was Interpolated where elements are whole faces, as the hierarchical
+    // solver keeps them, until the gather split large elements and read its hits' direct light
+    // from the solution: against path-traced probes the gathered irradiance is nearer on every
+    // scene measured, docs/performance.md, "What the gather shows".)
     Auto,
     // The element solution's indirect irradiance, interpolated: the fastest, but the
     // discretisation shows (patches shooting their mean, elements averaged across contacts).
@@ -101,8 +100,8 @@ struct RenderStats {
   size_t gatherElements = 0;  // the elements a vertex gather ran on (0: no vertex gather)
 };
 
-// The indirect light `options` asks for, with Auto resolved for `surfaces`.
-RenderOptions::Indirect resolvedIndirect(const RenderOptions& options, const SurfaceSet& surfaces);
+// The indirect light `options` asks for, with Auto resolved.
+RenderOptions::Indirect resolvedIndirect(const RenderOptions& options);
 // "auto", "interpolated", "vertex-gather", "pixel-gather".
 const char* indirectName(RenderOptions::Indirect indirect);
 

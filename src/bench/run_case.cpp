@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -17,6 +18,7 @@
 #include "luxel/bench.h"
 #include "luxel/error.h"
 #include "luxel/import.h"
+#include "render/gather_pipeline.h"
 #include "session/solver_host.h"
 #include "transport/cpu_transport.h"
 
@@ -199,6 +201,19 @@ CaseResult runCase(const Case& c, const Options& options) {
       std::vector<Rgb> indirect(sol.irradiance.size());
       for (size_t e = 0; e < indirect.size(); ++e) indirect[e] = sol.irradiance[e] - sol.directIrradiance[e];
       result.probeIndirectError = probeError(probeDifference(probes, direct), indirect);
+      // What a picture shows there: the gathered indirect light, each probe element's mean.
+      reportProgress(options.progress, c.name, 1.0, "gather at the probes");
+      const auto gatherStart = std::chrono::steady_clock::now();
+      const std::vector<Rgb> gathered = gatheredIndirect(scene, surfaces, sol, probes.elements, RenderOptions{});
+      result.probeGatherSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - gatherStart).count();
+      std::vector<Rgb> gatheredAll(sol.irradiance.size(), Rgb(std::numeric_limits<float>::quiet_NaN()));
+      std::vector<Rgb> gatheredTotal = gatheredAll;
+      for (size_t i = 0; i < probes.elements.size(); ++i) {
+        gatheredAll[probes.elements[i]] = gathered[i];
+        gatheredTotal[probes.elements[i]] = gathered[i] + sol.directIrradiance[probes.elements[i]];
+      }
+      result.probeGatheredError = probeError(probes, gatheredTotal);
+      result.probeGatheredIndirectError = probeError(probeDifference(probes, direct), gatheredAll);
       auto total = [](Rgb c) { return double(c.r) + double(c.g) + double(c.b); };
       for (size_t i = 0; i < probes.elements.size(); ++i) {
         const uint32_t e = probes.elements[i];

@@ -11,7 +11,6 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <deque>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -29,8 +28,8 @@
 #include "render/direct_light.h"
 #include "render/final_gather.h"
 #include "render/gather_mesh.h"
+#include "render/gather_pipeline.h"
 #include "render/normal_map.h"
-#include "trace/element_polygons.h"
 #include "trace/hemisphere_rays.h"
 #include "trace/ray_tracer.h"
 #include "transport/light_sampling.h"
@@ -85,18 +84,6 @@ std::vector<uint8_t> interiorPixels(const RayTracer& tracer, const SurfaceSet& s
   return interior;
 }
 
-// The elements that are partly inside a solid (some of their corners are, some are not), found by
-// the first coarse gather: their mean direct light counts the dark part, so gather rays landing on
-// them trace theirs wherever they come from.
-void traceStraddlingElements(const VertexGather& gathered, FinalGather::ElementDirect& direct) {
-  for (uint32_t e = 0; e < direct.tracedWithin.size(); ++e) {
-    int inside = 0;
-    const int count = gathered.cornerCount(e);
-    for (int c = 0; c < count; ++c) inside += gathered.cornerInside(e, c);
-    if (inside > 0 && inside < count) direct.tracedWithin[e] = std::numeric_limits<float>::infinity();
-  }
-}
-
 // How many of the image's pixels see each element, from a ray through the centre of every pixel
 // (every k-th pixel each way when there are more than kVisibilityRays, each then counting k^2):
 // the vertex gather's rays go by it (VertexGather's element weights), so that a surface near the
@@ -123,11 +110,6 @@ std::vector<float> pixelsSeen(const RayTracer& tracer, const SurfaceSet& shown, 
   return seen;
 }
 
-// Samples of each element's mean direct light (elementDirectLight), for the gather's far hits.
-constexpr int kElementDirectSamples = 16;
-// Solved elements this many times the mean area the gather mesh asks for (RenderOptions::
-// gatherElements) are split until they are not (GatherMesh's maxArea).
-constexpr double kLargeGatherElements = 4.0;
 
 }  // namespace
 
@@ -185,10 +167,8 @@ const char* indirectName(RenderOptions::Indirect indirect) {
   return "?";
 }
 
-RenderOptions::Indirect resolvedIndirect(const RenderOptions& options, const SurfaceSet& surfaces) {
-  if (options.indirect != RenderOptions::Indirect::Auto) return options.indirect;
-  return surfaces.elements.size() >= 2 * surfaces.faces.size() ? RenderOptions::Indirect::VertexGather
-                                                                : RenderOptions::Indirect::Interpolated;
+RenderOptions::Indirect resolvedIndirect(const RenderOptions& options) {
+  return options.indirect == RenderOptions::Indirect::Auto ? RenderOptions::Indirect::VertexGather : options.indirect;
 }
 
 RenderOptions::Mode parseRenderMode(const std::string& name) {
@@ -206,89 +186,20 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const auto start = std::chrono::steady_clock::now();
   const bool hq = options.mode == RenderOptions::Mode::HighQuality;
   using Indirect = RenderOptions::Indirect;
-  const Indirect indirect = hq ? resolvedIndirect(options, surfaces) : Indirect::Interpolated;
+  const Indirect indirect = hq ? resolvedIndirect(options) : Indirect::Interpolated;
   const bool pixelGather = indirect == Indirect::PixelGather;
   const bool vertexGather = indirect == Indirect::VertexGather;
 
-  // The irradiance field to interpolate: all of it in radiosity mode; in HQ mode only the indirect
-  // part, since the direct part is traced per pixel (and at every gather ray's hit).
-  std::vector<Rgb> field = solution.irradiance;
-  if (hq)
-    for (size_t e = 0; e < field.size(); ++e)
-      field[e] = glm::max(field[e] - solution.directIrradiance[e], Rgb(0.0f));
-  // The elements the pixels find and the vertex gather interpolates over: the solved ones, split
-  // where options.gatherElements asks for more (render/gather_mesh.h).
-  // Elements four times the mean size the gather asks for are split further: a solve that keeps
-  // faces whole (the hierarchical solver's walls) would leave the gather a wall's four corners.
-  double totalArea = 0.0;
-  for (const Element& e : surfaces.elements) totalArea += e.area;
-  const GatherMesh mesh(
-      scene, surfaces, vertexGather ? GatherMesh::splitsFor(surfaces.elements.size(), options.gatherElements) : 0,
-      vertexGather && options.gatherElements > 0
-          ? float(kLargeGatherElements * totalArea / double(options.gatherElements))
-          : std::numeric_limits<float>::infinity());
-  const SurfaceSet& shown = mesh.surfaces();
-  const std::vector<Rgb> corners = mesh.corners(elementCornerValues(surfaces, field));
-
-  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(shown);
-  RayTracer tracer(polygons);
-  const DirectLight direct(scene, surfaces, &shown);
-  // A vertex gather's hits a few elements away read their direct light per element, each element's
-  // estimated here. Past a million elements the estimates would cost more rays than the hits they
-  // spare (the gather's own rays per vertex fall there, kVertexGatherRayBudget): there the
-  // solution's own direct light per element is read where the gather's element is a solved one
-  // whole (exact over the element as the solver found it, and free), and hits on the pieces of a
-  // split one trace theirs.
-  std::optional<FinalGather::ElementDirect> elementDirect;
-  const bool estimateElementDirect =
-      vertexGather && shown.elements.size() * kElementDirectSamples <= kVertexGatherRayBudget;
-  if (vertexGather) {
-    elementDirect.emplace();
-    elementDirect->tracedWithin.resize(shown.elements.size());
-    for (uint32_t e = 0; e < shown.elements.size(); ++e)
-      elementDirect->tracedWithin[e] = kNearHitElements * std::sqrt(shown.elements[e].area);
-    if (estimateElementDirect) {
-      elementDirect->irradiance =
-          elementDirectLight(shown, tracer, direct, kElementDirectSamples, hashCombine(options.seed, 0xe1d1u));
-    } else {
-      elementDirect->irradiance.resize(shown.elements.size());
-      for (uint32_t e = 0; e < shown.elements.size(); ++e) {
-        elementDirect->irradiance[e] = solution.directIrradiance[mesh.parent(e)];
-        if (!mesh.whole(e)) elementDirect->tracedWithin[e] = std::numeric_limits<float>::infinity();
-      }
-    }
-  }
-  const FinalGather::ElementDirect* readDirect = elementDirect ? &*elementDirect : nullptr;
-  const FinalGather gather(shown, tracer, direct, corners, /*gatherNearHits=*/options.gatherBounces < 3, readDirect);
+  // The elements the pixels find, the field at their corners, and what gather rays read.
+  const GatherPipeline pipeline(scene, surfaces, solution, options, indirect, hq);
+  const GatherMesh& mesh = pipeline.mesh();
+  const SurfaceSet& shown = pipeline.shown();
+  const std::vector<Rgb>& corners = pipeline.corners();
+  const RayTracer& tracer = pipeline.tracer();
+  const DirectLight& direct = pipeline.direct();
+  const FinalGather& finalGather = pipeline.finalGather();
   const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
-  // With two bounces or more gathered, the gather's hits read a coarse gather at every vertex
-  // instead of the solution, and each further bounce a coarse gather of that one, so the solution
-  // is met gatherBounces bounces away. The first coarse gather also finds the solved elements that
-  // solids stand on, whose mean direct light cannot be read (traceStraddlingElements): where the
-  // elements' direct light is estimated, the coarse gathers visit every vertex first. Elsewhere
-  // (past a million elements, or a per-pixel gather) each level gathers a vertex when a hit above
-  // first needs it, the same numbers: the gather rays of a scene of millions of faces meet a
-  // fraction of them. (There a straddling element's mean is read from afar; the floor a statue
-  // stands on is one element so large that its hits trace anyway.)
-  std::vector<Rgb> coarse;
-  std::optional<FinalGather> fromCoarse;
-  std::deque<VertexGather> lazyLevels;
-  std::deque<FinalGather> lazyGathers;
-  for (int level = 2; (vertexGather || pixelGather) && level <= options.gatherBounces; ++level) {
-    const FinalGather& below = fromCoarse ? *fromCoarse : !lazyGathers.empty() ? lazyGathers.back() : gather;
-    const uint32_t seed = hashCombine(options.seed, 0xc0a25eu + uint32_t(level - 2));
-    if (!estimateElementDirect) {
-      lazyLevels.emplace_back(shown, below, kCoarseGatherRays, seed, std::span<const float>{}, &mesh);
-      lazyGathers.emplace_back(shown, tracer, direct, lazyLevels.back(), readDirect);
-      continue;
-    }
-    VertexGather lower(shown, below, kCoarseGatherRays, seed, {}, &mesh);
-    coarse = lower.all();  // the level below read the previous `coarse` until all() returned
-    if (level == 2 && elementDirect) traceStraddlingElements(lower, *elementDirect);
-    fromCoarse.emplace(shown, tracer, direct, coarse, /*gatherNearHits=*/false, readDirect);
-  }
-  const FinalGather& finalGather = fromCoarse ? *fromCoarse : !lazyGathers.empty() ? lazyGathers.back() : gather;
   // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at
   // vertices, each vertex when a pixel first needs it.
   std::optional<VertexGather> vertexGathered;

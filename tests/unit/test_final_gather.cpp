@@ -326,16 +326,13 @@ TEST(FinalGather, NoIndirectLightLeavesTheDirectLightAlone) {
   for (const Rgb& p : image.pixels) ASSERT_NEAR(p.g, 1.5f, 3e-3f);
 }
 
-TEST(FinalGather, AutoGathersOnlyOverElementsCutFromFaces) {
-  const Scene scene = builtin::furnace(0.5f, 1.0f);
+TEST(FinalGather, AutoGathersAtVertices) {
   RenderOptions ro;
-  DiscretiseOptions d;
-  d.elementBudget = 600;
-  EXPECT_EQ(resolvedIndirect(ro, discretise(scene, d)), RenderOptions::Indirect::VertexGather);
-  d.elementBudget = 6;
-  EXPECT_EQ(resolvedIndirect(ro, discretise(scene, d)), RenderOptions::Indirect::Interpolated);
+  EXPECT_EQ(resolvedIndirect(ro), RenderOptions::Indirect::VertexGather);
   ro.indirect = RenderOptions::Indirect::PixelGather;
-  EXPECT_EQ(resolvedIndirect(ro, discretise(scene, d)), RenderOptions::Indirect::PixelGather);
+  EXPECT_EQ(resolvedIndirect(ro), RenderOptions::Indirect::PixelGather);
+  ro.indirect = RenderOptions::Indirect::Interpolated;
+  EXPECT_EQ(resolvedIndirect(ro), RenderOptions::Indirect::Interpolated);
   EXPECT_STREQ(indirectName(RenderOptions::Indirect::Auto), "auto");
   EXPECT_EQ(parseIndirect("auto"), RenderOptions::Indirect::Auto);
 }

@@ -1,0 +1,55 @@
+// What an hq render's gather reads and shows (render/gather_pipeline.h), against the furnace's
+// closed form: every surface emits Le = 1 and reflects rho = 0.5, so the irradiance is
+// pi Le / (1 - rho) everywhere, pi of it direct and pi Le rho / (1 - rho) = pi indirect.
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <vector>
+
+#include "luxel/error.h"
+#include "luxel/render.h"
+#include "luxel/solve.h"
+#include "render/gather_pipeline.h"
+#include "scene/builtin/builtin_scenes.h"
+
+namespace luxel {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+TEST(GatherPipeline, TheGatheredIndirectLightOfAFurnaceIsItsClosedForm) {
+  const Scene scene = builtin::furnace(0.5f, 1.0f);
+  DiscretiseOptions d;
+  d.elementBudget = 400;
+  d.orientByLight = false;
+  SurfaceSet surfaces = discretise(scene, d);
+  SolveOptions o;
+  o.method = "progressive";
+  o.settings.set("unshot", 1e-6);
+  const Solution solution = solve(scene, surfaces, o);
+  std::vector<uint32_t> probes;
+  for (uint32_t e = 0; e < surfaces.elements.size(); e += 37) probes.push_back(e);
+  for (int bounces : {1, 3}) {
+    RenderOptions options;
+    options.gatherBounces = bounces;
+    const std::vector<Rgb> gathered = gatheredIndirect(scene, surfaces, solution, probes, options);
+    ASSERT_EQ(gathered.size(), probes.size());
+    // The solution's own error at the hits (times rho), as in FinalGather's furnace tests.
+    for (size_t i = 0; i < probes.size(); ++i)
+      EXPECT_NEAR(gathered[i].g, kPi, 3e-3f * kPi) << "element " << probes[i] << ", " << bounces << " bounces";
+  }
+}
+
+TEST(GatherPipeline, AnElementPastTheSolutionIsRefused) {
+  const Scene scene = builtin::furnace(0.5f, 1.0f);
+  DiscretiseOptions d;
+  d.elementBudget = 24;
+  d.orientByLight = false;
+  SurfaceSet surfaces = discretise(scene, d);
+  const Solution solution = solve(scene, surfaces, SolveOptions{});
+  const std::vector<uint32_t> probes{uint32_t(surfaces.elements.size())};
+  EXPECT_THROW(gatheredIndirect(scene, surfaces, solution, probes, RenderOptions{}), Error);
+}
+
+}  // namespace
+}  // namespace luxel
