@@ -30,10 +30,11 @@ struct RenderOptions {
   };
   // Where HighQuality finds the indirect light (render/final_gather.h).
   enum class Indirect {
-    // VertexGather. (It was Interpolated where elements are whole faces, as the hierarchical
-    // solver keeps them, until the gather split large elements and read its hits' direct light
-    // from the solution: against path-traced probes the gathered irradiance is nearer on every
-    // scene measured, docs/performance.md, "What the gather shows".)
+    // VertexGather up to kMaxAutoGatherElements solved elements, Interpolated above. Against
+    // path-traced probes the gathered irradiance is nearer on every scene measured
+    // (docs/performance.md, "What the gather shows"); past about four million elements its state
+    // (some 400 bytes an element over three gathered bounces) and time take a 10M-face render
+    // from 7.6 to 10.4 GB and from 148 to 227 s.
     Auto,
     // The element solution's indirect irradiance, interpolated: the fastest, but the
     // discretisation shows (patches shooting their mean, elements averaged across contacts).
@@ -100,8 +101,10 @@ struct RenderStats {
   size_t gatherElements = 0;  // the elements a vertex gather ran on (0: no vertex gather)
 };
 
-// The indirect light `options` asks for, with Auto resolved.
-RenderOptions::Indirect resolvedIndirect(const RenderOptions& options);
+// The most solved elements Indirect::Auto gathers at vertices over.
+inline constexpr size_t kMaxAutoGatherElements = size_t(1) << 22;
+// The indirect light `options` asks for, with Auto resolved for `surfaces`.
+RenderOptions::Indirect resolvedIndirect(const RenderOptions& options, const SurfaceSet& surfaces);
 // "auto", "interpolated", "vertex-gather", "pixel-gather".
 const char* indirectName(RenderOptions::Indirect indirect);
 

@@ -167,8 +167,10 @@ const char* indirectName(RenderOptions::Indirect indirect) {
   return "?";
 }
 
-RenderOptions::Indirect resolvedIndirect(const RenderOptions& options) {
-  return options.indirect == RenderOptions::Indirect::Auto ? RenderOptions::Indirect::VertexGather : options.indirect;
+RenderOptions::Indirect resolvedIndirect(const RenderOptions& options, const SurfaceSet& surfaces) {
+  if (options.indirect != RenderOptions::Indirect::Auto) return options.indirect;
+  return surfaces.elements.size() <= kMaxAutoGatherElements ? RenderOptions::Indirect::VertexGather
+                                                            : RenderOptions::Indirect::Interpolated;
 }
 
 RenderOptions::Mode parseRenderMode(const std::string& name) {
@@ -186,7 +188,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const auto start = std::chrono::steady_clock::now();
   const bool hq = options.mode == RenderOptions::Mode::HighQuality;
   using Indirect = RenderOptions::Indirect;
-  const Indirect indirect = hq ? resolvedIndirect(options) : Indirect::Interpolated;
+  const Indirect indirect = hq ? resolvedIndirect(options, surfaces) : Indirect::Interpolated;
   const bool pixelGather = indirect == Indirect::PixelGather;
   const bool vertexGather = indirect == Indirect::VertexGather;
 

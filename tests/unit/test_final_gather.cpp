@@ -326,13 +326,21 @@ TEST(FinalGather, NoIndirectLightLeavesTheDirectLightAlone) {
   for (const Rgb& p : image.pixels) ASSERT_NEAR(p.g, 1.5f, 3e-3f);
 }
 
-TEST(FinalGather, AutoGathersAtVertices) {
+// Auto gathers at vertices, whether the faces were cut into elements or not (up to
+// kMaxAutoGatherElements: a scene that large is not made here).
+TEST(FinalGather, AutoGathersAtVerticesWhetherFacesWereCutOrNot) {
+  const Scene scene = builtin::furnace(0.5f, 1.0f);
   RenderOptions ro;
-  EXPECT_EQ(resolvedIndirect(ro), RenderOptions::Indirect::VertexGather);
+  DiscretiseOptions d;
+  d.elementBudget = 600;
+  const SurfaceSet surfaces = discretise(scene, d);
+  EXPECT_EQ(resolvedIndirect(ro, surfaces), RenderOptions::Indirect::VertexGather);
+  d.elementBudget = 6;  // whole faces
+  EXPECT_EQ(resolvedIndirect(ro, discretise(scene, d)), RenderOptions::Indirect::VertexGather);
   ro.indirect = RenderOptions::Indirect::PixelGather;
-  EXPECT_EQ(resolvedIndirect(ro), RenderOptions::Indirect::PixelGather);
+  EXPECT_EQ(resolvedIndirect(ro, surfaces), RenderOptions::Indirect::PixelGather);
   ro.indirect = RenderOptions::Indirect::Interpolated;
-  EXPECT_EQ(resolvedIndirect(ro), RenderOptions::Indirect::Interpolated);
+  EXPECT_EQ(resolvedIndirect(ro, discretise(scene, d)), RenderOptions::Indirect::Interpolated);
   EXPECT_STREQ(indirectName(RenderOptions::Indirect::Auto), "auto");
   EXPECT_EQ(parseIndirect("auto"), RenderOptions::Indirect::Auto);
 }
