@@ -191,6 +191,23 @@ TEST(GatherMesh, TheFurnaceGatheredOnASplitMeshRendersAtItsClosedForm) {
   }
 }
 
+// The Cornell box solved on 300 elements (progressive, its defaults), with the solution's
+// indirect irradiance per element.
+struct SolvedBox {
+  SolvedBox() : scene(builtin::cornellBox()) {
+    DiscretiseOptions d;
+    d.elementBudget = 300;
+    surfaces = discretise(scene, d);
+    const Solution solution = solve(scene, surfaces, SolveOptions{});
+    indirect.resize(solution.irradiance.size());
+    for (size_t e = 0; e < indirect.size(); ++e)
+      indirect[e] = glm::max(solution.irradiance[e] - solution.directIrradiance[e], Rgb(0.0f));
+  }
+  Scene scene;
+  SurfaceSet surfaces;
+  std::vector<Rgb> indirect;
+};
+
 // The vertex gather on a split mesh (VertexGather's `refined`): the solved elements' corners are
 // gathered, and so is every vertex that one of its solved corners saw a surface near (creases,
 // the blocks); the rest are the solved corners' values interpolated as a hit interpolates them.
@@ -198,14 +215,10 @@ TEST(GatherMesh, TheFurnaceGatheredOnASplitMeshRendersAtItsClosedForm) {
 // numbers, and the interpolated ones differ by the field's curvature over a solved element and the
 // full gather's noise (measured: 5.7% rms a vertex, means 0.6% apart over the box).
 TEST(GatherMesh, OnASplitMeshOnlyVerticesNearSurfacesAreGatheredBesideTheSolvedCorners) {
-  const Scene scene = builtin::cornellBox();
-  DiscretiseOptions d;
-  d.elementBudget = 300;
-  SurfaceSet surfaces = discretise(scene, d);
-  const Solution solution = solve(scene, surfaces, SolveOptions{});
-  std::vector<Rgb> indirect(solution.irradiance.size());
-  for (size_t e = 0; e < indirect.size(); ++e)
-    indirect[e] = glm::max(solution.irradiance[e] - solution.directIrradiance[e], Rgb(0.0f));
+  const SolvedBox box;
+  const Scene& scene = box.scene;
+  const SurfaceSet& surfaces = box.surfaces;
+  const std::vector<Rgb>& indirect = box.indirect;
   const GatherMesh mesh(scene, surfaces, 2);
   const SurfaceSet& shown = mesh.surfaces();
   const std::vector<Polygon> polygons = elementPolygonsTwinsApart(shown);
@@ -279,14 +292,10 @@ TEST(GatherMesh, OnASplitMeshOnlyVerticesNearSurfacesAreGatheredBesideTheSolvedC
 // numbers as one reading that coarse gather done first: each vertex's gather is the same
 // whenever it runs.
 TEST(GatherMesh, ACoarseGatherReadAsItGoesIsTheOneGatheredFirst) {
-  const Scene scene = builtin::cornellBox();
-  DiscretiseOptions d;
-  d.elementBudget = 300;
-  SurfaceSet surfaces = discretise(scene, d);
-  const Solution solution = solve(scene, surfaces, SolveOptions{});
-  std::vector<Rgb> indirect(solution.irradiance.size());
-  for (size_t e = 0; e < indirect.size(); ++e)
-    indirect[e] = glm::max(solution.irradiance[e] - solution.directIrradiance[e], Rgb(0.0f));
+  const SolvedBox box;
+  const Scene& scene = box.scene;
+  const SurfaceSet& surfaces = box.surfaces;
+  const std::vector<Rgb>& indirect = box.indirect;
   const std::vector<Polygon> polygons = elementPolygonsTwinsApart(surfaces);
   const RayTracer tracer(polygons);
   const DirectLight direct(scene, surfaces, &surfaces);
