@@ -137,8 +137,8 @@ Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, std::span<con
         k = std::min(k, emitters_.size() - 1);
         float p = cdf_[k] - (k > 0 ? cdf_[k - 1] : 0.0f);
         if (p <= 0.0f) continue;
-        always += sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides, std::span<const Vec2>(&u, 1), size_t(i),
-                                rng, rayOffset, rays, values, false);
+        always += sampleEmitter(emitters_[k], 1.0f / (p * kSampledEmitters), x, n, shading, sides,
+                                std::span<const Vec2>(&u, 1), size_t(i), rng, rayOffset, rays, values, false);
       }
   }
   for (const Vec2& u : points)

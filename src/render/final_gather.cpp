@@ -276,8 +276,9 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
 VertexGather::~VertexGather() = default;
 
 // Runs `publish` once for `state`: the first caller runs it, later ones wait until it is done.
-// Work waits only on solved corners' gathers (resolveVertex), which wait on nothing, so the wait
-// always ends.
+// Within a gather, work waits only on solved corners' gathers (resolveVertex), which wait on
+// nothing of this gather; a gather's rays may wait on a lower level's vertices (a FinalGather over
+// a VertexGather), never a higher one's. No wait can close a cycle, so every wait ends.
 template <typename Publish>
 void VertexGather::once(std::atomic<uint8_t>& state, Publish&& publish) {
   if (state.load(std::memory_order_acquire) == kDone) return;

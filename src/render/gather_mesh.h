@@ -42,7 +42,9 @@ class GatherMesh {
   bool isSplit() const { return split_.has_value(); }
   // The solved element that element e of surfaces() lies in, and whether e is that element whole.
   uint32_t parent(uint32_t e) const { return split_ ? parent_[e] : e; }
-  bool whole(uint32_t e) const { return !split_ || local_[e] == wholeCorners(split_->faces[split_->elements[e].face].triangle); }
+  bool whole(uint32_t e) const {
+    return !split_ || local_[e] == wholeCorners(split_->faces[split_->elements[e].face].triangle);
+  }
   // Corner c of element e of surfaces() in its parent's coordinates (as interpolateCorners takes
   // them); only when isSplit().
   Vec2 local(uint32_t e, int c) const { return local_[e][size_t(c)]; }
