@@ -110,8 +110,9 @@ struct CaseResult {
   // (the indirect light) against the difference of the two sets of probes.
   std::optional<ProbeError> probeDirectError, probeIndirectError;
   // What an hq render shows of the same elements (render/gather_pipeline.h: the indirect light
-  // gathered at vertices from the solution, three bounces, averaged over each probe element, with
-  // the solution's direct light): all of it, and its indirect part; and the seconds it took.
+  // gathered at vertices from the solution, three bounces, and the direct light its pixels trace,
+  // each averaged over the probe element): all of it, and its indirect part; and the seconds the
+  // gather took.
   std::optional<ProbeError> probeGatheredError, probeGatheredIndirectError;
   double probeGatherSeconds = 0.0;
   // Each probe, for a look at where the differences are (channels summed, W/m^2): the element,

@@ -25,6 +25,9 @@
 namespace luxel::bench {
 namespace {
 
+// Points per probe element for the direct light an hq render's pixels show there.
+constexpr int kProbePixelDirectSamples = 256;
+
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -201,16 +204,19 @@ CaseResult runCase(const Case& c, const Options& options) {
       std::vector<Rgb> indirect(sol.irradiance.size());
       for (size_t e = 0; e < indirect.size(); ++e) indirect[e] = sol.irradiance[e] - sol.directIrradiance[e];
       result.probeIndirectError = probeError(probeDifference(probes, direct), indirect);
-      // What a picture shows there: the gathered indirect light, each probe element's mean.
+      // What a picture shows there: the gathered indirect light and the direct light its pixels
+      // trace, each probe element's mean.
       reportProgress(options.progress, c.name, 1.0, "gather at the probes");
-      const auto gatherStart = std::chrono::steady_clock::now();
+      const Clock::time_point gatherStart = Clock::now();
       const std::vector<Rgb> gathered = gatheredIndirect(scene, surfaces, sol, probes.elements, RenderOptions{});
-      result.probeGatherSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - gatherStart).count();
+      result.probeGatherSeconds = secondsSince(gatherStart);
+      const std::vector<Rgb> pixelDirect =
+          pixelDirectLight(scene, surfaces, probes.elements, kProbePixelDirectSamples, RenderOptions{}.seed);
       std::vector<Rgb> gatheredAll(sol.irradiance.size(), Rgb(std::numeric_limits<float>::quiet_NaN()));
       std::vector<Rgb> gatheredTotal = gatheredAll;
       for (size_t i = 0; i < probes.elements.size(); ++i) {
         gatheredAll[probes.elements[i]] = gathered[i];
-        gatheredTotal[probes.elements[i]] = gathered[i] + sol.directIrradiance[probes.elements[i]];
+        gatheredTotal[probes.elements[i]] = gathered[i] + pixelDirect[i];
       }
       result.probeGatheredError = probeError(probes, gatheredTotal);
       result.probeGatheredIndirectError = probeError(probeDifference(probes, direct), gatheredAll);

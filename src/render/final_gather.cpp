@@ -138,8 +138,9 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
 }
 
 std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
-                                    int samples, uint32_t seed) {
-  std::vector<Rgb> out(surfaces.elements.size(), Rgb(0.0f));
+                                    int samples, uint32_t seed, std::span<const uint32_t> elements) {
+  const size_t count = elements.empty() ? surfaces.elements.size() : elements.size();
+  std::vector<Rgb> out(count, Rgb(0.0f));
   if (samples <= 0) return out;
   const MultiJitter pattern{uint32_t(samples)};
   const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
@@ -148,7 +149,8 @@ std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer&
     std::vector<RTCRay> rays;
     std::vector<Rgb> values;
     std::vector<uint32_t> owners;
-    for (uint32_t e = range.begin(); e < range.end(); ++e) {
+    for (uint32_t i = range.begin(); i < range.end(); ++i) {
+      const uint32_t e = elements.empty() ? i : elements[i];
       const Element& el = surfaces.elements[e];
       Rng rng(hashCombine(seed ^ 0xd17ec7u, e));
       Rgb always(0.0f);
@@ -158,15 +160,15 @@ std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer&
         const size_t before = rays.size();
         always += direct.sample(polygonPoint(el.polygon, st.x, st.y), el.normal, el.normal, Sides::Front, u, rng,
                                 rayOffset, rays, values, e);
-        owners.insert(owners.end(), rays.size() - before, e);
+        owners.insert(owners.end(), rays.size() - before, i);
       }
-      out[e] = always * perSample;
+      out[i] = always * perSample;
     }
     tracer.occluded(rays);
-    for (size_t i = 0; i < rays.size(); ++i)
-      if (!isOccluded(rays[i])) out[owners[i]] += values[i] * perSample;
+    for (size_t r = 0; r < rays.size(); ++r)
+      if (!isOccluded(rays[r])) out[owners[r]] += values[r] * perSample;
   };
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(surfaces.elements.size()), 64), estimate);
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(count), 64), estimate);
   return out;
 }
 

@@ -95,9 +95,11 @@ class FinalGather {
 };
 
 // Each element's mean direct irradiance (DirectLight, shadow rays traced through `tracer`), from
-// `samples` points stratified over the element, each with a light point stratified over each lamp.
+// `samples` points stratified over the element, each with a light point stratified over each lamp:
+// of every element, or of `elements` only, in their order. `direct`'s receivers, if any, must be
+// `surfaces`.
 std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer& tracer, const DirectLight& direct,
-                                    int samples, uint32_t seed);
+                                    int samples, uint32_t seed, std::span<const uint32_t> elements = {});
 
 // The indirect irradiance gathered at element corners, `rays` cosine-stratified rays per vertex,
 // each vertex on first demand (an image gathers only what it sees). Corners that meet on one

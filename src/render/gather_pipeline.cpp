@@ -145,4 +145,16 @@ std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, 
   return out;
 }
 
+std::vector<Rgb> pixelDirectLight(const Scene& scene, const SurfaceSet& solved, std::span<const uint32_t> elements,
+                                  int samples, uint32_t seed) {
+  for (uint32_t e : elements)
+    if (e >= solved.elements.size())
+      throw Error("pixelDirectLight: element " + std::to_string(e) + " is past the surfaces' " +
+                  std::to_string(solved.elements.size()));
+  const std::vector<Polygon> polygons = elementPolygonsTwinsApart(solved);
+  const RayTracer tracer(polygons);
+  const DirectLight direct(scene, solved, &solved);
+  return elementDirectLight(solved, tracer, direct, samples, seed, elements);
+}
+
 }  // namespace luxel

@@ -61,4 +61,10 @@ class GatherPipeline {
 std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, const Solution& solution,
                                   std::span<const uint32_t> elements, const RenderOptions& options);
 
+// The direct light an hq render traces at its pixels, averaged over each of the solved `elements`
+// from `samples` points stratified over it (a light point each): what a picture of them shows,
+// where the solution's own per-element direct light is an estimate of fewer rays.
+std::vector<Rgb> pixelDirectLight(const Scene& scene, const SurfaceSet& solved, std::span<const uint32_t> elements,
+                                  int samples, uint32_t seed);
+
 }  // namespace luxel

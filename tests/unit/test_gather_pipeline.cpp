@@ -40,6 +40,21 @@ TEST(GatherPipeline, TheGatheredIndirectLightOfAFurnaceIsItsClosedForm) {
   }
 }
 
+// Every wall emits, and every element sees the others whole: the direct light is pi Le,
+// the emitters' exact factors summing to 1, whatever the points.
+TEST(GatherPipeline, ThePixelsDirectLightInAFurnaceIsItsClosedForm) {
+  const Scene scene = builtin::furnace(0.5f, 1.0f);
+  DiscretiseOptions d;
+  d.elementBudget = 400;
+  d.orientByLight = false;
+  const SurfaceSet surfaces = discretise(scene, d);
+  std::vector<uint32_t> probes;
+  for (uint32_t e = 0; e < surfaces.elements.size(); e += 29) probes.push_back(e);
+  const std::vector<Rgb> direct = pixelDirectLight(scene, surfaces, probes, 64, 1);
+  ASSERT_EQ(direct.size(), probes.size());
+  for (size_t i = 0; i < probes.size(); ++i) EXPECT_NEAR(direct[i].g, kPi, 1e-3f * kPi) << "element " << probes[i];
+}
+
 TEST(GatherPipeline, AnElementPastTheSolutionIsRefused) {
   const Scene scene = builtin::furnace(0.5f, 1.0f);
   DiscretiseOptions d;
@@ -49,6 +64,7 @@ TEST(GatherPipeline, AnElementPastTheSolutionIsRefused) {
   const Solution solution = solve(scene, surfaces, SolveOptions{});
   const std::vector<uint32_t> probes{uint32_t(surfaces.elements.size())};
   EXPECT_THROW(gatheredIndirect(scene, surfaces, solution, probes, RenderOptions{}), Error);
+  EXPECT_THROW(pixelDirectLight(scene, surfaces, probes, 16, 1), Error);
 }
 
 }  // namespace
