@@ -17,12 +17,17 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
+// The furnace's surfaces cut into about `elements` elements.
+SurfaceSet furnaceSurfaces(const Scene& furnace, size_t elements) {
+  DiscretiseOptions d;
+  d.elementBudget = elements;
+  d.orientByLight = false;
+  return discretise(furnace, d);
+}
+
 TEST(GatherPipeline, TheGatheredIndirectLightOfAFurnaceIsItsClosedForm) {
   const Scene scene = builtin::furnace(0.5f, 1.0f);
-  DiscretiseOptions d;
-  d.elementBudget = 400;
-  d.orientByLight = false;
-  SurfaceSet surfaces = discretise(scene, d);
+  SurfaceSet surfaces = furnaceSurfaces(scene, 400);
   SolveOptions o;
   o.method = "progressive";
   o.settings.set("unshot", 1e-6);
@@ -44,10 +49,7 @@ TEST(GatherPipeline, TheGatheredIndirectLightOfAFurnaceIsItsClosedForm) {
 // the emitters' exact factors summing to 1, whatever the points.
 TEST(GatherPipeline, ThePixelsDirectLightInAFurnaceIsItsClosedForm) {
   const Scene scene = builtin::furnace(0.5f, 1.0f);
-  DiscretiseOptions d;
-  d.elementBudget = 400;
-  d.orientByLight = false;
-  const SurfaceSet surfaces = discretise(scene, d);
+  const SurfaceSet surfaces = furnaceSurfaces(scene, 400);
   std::vector<uint32_t> probes;
   for (uint32_t e = 0; e < surfaces.elements.size(); e += 29) probes.push_back(e);
   const std::vector<Rgb> direct = pixelDirectLight(scene, surfaces, probes, 64, 1);
@@ -57,10 +59,7 @@ TEST(GatherPipeline, ThePixelsDirectLightInAFurnaceIsItsClosedForm) {
 
 TEST(GatherPipeline, AnElementPastTheSolutionIsRefused) {
   const Scene scene = builtin::furnace(0.5f, 1.0f);
-  DiscretiseOptions d;
-  d.elementBudget = 24;
-  d.orientByLight = false;
-  SurfaceSet surfaces = discretise(scene, d);
+  SurfaceSet surfaces = furnaceSurfaces(scene, 24);
   const Solution solution = solve(scene, surfaces, SolveOptions{});
   const std::vector<uint32_t> probes{uint32_t(surfaces.elements.size())};
   EXPECT_THROW(gatheredIndirect(scene, surfaces, solution, probes, RenderOptions{}), Error);
