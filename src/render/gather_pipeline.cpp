@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+
 #include "core/random.h"
 #include "luxel/error.h"
 #include "render/corner_values.h"
@@ -126,6 +128,9 @@ std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, 
   std::vector<float> weights(shown.elements.size(), 0.0f);
   for (uint32_t e = 0; e < shown.elements.size(); ++e) weights[e] = slot[pipeline.mesh().parent(e)] >= 0 ? 1.0f : 0.0f;
   VertexGather vertices(shown, pipeline.finalGather(), options.gatherRays, options.seed, weights, &pipeline.mesh());
+  tbb::parallel_for(uint32_t(0), uint32_t(shown.elements.size()), [&](uint32_t e) {
+    if (weights[e] > 0.0f) vertices.corners(e);
+  });
   // Over each piece, the interpolated field's mean is its corners' (exact on triangles and
   // parallelograms); over the element, the pieces' by area.
   std::vector<Rgb> out(elements.size(), Rgb(0.0f));

@@ -55,9 +55,9 @@ class GatherPipeline {
 };
 
 // The indirect irradiance an hq render's vertex gather shows (`options`' gather settings, three
-// bounces by default), averaged over each of the solved `elements`: the irradiance a picture of
-// them would interpolate, less the direct light it traces. For judging the gather against
-// path-traced probes (`luxel bench hierarchical`).
+// bounces by default), averaged over each of the solved `elements` (distinct): the irradiance a
+// picture of them would interpolate, less the direct light it traces. For judging the gather
+// against path-traced probes (`luxel bench hierarchical`).
 std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, const Solution& solution,
                                   std::span<const uint32_t> elements, const RenderOptions& options);
 
