@@ -31,10 +31,10 @@ struct RenderOptions {
   // Where HighQuality finds the indirect light (render/final_gather.h).
   enum class Indirect {
     // VertexGather up to kMaxAutoGatherElements solved elements, Interpolated above. Against
-    // path-traced probes the gathered irradiance is nearer on every scene measured
-    // (docs/performance.md, "What the gather shows"); past about four million elements its state
-    // (some 400 bytes an element over three gathered bounces) and time take a 10M-face render
-    // from 7.6 to 10.4 GB and from 148 to 227 s.
+    // path-traced probes the gathered irradiance is nearer on every scene measured; past a few
+    // million elements the gather's state (hundreds of bytes an element over three gathered
+    // bounces) and time cost more than a render of that size can spend (docs/performance.md,
+    // "What the gather shows").
     Auto,
     // The element solution's indirect irradiance, interpolated: the fastest, but the
     // discretisation shows (patches shooting their mean, elements averaged across contacts).

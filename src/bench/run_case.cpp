@@ -212,14 +212,15 @@ CaseResult runCase(const Case& c, const Options& options) {
       result.probeGatherSeconds = secondsSince(gatherStart);
       const std::vector<Rgb> pixelDirect =
           pixelDirectLight(scene, surfaces, probes.elements, kProbePixelDirectSamples, RenderOptions{}.seed);
-      std::vector<Rgb> gatheredAll(sol.irradiance.size(), Rgb(std::numeric_limits<float>::quiet_NaN()));
-      std::vector<Rgb> gatheredTotal = gatheredAll;
+      // Per element, as probeError reads them (NaN where no probe is).
+      std::vector<Rgb> renderedIndirect(sol.irradiance.size(), Rgb(std::numeric_limits<float>::quiet_NaN()));
+      std::vector<Rgb> rendered = renderedIndirect;
       for (size_t i = 0; i < probes.elements.size(); ++i) {
-        gatheredAll[probes.elements[i]] = gathered[i];
-        gatheredTotal[probes.elements[i]] = gathered[i] + pixelDirect[i];
+        renderedIndirect[probes.elements[i]] = gathered[i];
+        rendered[probes.elements[i]] = gathered[i] + pixelDirect[i];
       }
-      result.probeGatheredError = probeError(probes, gatheredTotal);
-      result.probeGatheredIndirectError = probeError(probeDifference(probes, direct), gatheredAll);
+      result.probeGatheredError = probeError(probes, rendered);
+      result.probeGatheredIndirectError = probeError(probeDifference(probes, direct), renderedIndirect);
       auto total = [](Rgb c) { return double(c.r) + double(c.g) + double(c.b); };
       for (size_t i = 0; i < probes.elements.size(); ++i) {
         const uint32_t e = probes.elements[i];

@@ -225,7 +225,7 @@ VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather
     // Which vertices are solved elements' corners (weight 1 on one of them: the splits' coordinates
     // are exact binary fractions), and where the others lie in a solved element.
     const SurfaceSet& solved = refined_->solved();
-    solvedCorners_.assign(solved.elements.size() * 4, kNoParent);
+    solvedCorners_.assign(solved.elements.size() * 4, kNoVertex);
     std::vector<uint8_t> isCorner(vertices_.size(), 0);
     for (uint32_t e = 0; e < ne; ++e) {
       const uint32_t parent = refined_->parent(e);
@@ -333,7 +333,7 @@ void VertexGather::resolveVertex(uint32_t vi) {
     Rgb interpolated(0.0f);
     for (size_t k = 0; k < 4; ++k) {
       if (w[k] <= 0.0f) continue;
-      if (corner[k] == kNoParent) return gatherVertex(vi);  // a solved corner no split element has
+      if (corner[k] == kNoVertex) return gatherVertex(vi);  // a solved corner no split element has
       once(vertexState_[corner[k]], [&] { gatherVertex(corner[k]); });
       const Vertex& c = vertices_[corner[k]];
       if (c.inside || glm::length(v.position - c.position) * kInterpolationReach > c.reach) return gatherVertex(vi);

@@ -177,6 +177,7 @@ class VertexGather {
     Vec2 local{0.0f};
   };
   static constexpr uint32_t kNoParent = ~uint32_t(0);
+  static constexpr uint32_t kNoVertex = ~uint32_t(0);
   void gatherVertex(uint32_t v);
   void resolveVertex(uint32_t v);
   template <typename Publish>
@@ -188,7 +189,7 @@ class VertexGather {
   std::vector<uint32_t> vertexOf_;  // 4 slots per element
   std::vector<Vertex> vertices_;
   const GatherMesh* refined_;
-  std::vector<uint32_t> solvedCorners_;  // on a split mesh: 4 vertices per solved element
+  std::vector<uint32_t> solvedCorners_;  // on a split mesh: 4 vertices per solved element, or kNoVertex
   std::atomic<size_t> traced_{0};
   std::vector<Rgb> corners_;  // 4 slots per element, valid once the element's state is done
   std::unique_ptr<std::atomic<uint8_t>[]> vertexState_, elementState_;

@@ -110,7 +110,6 @@ std::vector<float> pixelsSeen(const RayTracer& tracer, const SurfaceSet& shown, 
   return seen;
 }
 
-
 }  // namespace
 
 void validateRenderOptions(const RenderOptions& o) {

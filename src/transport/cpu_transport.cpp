@@ -35,7 +35,6 @@ constexpr size_t kPairsPerBatch = 128;
 constexpr int kMaxAnalyticSide = 2;
 // Receiver patches with fewer elements than this are not shaft-tested.
 constexpr size_t kMinElementsToClassify = 4;
-// Faces a shaft test examines before it gives up on proving a pair clear.
 // Patch-pair classification keeps one byte per pair: up to 64 MiB.
 constexpr size_t kMaxClassifiedPatches = 8192;
 
