@@ -294,30 +294,41 @@ void VertexGather::once(std::atomic<uint8_t>& state, Publish&& publish) {
   while (state.load(std::memory_order_acquire) != kDone) state.wait(kRunning, std::memory_order_acquire);
 }
 
-void VertexGather::gatherVertex(uint32_t vi) {
-  Vertex& v = vertices_[vi];
-  const float length = glm::length(v.normal);
-  if (!(length > 0.0f)) return;
-  const Vec3 n = v.normal / length;
-  const Vec3 towardsCentroids = v.centroids / float(v.slots) - v.position;
-  const Vec3 origin = v.position + 0.01f * towardsCentroids + rayOffsetFor(surfaces_.sceneExtent) * n;
-  const int count = v.side * v.side;
+VertexGather::PointGather VertexGather::gatherAt(Vec3 position, Vec3 n, Vec3 towards, int side, uint32_t index) const {
+  PointGather out;
+  const Vec3 origin = position + 0.01f * (towards - position) + rayOffsetFor(surfaces_.sceneExtent) * n;
+  const int count = side * side;
   std::vector<Vec3> dirs(static_cast<size_t>(count));
-  HemisphereStrata(n, v.side, vi, seed_).directions(HemisphereStrata::Warp::Cosine, dirs);
+  HemisphereStrata(n, side, index, seed_).directions(HemisphereStrata::Warp::Cosine, dirs);
   std::vector<RTCRayHit> hits(dirs.size());
   for (size_t k = 0; k < hits.size(); ++k)
     hits[k].ray = makeRay(origin, dirs[k], 0.0f, std::numeric_limits<float>::infinity());
   // Cosine-distributed: the irradiance is pi times the mean radiance.
   const std::vector<Rgb> weights(static_cast<size_t>(count), Rgb(std::numbers::pi_v<float> / float(count)));
-  Rgb sum(0.0f);
-  const std::vector<Rgb*> targets(static_cast<size_t>(count), &sum);
-  const size_t backs = gather_.add(hits, weights, targets, hashCombine(seed_, vi));
-  v.irradiance = sum;
-  v.inside = 2 * backs > size_t(count);
+  const std::vector<Rgb*> targets(static_cast<size_t>(count), &out.irradiance);
+  const size_t backs = gather_.add(hits, weights, targets, hashCombine(seed_, index));
+  out.inside = 2 * backs > size_t(count);
   for (const RTCRayHit& h : hits)
-    if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID) v.reach = std::min(v.reach, h.ray.tfar);
+    if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID) out.reach = std::min(out.reach, h.ray.tfar);
+  return out;
+}
+
+void VertexGather::gatherVertex(uint32_t vi) {
+  Vertex& v = vertices_[vi];
+  const float length = glm::length(v.normal);
+  if (!(length > 0.0f)) return;
+  const PointGather g = gatherAt(v.position, v.normal / length, v.centroids / float(v.slots), v.side, vi);
+  v.irradiance = g.irradiance;
+  v.inside = g.inside;
+  v.reach = g.reach;
   v.traced = true;
   traced_.fetch_add(1, std::memory_order_relaxed);
+}
+
+VertexGather::VertexView VertexGather::vertex(uint32_t vi) const {
+  const Vertex& v = vertices_[vi];
+  const float length = glm::length(v.normal);
+  return {v.position, length > 0.0f ? v.normal / length : Vec3(0.0f), v.irradiance, v.reach, v.side, v.inside, v.traced};
 }
 
 // A vertex the splits made is interpolated from its solved element's corners (gathered first: they

@@ -159,6 +159,30 @@ class VertexGather {
   size_t verticesGathered() const;
   size_t verticesTraced() const { return traced_.load(std::memory_order_relaxed); }
 
+  // What GatherRefinement (render/gather_refinement.h) reads of the vertices: corner c of element
+  // e is vertex vertexOf(e, c), shared by the corners that meet on one smooth surface; a vertex's
+  // fields are valid once an element that has it was gathered (corners()).
+  uint32_t vertexOf(uint32_t e, int c) const { return vertexOf_[size_t(e) * 4 + size_t(c)]; }
+  struct VertexView {
+    Vec3 position;
+    Vec3 normal;  // unit
+    Rgb irradiance;
+    float reach;  // the nearest hit of its rays (infinite when interpolated or nothing was hit)
+    int side;     // its rays' strata per side
+    bool inside;
+    bool traced;
+  };
+  VertexView vertex(uint32_t v) const;
+  // A gather at a point of the surfaces that is no vertex, as a vertex is gathered: side x side
+  // cosine strata from `position` (moved a hundredth of the way towards `towards`, a point inside
+  // its element), seeded by `index` (distinct from every vertex's: vertexCount() and up).
+  struct PointGather {
+    Rgb irradiance{0.0f};
+    float reach = std::numeric_limits<float>::infinity();
+    bool inside = false;
+  };
+  PointGather gatherAt(Vec3 position, Vec3 normal, Vec3 towards, int side, uint32_t index) const;
+
  private:
   struct Vertex {
     Vec3 position{0.0f};

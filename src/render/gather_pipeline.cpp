@@ -3,12 +3,15 @@
 
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 #include <tbb/parallel_for.h>
 
+#include "core/position_key.h"
 #include "core/random.h"
 #include "luxel/error.h"
 #include "render/corner_values.h"
+#include "render/gather_refinement.h"
 #include "trace/element_polygons.h"
 
 namespace luxel {
@@ -124,25 +127,29 @@ std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, 
   const SurfaceSet& shown = pipeline.shown();
   std::vector<int64_t> slot(solved.elements.size(), -1);
   for (size_t i = 0; i < elements.size(); ++i) slot[elements[i]] = int64_t(i);
-  // The rays go to the asked elements' pieces alike, as an image's go by pixels.
+  // The rays go to the asked elements' pieces alike, as an image's go by pixels, and to the
+  // elements around them: in a picture those are seen too, and a refined piece's edges follow
+  // its neighbours' lattices (GatherRefinement).
   std::vector<float> weights(shown.elements.size(), 0.0f);
-  for (uint32_t e = 0; e < shown.elements.size(); ++e) weights[e] = slot[pipeline.mesh().parent(e)] >= 0 ? 1.0f : 0.0f;
+  std::unordered_set<PositionKey, PositionKeyHash> around;
+  for (uint32_t e = 0; e < shown.elements.size(); ++e)
+    if (slot[pipeline.mesh().parent(e)] >= 0)
+      for (int c = 0; c < shown.elements[e].polygon.count; ++c)
+        around.insert(positionKey(shown.elements[e].polygon.v[size_t(c)]));
+  for (uint32_t e = 0; e < shown.elements.size(); ++e)
+    for (int c = 0; c < shown.elements[e].polygon.count && weights[e] == 0.0f; ++c)
+      if (around.count(positionKey(shown.elements[e].polygon.v[size_t(c)]))) weights[e] = 1.0f;
   VertexGather vertices(shown, pipeline.finalGather(), options.gatherRays, options.seed, weights, &pipeline.mesh());
-  tbb::parallel_for(uint32_t(0), uint32_t(shown.elements.size()), [&](uint32_t e) {
-    if (weights[e] > 0.0f) vertices.corners(e);
-  });
-  // Over each piece, the interpolated field's mean is its corners' (exact on triangles and
-  // parallelograms); over the element, the pieces' by area.
+  const GatherRefinement refinement(shown, vertices, weights);
+  // Over each piece, the mean of what the picture interpolates; over the element, the pieces' by
+  // area.
   std::vector<Rgb> out(elements.size(), Rgb(0.0f));
   std::vector<double> area(elements.size(), 0.0);
   for (uint32_t e = 0; e < shown.elements.size(); ++e) {
     const int64_t i = slot[pipeline.mesh().parent(e)];
     if (i < 0) continue;
     const Element& el = shown.elements[e];
-    const Rgb* c = vertices.corners(e);
-    Rgb mean(0.0f);
-    for (int k = 0; k < el.polygon.count; ++k) mean += c[k];
-    out[size_t(i)] += mean * (el.area / float(el.polygon.count));
+    out[size_t(i)] += refinement.mean(e) * el.area;
     area[size_t(i)] += el.area;
   }
   for (size_t i = 0; i < out.size(); ++i)

@@ -29,6 +29,7 @@
 #include "render/final_gather.h"
 #include "render/gather_mesh.h"
 #include "render/gather_pipeline.h"
+#include "render/gather_refinement.h"
 #include "render/normal_map.h"
 #include "trace/hemisphere_rays.h"
 #include "trace/ray_tracer.h"
@@ -201,13 +202,17 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const FinalGather& finalGather = pipeline.finalGather();
   const float rayOffset = rayOffsetFor(surfaces.sceneExtent);
   const Vec3 up = glm::normalize(scene.up);
-  // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at
-  // vertices, each vertex when a pixel first needs it.
+  // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at the
+  // vertices of the elements the pixels see (an element a pixel centre misses, gathered when a
+  // sample first needs it), refined into lattices where the corners cannot say the light's shape.
   std::optional<VertexGather> vertexGathered;
-  if (vertexGather)
-    vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed,
-                           pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options),
-                           &mesh);
+  std::optional<GatherRefinement> refinement;
+  if (vertexGather) {
+    const std::vector<float> seen =
+        pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options);
+    vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed, seen, &mesh);
+    refinement.emplace(shown, *vertexGathered, seen, seen);
+  }
   const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
 
   // Background: the sky where there is one.
@@ -306,8 +311,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
         if (m.emissionTexture >= 0 && m.isEmissive()) le *= scene.textures[size_t(m.emissionTexture)].sample(uv);
         sum += float(weight) * le;
         if (indirect == Indirect::Interpolated || vertexGather) {
-          const Rgb* c = vertexGathered ? vertexGathered->corners(e) : &corners[size_t(e) * 4];
-          sum += float(weight) * rho * (kInvPi * interpolateCorners(c, count, u, v));
+          const Rgb irradiance = refinement ? refinement->irradianceAt(e, u, v)
+                                            : interpolateCorners(&corners[size_t(e) * 4], count, u, v);
+          sum += float(weight) * rho * (kInvPi * irradiance);
         }
         if (!hq) continue;
 
