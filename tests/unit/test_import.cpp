@@ -18,6 +18,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -436,9 +437,37 @@ TEST(ImportSpecular, KsAndNsGiveTheHighlightWhereIllumAsksForOne) {
   expectRgb(material(s, "hot").specular, Rgb(1.0f, 0.5f, 0.25f));
   EXPECT_EQ(material(s, "hot").shininess, luxel::kMaxShininess);
   const std::string where = (dir / "m.obj").string() + ": material 'hot': ";
-  ASSERT_EQ(s.warnings.size(), 2u);
+  ASSERT_EQ(s.warnings.size(), 3u);
   EXPECT_EQ(s.warnings[0], where + "specular colour (1.5, 0.5, 0.25) clamped to [0, 1]");
   EXPECT_EQ(s.warnings[1], where + "shininess 20000 clamped to 10000");
+  // illum 4 is glass: light would pass it (ImportTransmission).
+  EXPECT_NE(s.warnings[2].find("material 'glass' lets light through"), std::string::npos) << s.warnings[2];
+}
+
+// Glass in a file: luxel's surfaces are opaque, so a window would close the room it is in, and
+// the import says which materials the file meant to let light through (Sibenik's five glasses
+// made its nave a closed box, lit only by what leaks through the solve: docs/performance.md).
+TEST(ImportTransmission, GlassIsNamedInOneWarning) {
+  const fs::path dir = tmpDir("transmission");
+  writeFile(dir / "m.mtl",
+            "newmtl dissolved\nKd 0.5 0.5 0.5\nd 0.5\nillum 2\n"
+            "newmtl clear\nKd 0 0 0\nTf 0.5 0.5 0.5\nillum 6\n"
+            "newmtl stained\nKd 0 0 0\nTf 0.07 0.63 0.07\nillum 4\n"
+            // A black filter lets nothing through, and illum 2 has no transparency whatever Tf says.
+            "newmtl sealed\nKd 0 0 0\nTf 0 0 0\nillum 6\n"
+            "newmtl stone\nKd 0.7 0.7 0.6\nTf 1 1 1\nd 1\nillum 2\n"
+            "newmtl plain\nKd 0.5 0.5 0.5\n");
+  writeFile(dir / "m.obj", trianglePerMaterial("m.mtl", {"dissolved", "clear", "stained", "sealed", "stone", "plain"}));
+  const Scene s = luxel::importMeshFile(dir / "m.obj");
+  s.validate();
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].rfind((dir / "m.obj").string() + ": materials 'dissolved', 'clear', 'stained' let light "
+                                "through in the file", 0),
+            0u)
+      << s.warnings[0];
+  // Imported as they are: opaque, of the file's reflectance.
+  expectRgb(material(s, "clear").reflectance, Rgb(0.0f));
+  expectRgb(material(s, "dissolved").reflectance, Rgb(0.5f));
 }
 
 // McGuire's glossy box: the sphere and the short box have highlights (illum 2, Ks 0.9 and 0.8,
@@ -677,6 +706,31 @@ TEST(ImportGltf, EmissiveStrengthLightsCamerasAndEmbeddedTexture) {
   Scene s = luxel::importMeshFile(dir / "scene.gltf");
   EXPECT_EQ(s.name, "scene");
   checkGltfScene(s);
+}
+
+// glTF glass: KHR_materials_transmission, or alpha blending below full opacity (an opaque
+// material's base colour alpha means nothing and is not glass).
+TEST(ImportGltf, TransmissionAndBlendingAreNamedAsGlass) {
+  const fs::path dir = tmpDir("gltf-glass");
+  const std::string buffer = gltfBuffer();
+  const std::string uri = "data:application/octet-stream;base64," + base64(buffer);
+  const auto glow = [](nlohmann::json& doc) -> nlohmann::json& { return doc["materials"][0]; };
+  nlohmann::json transmitted = gltfDoc(uri, buffer.size());
+  glow(transmitted)["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", 0.9}};
+  transmitted["extensionsUsed"].push_back("KHR_materials_transmission");
+  nlohmann::json blended = gltfDoc(uri, buffer.size());
+  glow(blended)["alphaMode"] = "BLEND";
+  glow(blended)["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 0.6, 0.7, 0.4};
+  nlohmann::json opaque = gltfDoc(uri, buffer.size());
+  glow(opaque)["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 0.6, 0.7, 0.4};
+  for (const auto& [name, doc, glass] : {std::tuple{"transmitted", transmitted, true},
+                                         std::tuple{"blended", blended, true}, std::tuple{"opaque", opaque, false}}) {
+    writeFile(dir / (std::string(name) + ".gltf"), doc.dump(1));
+    const Scene s = luxel::importMeshFile(dir / (std::string(name) + ".gltf"));
+    size_t named = 0;
+    for (const std::string& w : s.warnings) named += w.find("material 'glow' lets light through") != std::string::npos;
+    EXPECT_EQ(named, glass ? 1u : 0u) << name;
+  }
 }
 
 TEST(ImportGltf, BinaryGlb) {
