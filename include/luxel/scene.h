@@ -68,6 +68,10 @@ struct Material {
   // wall. Faces whose back receives more direct light than their front are turned round at
   // discretisation (docs/algorithms.md, "Sides and winding").
   bool twoSided = false;
+  // The file says light passes through it (glass: OBJ d below 1 or a transparent illum with a
+  // filter, glTF transmission or blending). luxel's surfaces are opaque, so such a material blocks
+  // light as a surface of its reflectance would; loadScene names the ones meshes use in a warning.
+  bool transmits = false;
 
   bool isEmissive() const { return emission.r > 0.0f || emission.g > 0.0f || emission.b > 0.0f; }
   // Whether the viewer draws a highlight: a positive exponent and a specular colour that is not black.

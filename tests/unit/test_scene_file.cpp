@@ -208,6 +208,35 @@ TEST(SceneFile, OverridesAndAddsMaterialsByName) {
   expectVec(lamp.reflectance, Vec3(0));
 }
 
+// Omitted materials take their meshes with them: a file's own (both files' "paint") and those a
+// mesh entry gives one ("lamp"); the rest stay, and the materials themselves are kept.
+TEST(SceneFile, OmittedMaterialsLeaveTheirMeshesOut) {
+  fs::path dir = tmpDir("omit");
+  writeQuad(dir / "a" / "quad.obj", "paint");
+  writeQuad(dir / "b" / "quad.obj", "glass");
+  writeFile(dir / "scene.json", R"({
+    "meshes": [
+      { "file": "a/quad.obj" },
+      { "file": "b/quad.obj", "translate": [0, 0, 1] },
+      { "file": "b/quad.obj", "translate": [0, 0, 2], "material": "lamp" },
+      { "file": "a/quad.obj", "translate": [0, 0, 3] }
+    ],
+    "materials": { "glass": { "omit": true }, "lamp": { "emission": 1, "omit": true }, "paint": { "omit": false } }
+  })");
+  const Scene s = luxel::loadSceneFile(dir / "scene.json");
+  ASSERT_EQ(s.meshes.size(), 2u);
+  for (const luxel::Mesh& m : s.meshes) EXPECT_EQ(s.materials[m.material].name, "paint");
+  EXPECT_NEAR(s.meshes[1].positions[0].z, 3.0f, 1e-6f);
+  EXPECT_GE(s.findMaterial("glass"), 0);
+  // Glass a scene file leaves out is not warned about; glass it keeps is.
+  writeFile(dir / "b" / "quad.mtl", "newmtl glass\nKd 0 0 0\nTf 0.5 0.5 0.5\nillum 6\n");
+  const Scene kept = luxel::loadScene((dir / "b" / "quad.obj").string());
+  ASSERT_EQ(kept.warnings.size(), 1u);
+  EXPECT_NE(kept.warnings[0].find("material 'glass' lets light through"), std::string::npos) << kept.warnings[0];
+  EXPECT_TRUE(luxel::loadScene((dir / "scene.json").string()).warnings.empty());
+  expectError("omit-type", R"({ "materials": { "glass": { "omit": "yes" } } })", {"/materials/glass/omit"});
+}
+
 TEST(SceneFile, EmissionStrengthScalesAnImportedEmission) {
   fs::path dir = tmpDir("strength");
   writeFile(dir / "lamp.obj",

@@ -175,17 +175,6 @@ class AssimpImport {
       materialMap_[i] = int(scene_.materials.size());
       scene_.materials.push_back(importMaterial(i));
     }
-    if (!transmissive_.empty()) {
-      std::string names;
-      for (const std::string& n : transmissive_) names += (names.empty() ? "'" : ", '") + n + "'";
-      scene_.warnings.push_back(fmt::format(
-          "{}: material{} {} let{} light through in the file (glass: OBJ d, Tr or Tf, glTF transmission or "
-          "blending); luxel's surfaces are opaque, so {} block it as surfaces of {} reflectance (black glass "
-          "closes a room: what the solve then puts inside is leakage). Leave such faces out where light should "
-          "pass, or give them a reflectance",
-          file_, transmissive_.size() > 1 ? "s" : "", names, transmissive_.size() > 1 ? "" : "s",
-          transmissive_.size() > 1 ? "they" : "it", transmissive_.size() > 1 ? "their" : "its"));
-    }
   }
 
   // Whether the file says light passes through the material: OBJ's dissolve below 1 (d, or Tr),
@@ -275,7 +264,7 @@ class AssimpImport {
     if (am.Get(AI_MATKEY_TWOSIDED, twoSided) == AI_SUCCESS) mat.twoSided = twoSided != 0;
 
     importSpecular(am, mat);
-    if (transmits(am)) transmissive_.push_back(mat.name);
+    mat.transmits = transmits(am);
 
     mat.reflectanceTexture =
         materialTexture(am, mat.name, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE});
@@ -700,7 +689,6 @@ class AssimpImport {
   std::optional<GltfExtras> gltf_;
   Scene scene_;
   std::vector<int> materialMap_;             // Assimp material index -> scene material, -1 unused
-  std::vector<std::string> transmissive_;     // materials the file says light passes through
   std::map<std::string, int> textureIndex_;  // each image decoded once per use
   std::set<std::string> bumpNormalMaps_;     // images in a bump slot read as normal maps
 };

@@ -1,7 +1,10 @@
 // What `luxel render SCENE` accepts: a built-in scene name, a .json scene file, or a mesh file.
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -10,6 +13,32 @@
 #include "luxel/import.h"
 
 namespace luxel {
+namespace {
+
+// One warning naming the glass that meshes of the scene use (Material::transmits): what the file
+// meant to let light through, luxel blocks. Given here, once the whole scene is known, so that a
+// scene file that leaves the glass out (/materials/NAME/omit) hears nothing of it.
+void warnAboutGlass(Scene& scene) {
+  std::vector<uint8_t> used(scene.materials.size(), 0);
+  for (const Mesh& m : scene.meshes)
+    if (m.material < used.size()) used[m.material] = 1;
+  std::vector<std::string> names;
+  for (size_t i = 0; i < scene.materials.size(); ++i)
+    if (used[i] && scene.materials[i].transmits &&
+        std::find(names.begin(), names.end(), scene.materials[i].name) == names.end())
+      names.push_back(scene.materials[i].name);
+  if (names.empty()) return;
+  const bool many = names.size() > 1;
+  scene.warnings.push_back(fmt::format(
+      "scene '{}': material{} '{}' let{} light through in the file (glass: OBJ d, or a transparent illum with Tf; "
+      "glTF transmission or blending); luxel's surfaces are opaque, so {} block{} it as a surface of {} reflectance "
+      "would, and glass that closes a room leaves it lit by leakage alone. Leave such glass out where light should "
+      "pass (a scene file's /materials/NAME/omit), or give it a reflectance",
+      scene.name, many ? "s" : "", fmt::join(names, "', '"), many ? "" : "s", many ? "they" : "it",
+      many ? "" : "s", many ? "their" : "its"));
+}
+
+}  // namespace
 
 Scene loadScene(std::string_view spec) {
   Scene scene;
@@ -31,6 +60,7 @@ Scene loadScene(std::string_view spec) {
     scene = importMeshFile(path);
   }
   scene.validate();
+  warnAboutGlass(scene);
   return scene;
 }
 

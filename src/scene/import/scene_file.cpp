@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 #include <optional>
 #include <string_view>
 #include <system_error>
@@ -203,6 +204,8 @@ class SceneFileLoader {
                                     a.material));
       for (size_t m = a.firstMesh; m < a.endMesh; ++m) scene_.meshes[m].material = uint32_t(index);
     }
+    // Meshes of omitted materials go, whichever way they got them (a file's, or /meshes' material).
+    std::erase_if(scene_.meshes, [&](const Mesh& m) { return omitted_.count(scene_.materials[m.material].name) > 0; });
     if (auto it = doc.find("replaceLights"); it != doc.end() && in_.boolean(*it, "/replaceLights")) {
       // The lights of the built-in scene, the base and the mesh files go; /lights replaces them.
       scene_.lights.clear();
@@ -556,7 +559,9 @@ class SceneFileLoader {
     in_.keys(
         spec, ptr,
         {"reflectance", "emission", "emissionStrength", "twoSided", "texture", "emissionTexture", "specular",
-         "shininess", "normalTexture", "normalScale"});
+         "shininess", "normalTexture", "normalScale", "omit"});
+    if (auto it = spec.find("omit"); it != spec.end() && in_.boolean(*it, Reader::child(ptr, "omit")))
+      omitted_.insert(name);
     std::vector<size_t> targets;
     for (size_t i = 0; i < scene_.materials.size(); ++i)
       if (scene_.materials[i].name == name) targets.push_back(i);
@@ -761,6 +766,7 @@ class SceneFileLoader {
   Reader in_;
   Scene scene_;
   std::map<std::string, int> textures_;  // textures this file loaded, by decoding and path
+  std::set<std::string> omitted_;         // materials whose meshes are left out (/materials/NAME/omit)
 };
 
 }  // namespace
