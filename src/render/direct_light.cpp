@@ -63,8 +63,8 @@ bool DirectLight::seesWhole(uint32_t element, size_t k) const {
   return whole;
 }
 
-DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces, const SurfaceSet* receivers)
-    : scene_(scene), up_(glm::normalize(scene.up)) {
+DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces, const SurfaceSet* receivers, bool skies)
+    : scene_(scene), skies_(skies), up_(glm::normalize(scene.up)) {
   for (const EmittingPolygon& p : emittingPolygons(surfaces))
     emitters_.push_back({p.polygon, p.normal, p.polygon.area(), p.exitance, Sides::Front});
   float total = 0.0f;
@@ -144,6 +144,7 @@ Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, std::span<con
   for (const Vec2& u : points)
     for (size_t k = 0; k < scene_.lights.size(); ++k) {
       const Light& light = scene_.lights[k];
+      if (!skies_ && isSkyLight(light)) continue;
       // The cosine at the shading normal; a direction behind the geometric plane is blocked by the
       // surface (never the case when shading == n: sampleLight gives those no light).
       const Vec2 ul = rotated(u, emitters_.size() + k);

@@ -32,7 +32,10 @@ class DirectLight {
   // point of the element sees all of the emitter, so its light there is the exact factor F, with
   // no shadow ray. Scenes of many small faces put more faces in a shaft than are worth testing
   // (the transport's limit), so there nothing is culled and receivers are not kept.
-  DirectLight(const Scene& scene, const SurfaceSet& surfaces, const SurfaceSet* receivers = nullptr);
+  // `skies` false: the scene's skies are left out (an hq render's vertex gather takes their light
+  // instead, render/final_gather.h).
+  DirectLight(const Scene& scene, const SurfaceSet& surfaces, const SurfaceSet* receivers = nullptr,
+              bool skies = true);
   ~DirectLight();
   DirectLight(const DirectLight&) = delete;
   DirectLight& operator=(const DirectLight&) = delete;
@@ -85,6 +88,7 @@ class DirectLight {
   std::unique_ptr<Shafts> shafts_;
 
   const Scene& scene_;
+  bool skies_ = true;
   Vec3 up_;
   std::vector<Emitter> emitters_;
   std::vector<float> cdf_;  // by power, for scenes with many emitters

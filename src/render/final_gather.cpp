@@ -19,6 +19,7 @@
 #include "render/gather_mesh.h"
 #include "trace/hemisphere_rays.h"
 #include "transport/form_factor.h"
+#include "transport/light_sampling.h"
 
 namespace luxel {
 namespace {
@@ -195,8 +196,13 @@ enum : uint8_t { kPending = 0, kRunning = 1, kDone = 2 };
 }  // namespace
 
 VertexGather::VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed,
-                           std::span<const float> elementWeights, const GatherMesh* refined)
+                           std::span<const float> elementWeights, const GatherMesh* refined, const Scene* skiesOf)
     : surfaces_(surfaces), gather_(gather), seed_(seed), refined_(refined && refined->isSplit() ? refined : nullptr) {
+  if (skiesOf) {
+    for (const Light& l : skiesOf->lights)
+      if (isSkyLight(l)) skies_.push_back(&l);
+    up_ = glm::normalize(skiesOf->up);
+  }
   const CornerGroups groups(surfaces, kDefaultCreaseCosine);
   const size_t ne = surfaces.elements.size();
   // Slots that share a position and a smooth surface (the group's first member names it) are one
@@ -308,6 +314,10 @@ VertexGather::PointGather VertexGather::gatherAt(Vec3 position, Vec3 n, Vec3 tow
   const std::vector<Rgb*> targets(static_cast<size_t>(count), &out.irradiance);
   const size_t backs = gather_.add(hits, weights, targets, hashCombine(seed_, index));
   out.inside = 2 * backs > size_t(count);
+  for (const RTCRayHit& h : hits)
+    if (h.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+      for (const Light* sky : skies_)
+        out.irradiance += weights[0] * skyRadiance(*sky, Vec3(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z), up_);
   for (const RTCRayHit& h : hits)
     if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID) out.reach = std::min(out.reach, h.ray.tfar);
   return out;

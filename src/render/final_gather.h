@@ -127,8 +127,14 @@ class VertexGather {
   // distance to the nearest surface its rays meet (Ward, Rubinstein and Clear, "A Ray Tracing
   // Solution for Diffuse Interreflection", SIGGRAPH 1988: irradiance caching's error bound).
   // The split's interior vertices are most of them, and most of them are far from everything.
+  // `skiesOf` (or null): the scene whose skies the gather takes too, from the rays that escape,
+  // for the pixels to interpolate with the indirect light instead of sampling per pixel. Seen
+  // through a window a sky is a few of a pixel's sixteen light points or none, a speckle; a
+  // vertex's hundreds of rays find it evenly. Only the gather the pixels read may: a lower level's
+  // corners are read at hits whose direct light, skies included, is traced there.
   VertexGather(const SurfaceSet& surfaces, const FinalGather& gather, int rays, uint32_t seed,
-               std::span<const float> elementWeights = {}, const GatherMesh* refined = nullptr);
+               std::span<const float> elementWeights = {}, const GatherMesh* refined = nullptr,
+               const Scene* skiesOf = nullptr);
   ~VertexGather();
   VertexGather(const VertexGather&) = delete;
   VertexGather& operator=(const VertexGather&) = delete;
@@ -210,6 +216,8 @@ class VertexGather {
   const SurfaceSet& surfaces_;
   const FinalGather& gather_;
   uint32_t seed_;
+  std::vector<const Light*> skies_;  // taken from escaping rays (skiesOf)
+  Vec3 up_{0.0f, 1.0f, 0.0f};
   std::vector<uint32_t> vertexOf_;  // 4 slots per element
   std::vector<Vertex> vertices_;
   const GatherMesh* refined_;

@@ -205,14 +205,21 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   // What the pixels interpolate: the solution's (indirect) irradiance, or the one gathered at the
   // vertices of the elements the pixels see (an element a pixel centre misses, gathered when a
   // sample first needs it), refined into lattices where the corners cannot say the light's shape.
+  // A vertex gather takes the skies as well (VertexGather's skiesOf), and the pixels trace the
+  // other lights.
   std::optional<VertexGather> vertexGathered;
   std::optional<GatherRefinement> refinement;
+  std::optional<DirectLight> skyless;
   if (vertexGather) {
     const std::vector<float> seen =
         pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options);
-    vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed, seen, &mesh);
+    const bool skies = std::any_of(scene.lights.begin(), scene.lights.end(), isSkyLight);
+    vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed, seen, &mesh,
+                           skies ? &scene : nullptr);
     refinement.emplace(shown, *vertexGathered, seen, seen);
+    if (skies) skyless.emplace(scene, surfaces, &shown, /*skies=*/false);
   }
+  const DirectLight& pixelDirect = skyless ? *skyless : direct;
   const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
 
   // Background: the sky where there is one.
@@ -328,7 +335,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
         for (int l = 0; l < weight; ++l)
           lightPoints[size_t(l)] = pixelPattern(uint32_t(s * weight + l), hashCombine(pattern, kLightPoints));
         sum += rho * kInvPi *
-               direct.sample(p, el.normal, shading, Sides::Front, std::span(lightPoints.data(), size_t(weight)), rng,
+               pixelDirect.sample(p, el.normal, shading, Sides::Front, std::span(lightPoints.data(), size_t(weight)), rng,
                              rayOffset, shadowRays, shadowValues, e);
         for (size_t k = before; k < shadowRays.size(); ++k) {
           shadowValues[k] *= rho * kInvPi;
