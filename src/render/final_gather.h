@@ -13,7 +13,8 @@
 // may be read per element instead of traced (ElementDirect).
 //
 // Emission met by a gather ray is not counted, nor is the sky met by one that escapes: both are
-// direct light, which the caller traces at the point itself.
+// direct light, which the caller traces at the point itself (a VertexGather asked to take the
+// skies counts them from its escaping rays instead: its skiesOf).
 #pragma once
 
 #include <atomic>
