@@ -128,7 +128,8 @@ GatherRefinement::GatherRefinement(const SurfaceSet& surfaces, VertexGather& ver
     const VertexGather::PointGather g = vertices.gatherAt(position, el.normal, el.centroid, side, centreIndex + e);
     // A centre inside a solid (one stands on the element) is refined too: its lattice keeps the
     // light beside the solid's foot apart from the hidden part.
-    const float gathered = channelSum(g.irradiance), interpolated = channelSum(interpolateCorners(c, polygon.count, centre, centre));
+    const float gathered = channelSum(g.irradiance);
+    const float interpolated = channelSum(interpolateCorners(c, polygon.count, centre, centre));
     if (!g.inside && std::abs(gathered - interpolated) <= kRefineDeviation * std::max(gathered, interpolated)) return;
     levels[e] = uint8_t(std::min(wanted, float(kMaxRefineLevels)));
   });
@@ -241,7 +242,8 @@ GatherRefinement::GatherRefinement(const SurfaceSet& surfaces, VertexGather& ver
     }
     pointValues[k] = interpolated;
     if (!trace) return;
-    const VertexGather::PointGather g = vertices.gatherAt(p.position, p.normal, p.towards, p.side, firstIndex + uint32_t(k));
+    const VertexGather::PointGather g =
+        vertices.gatherAt(p.position, p.normal, p.towards, p.side, firstIndex + uint32_t(k));
     traced[k] = 1;
     pointValues[k] = !g.inside ? g.irradiance : outsideWeight > 0.0f ? outside / outsideWeight : interpolated;
   });
@@ -315,7 +317,8 @@ Rgb GatherRefinement::irradianceAt(uint32_t e, float u, float v) const {
   }
   const float s = x - float(i), t = y - float(j);
   if (s + t <= 1.0f || i + j == lattice.n - 1)
-    return (1.0f - s - t) * values[lattice.at(i, j)] + s * values[lattice.at(i + 1, j)] + t * values[lattice.at(i, j + 1)];
+    return (1.0f - s - t) * values[lattice.at(i, j)] + s * values[lattice.at(i + 1, j)] +
+           t * values[lattice.at(i, j + 1)];
   return (1.0f - t) * values[lattice.at(i + 1, j)] + (1.0f - s) * values[lattice.at(i, j + 1)] +
          (s + t - 1.0f) * values[lattice.at(i + 1, j + 1)];
 }

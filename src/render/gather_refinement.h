@@ -2,15 +2,16 @@
 // lattice of gathered points. Next to a concave crease or a contact whose other side is lit, the
 // indirect irradiance falls off within a fraction of an element (the near surface's form factor
 // shrinks with the distance from it), and a straight line from the bright corner at the crease to
-// the far corners overstates the element's light: Sibenik's sunlit window sills came out at 2.4
-// times their path-traced irradiance on 13 cm elements, a mean over the element of gathers at its
-// own points was within 15% (docs/performance.md, "What the gather shows").
+// the far corners overstates the element's light (docs/performance.md, "What the gather shows":
+// Sibenik's sunlit sills).
 //
-// An element is refined when its corners' values differ by more than kRefineSpread of the largest
-// and one of its corners met a surface near: its lattice has 2^L points along each edge, L the
+// An element is refined when one of its corners met a surface nearer than half its size and a
+// gather at its centre differs from the corners' interpolation there by more than
+// kRefineDeviation (or lies inside a solid): its lattice has 2^L cells along each edge, L the
 // levels that bring the lattice's spacing within twice the nearest corner's reach (at most
-// kMaxRefineLevels), the bound of irradiance caching (Ward, Rubinstein and Clear, SIGGRAPH 1988)
-// that VertexGather's split vertices follow. A lattice point is gathered where one of its
+// kMaxRefineLevels, and in a picture at most what leaves a few pixels a cell), the bound of
+// irradiance caching (Ward, Rubinstein and Clear, SIGGRAPH 1988) that VertexGather's split
+// vertices follow. A lattice point is gathered where one of its
 // element's corners saw a surface nearer than half its distance from the point, and interpolated
 // from the corners elsewhere, so only the part of the element near the crease costs rays.
 //
