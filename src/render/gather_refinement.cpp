@@ -17,8 +17,10 @@ namespace {
 // Elements darker at every corner than this share of the seen corners' mean are not refined: what
 // their interpolation misses is no error anyone could see.
 constexpr float kRefineFloor = 0.01f;
-// A lattice finer than this many pixels a cell would gather what no pixel shows apart.
-constexpr float kPixelsPerCell = 16.0f;
+// A lattice finer than this many pixels a cell would gather what no pixel shows apart; coarser,
+// the light a crease takes from a sky stays underestimated (docs/performance.md, "The sky in the
+// gather").
+constexpr float kPixelsPerCell = 4.0f;
 
 float channelSum(const Rgb& c) { return c.r + c.g + c.b; }
 

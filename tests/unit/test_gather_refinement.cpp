@@ -124,7 +124,7 @@ TEST(GatherRefinement, NeighboursAgreeAlongTheirSharedEdges) {
   const SurfaceSet& surfaces = sill.surfaces;
   VertexGather vertices(surfaces, *sill.gather, 256, 5);
   std::vector<float> pixels(surfaces.elements.size());
-  for (uint32_t e = 0; e < pixels.size(); ++e) pixels[e] = surfaces.elements[e].centroid.z < 0.5f ? 60.0f : 1e6f;
+  for (uint32_t e = 0; e < pixels.size(); ++e) pixels[e] = surfaces.elements[e].centroid.z < 0.5f ? 15.0f : 1e6f;
   const GatherRefinement refinement(surfaces, vertices, pixels, pixels);
   int levels[kMaxRefineLevels + 1] = {};
   for (uint32_t e = 0; e < surfaces.elements.size(); ++e)
@@ -181,13 +181,13 @@ TEST(GatherRefinement, CornersStayWhereTheyWere) {
   }
 }
 
-// A picture's pixels bound the lattice: an element covering fewer than 64 pixels (4 cells of 16)
+// A picture's pixels bound the lattice: an element covering fewer than 16 pixels (4 cells of 4)
 // is not refined, whatever its light.
 TEST(GatherRefinement, FewPixelsKeepTheCorners) {
   const Sill sill;
   const SurfaceSet& surfaces = sill.surfaces;
   VertexGather vertices(surfaces, *sill.gather, 256, 5);
-  const std::vector<float> few(surfaces.elements.size(), 60.0f), many(surfaces.elements.size(), 1e6f);
+  const std::vector<float> few(surfaces.elements.size(), 15.0f), many(surfaces.elements.size(), 1e6f);
   const GatherRefinement coarse(surfaces, vertices, few, few), fine(surfaces, vertices, many, many);
   EXPECT_EQ(coarse.refinedElements(), 0u);
   EXPECT_GT(fine.refinedElements(), 0u);
