@@ -21,6 +21,7 @@
 #include "render/gather_pipeline.h"
 #include "session/solver_host.h"
 #include "transport/cpu_transport.h"
+#include "transport/light_sampling.h"
 
 namespace luxel::bench {
 namespace {
@@ -204,20 +205,26 @@ CaseResult runCase(const Case& c, const Options& options) {
       std::vector<Rgb> indirect(sol.irradiance.size());
       for (size_t e = 0; e < indirect.size(); ++e) indirect[e] = sol.irradiance[e] - sol.directIrradiance[e];
       result.probeIndirectError = probeError(probeDifference(probes, direct), indirect);
-      // What a picture shows there: the gathered indirect light and the direct light its pixels
-      // trace, each probe element's mean.
+      // What a picture shows there, each probe element's mean: the vertex gather's (the indirect
+      // light, and the skies' light as a render gathers them) and the direct light its pixels
+      // trace (the other lights). Its indirect part is that less the pixels' direct light of every
+      // light, so that it holds what interpolating the skies costs too.
       reportProgress(options.progress, c.name, 1.0, "gather at the probes");
+      const bool skies = std::any_of(scene.lights.begin(), scene.lights.end(), isSkyLight);
       const Clock::time_point gatherStart = Clock::now();
-      const std::vector<Rgb> gathered = gatheredIndirect(scene, surfaces, sol, probes.elements, RenderOptions{});
+      const std::vector<Rgb> gathered = gatheredIndirect(scene, surfaces, sol, probes.elements, RenderOptions{}, skies);
       result.probeGatherSeconds = secondsSince(gatherStart);
-      const std::vector<Rgb> pixelDirect =
-          pixelDirectLight(scene, surfaces, probes.elements, kProbePixelDirectSamples, RenderOptions{}.seed);
+      const std::vector<Rgb> pixelDirect = pixelDirectLight(scene, surfaces, probes.elements, kProbePixelDirectSamples,
+                                                            RenderOptions{}.seed, /*skies=*/false);
+      const std::vector<Rgb> allDirect =
+          skies ? pixelDirectLight(scene, surfaces, probes.elements, kProbePixelDirectSamples, RenderOptions{}.seed)
+                : pixelDirect;
       // Per element, as probeError reads them (NaN where no probe is).
       std::vector<Rgb> renderedIndirect(sol.irradiance.size(), Rgb(std::numeric_limits<float>::quiet_NaN()));
       std::vector<Rgb> rendered = renderedIndirect;
       for (size_t i = 0; i < probes.elements.size(); ++i) {
-        renderedIndirect[probes.elements[i]] = gathered[i];
         rendered[probes.elements[i]] = gathered[i] + pixelDirect[i];
+        renderedIndirect[probes.elements[i]] = rendered[probes.elements[i]] - allDirect[i];
       }
       result.probeGatheredError = probeError(probes, rendered);
       result.probeGatheredIndirectError = probeError(probeDifference(probes, direct), renderedIndirect);

@@ -118,7 +118,7 @@ const FinalGather& GatherPipeline::finalGather() const {
 }
 
 std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, const Solution& solution,
-                                  std::span<const uint32_t> elements, const RenderOptions& options) {
+                                  std::span<const uint32_t> elements, const RenderOptions& options, bool skies) {
   for (uint32_t e : elements)
     if (e >= solved.elements.size())
       throw Error("gatheredIndirect: element " + std::to_string(e) + " is past the solution's " +
@@ -139,7 +139,8 @@ std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, 
   for (uint32_t e = 0; e < shown.elements.size(); ++e)
     for (int c = 0; c < shown.elements[e].polygon.count && weights[e] == 0.0f; ++c)
       if (around.count(positionKey(shown.elements[e].polygon.v[size_t(c)]))) weights[e] = 1.0f;
-  VertexGather vertices(shown, pipeline.finalGather(), options.gatherRays, options.seed, weights, &pipeline.mesh());
+  VertexGather vertices(shown, pipeline.finalGather(), options.gatherRays, options.seed, weights, &pipeline.mesh(),
+                        skies ? &scene : nullptr);
   const GatherRefinement refinement(shown, vertices, weights);
   // Over each piece, the mean of what the picture interpolates; over the element, the pieces' by
   // area.
@@ -158,14 +159,14 @@ std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, 
 }
 
 std::vector<Rgb> pixelDirectLight(const Scene& scene, const SurfaceSet& solved, std::span<const uint32_t> elements,
-                                  int samples, uint32_t seed) {
+                                  int samples, uint32_t seed, bool skies) {
   for (uint32_t e : elements)
     if (e >= solved.elements.size())
       throw Error("pixelDirectLight: element " + std::to_string(e) + " is past the surfaces' " +
                   std::to_string(solved.elements.size()));
   const std::vector<Polygon> polygons = elementPolygonsTwinsApart(solved);
   const RayTracer tracer(polygons);
-  const DirectLight direct(scene, solved, &solved);
+  const DirectLight direct(scene, solved, &solved, skies);
   return elementDirectLight(solved, tracer, direct, samples, seed, elements);
 }
 

@@ -54,17 +54,19 @@ class GatherPipeline {
   std::deque<FinalGather> lazyGathers_;
 };
 
-// The indirect irradiance an hq render's vertex gather shows (`options`' gather settings, three
-// bounces by default), averaged over each of the solved `elements` (distinct): the irradiance a
-// picture of them would interpolate, less the direct light it traces. For judging the gather
-// against path-traced probes (`luxel bench hierarchical`).
+// The irradiance an hq render's vertex gather shows (`options`' gather settings, three bounces by
+// default), averaged over each of the solved `elements` (distinct): what a picture of them would
+// interpolate. That is the indirect light, and with `skies` the skies' light as well, as a render
+// gathers it (VertexGather's skiesOf). For judging the gather against path-traced probes (`luxel
+// bench hierarchical`).
 std::vector<Rgb> gatheredIndirect(const Scene& scene, const SurfaceSet& solved, const Solution& solution,
-                                  std::span<const uint32_t> elements, const RenderOptions& options);
+                                  std::span<const uint32_t> elements, const RenderOptions& options, bool skies = false);
 
 // The direct light an hq render traces at its pixels, averaged over each of the solved `elements`
 // from `samples` points stratified over it (a light point each): what a picture of them shows,
-// where the solution's own per-element direct light is an estimate of fewer rays.
+// where the solution's own per-element direct light is an estimate of fewer rays. Without `skies`,
+// the other lights only (a render's vertex gather takes the skies).
 std::vector<Rgb> pixelDirectLight(const Scene& scene, const SurfaceSet& solved, std::span<const uint32_t> elements,
-                                  int samples, uint32_t seed);
+                                  int samples, uint32_t seed, bool skies = true);
 
 }  // namespace luxel
