@@ -314,12 +314,15 @@ VertexGather::PointGather VertexGather::gatherAt(Vec3 position, Vec3 n, Vec3 tow
   const std::vector<Rgb*> targets(static_cast<size_t>(count), &out.irradiance);
   const size_t backs = gather_.add(hits, weights, targets, hashCombine(seed_, index));
   out.inside = 2 * backs > size_t(count);
-  for (const RTCRayHit& h : hits)
-    if (h.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-      for (const Light* sky : skies_)
-        out.irradiance += weights[0] * skyRadiance(*sky, Vec3(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z), up_);
-  for (const RTCRayHit& h : hits)
-    if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID) out.reach = std::min(out.reach, h.ray.tfar);
+  // What the rays met nearest, and the skies (skiesOf) through those that met nothing.
+  for (const RTCRayHit& h : hits) {
+    if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      out.reach = std::min(out.reach, h.ray.tfar);
+      continue;
+    }
+    for (const Light* sky : skies_)
+      out.irradiance += weights[0] * skyRadiance(*sky, Vec3(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z), up_);
+  }
   return out;
 }
 
@@ -337,8 +340,7 @@ void VertexGather::gatherVertex(uint32_t vi) {
 
 VertexGather::VertexView VertexGather::vertex(uint32_t vi) const {
   const Vertex& v = vertices_[vi];
-  const float length = glm::length(v.normal);
-  return {v.position, length > 0.0f ? v.normal / length : Vec3(0.0f), v.irradiance, v.reach, v.side, v.inside, v.traced};
+  return {v.position, v.irradiance, v.reach, v.side, v.inside};
 }
 
 // A vertex the splits made is interpolated from its solved element's corners (gathered first: they

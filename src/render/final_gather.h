@@ -172,12 +172,10 @@ class VertexGather {
   uint32_t vertexOf(uint32_t e, int c) const { return vertexOf_[size_t(e) * 4 + size_t(c)]; }
   struct VertexView {
     Vec3 position;
-    Vec3 normal;  // unit
     Rgb irradiance;
     float reach;  // the nearest hit of its rays (infinite when interpolated or nothing was hit)
     int side;     // its rays' strata per side
     bool inside;
-    bool traced;
   };
   VertexView vertex(uint32_t v) const;
   // A gather at a point of the surfaces that is no vertex, as a vertex is gathered: side x side

@@ -36,7 +36,7 @@ struct Lattice {
   size_t rowStart(int j) const {
     return count == 4 ? size_t(j) * size_t(n + 1) : size_t(j) * size_t(n + 1) - size_t(j) * size_t(j - 1) / 2;
   }
-  size_t size() const { return rowStart(count == 4 ? n + 1 : n + 1); }
+  size_t size() const { return rowStart(n + 1); }
   size_t at(int i, int j) const { return rowStart(j) + size_t(i); }
   // Point k (0 to n) of the edge from corner c to the next one.
   std::array<int, 2> onEdge(int c, int k) const {
@@ -143,11 +143,15 @@ GatherRefinement::GatherRefinement(const SurfaceSet& surfaces, VertexGather& ver
 
   // The refined elements' edges, and every element that shares one: an edge's points are one
   // gather at the coarsest lattice beside it, or none where an element there is not refined.
+  // Edge c of element e, from corner c to the next, by its two vertices.
+  const auto edgeOf = [&](uint32_t e, int c) {
+    return edgeKey(vertices.vertexOf(e, c), vertices.vertexOf(e, (c + 1) % surfaces.elements[e].polygon.count));
+  };
   std::unordered_map<uint64_t, Edge> edges;
   for (uint32_t e : refined) {
     const Element& el = surfaces.elements[e];
     for (int c = 0; c < el.polygon.count; ++c) {
-      Edge& edge = edges[edgeKey(vertices.vertexOf(e, c), vertices.vertexOf(e, (c + 1) % el.polygon.count))];
+      Edge& edge = edges[edgeOf(e, c)];
       edge.level = std::min(edge.level, int(levels[e]));
       ++edge.sharers;
       edge.normal += el.area * el.normal;
@@ -157,15 +161,13 @@ GatherRefinement::GatherRefinement(const SurfaceSet& surfaces, VertexGather& ver
   std::vector<uint8_t> sharesAnEdge(ne, 0);
   tbb::parallel_for(uint32_t(0), uint32_t(ne), [&](uint32_t e) {
     if (levels[e] > 0) return;
-    const int count = surfaces.elements[e].polygon.count;
-    for (int c = 0; c < count; ++c)
-      if (edges.count(edgeKey(vertices.vertexOf(e, c), vertices.vertexOf(e, (c + 1) % count)))) sharesAnEdge[e] = 1;
+    for (int c = 0; c < surfaces.elements[e].polygon.count; ++c)
+      if (edges.count(edgeOf(e, c))) sharesAnEdge[e] = 1;
   });
   for (uint32_t e = 0; e < ne; ++e) {
     if (!sharesAnEdge[e]) continue;
-    const int count = surfaces.elements[e].polygon.count;
-    for (int c = 0; c < count; ++c) {
-      auto it = edges.find(edgeKey(vertices.vertexOf(e, c), vertices.vertexOf(e, (c + 1) % count)));
+    for (int c = 0; c < surfaces.elements[e].polygon.count; ++c) {
+      auto it = edges.find(edgeOf(e, c));
       if (it == edges.end()) continue;
       it->second.level = 0;
       ++it->second.sharers;
@@ -275,7 +277,7 @@ GatherRefinement::GatherRefinement(const SurfaceSet& surfaces, VertexGather& ver
     for (int c = 0; c < count; ++c) {
       const int next = (c + 1) % count;
       const uint32_t va = vertices.vertexOf(e, c), vb = vertices.vertexOf(e, next);
-      const Edge& edge = edges.at(edgeKey(va, vb));
+      const Edge& edge = edges.at(edgeOf(e, c));
       const int steps = 1 << edge.level;
       // The edge's values from its lower vertex up: its ends (this element's slots there) and
       // its shared points.

@@ -207,25 +207,23 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   // sample first needs it), refined into lattices where the corners cannot say the light's shape.
   // A vertex gather takes the skies as well (VertexGather's skiesOf), and the pixels trace the
   // other lights.
+  // The skies: the background where no surface is, and light for the gather or the pixels.
+  std::vector<const Light*> skies;
+  for (const Light& l : scene.lights)
+    if (isSkyLight(l)) skies.push_back(&l);
   std::optional<VertexGather> vertexGathered;
   std::optional<GatherRefinement> refinement;
   std::optional<DirectLight> skyless;
   if (vertexGather) {
     const std::vector<float> seen =
         pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options);
-    const bool skies = std::any_of(scene.lights.begin(), scene.lights.end(), isSkyLight);
     vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed, seen, &mesh,
-                           skies ? &scene : nullptr);
+                           skies.empty() ? nullptr : &scene);
     refinement.emplace(shown, *vertexGathered, seen, seen);
-    if (skies) skyless.emplace(scene, surfaces, &shown, /*skies=*/false);
+    if (!skies.empty()) skyless.emplace(scene, surfaces, &shown, /*skies=*/false);
   }
   const DirectLight& pixelDirect = skyless ? *skyless : direct;
   const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
-
-  // Background: the sky where there is one.
-  std::vector<const Light*> skies;
-  for (const Light& l : scene.lights)
-    if (l.type == Light::Type::Sky || l.type == Light::Type::CieOvercastSky) skies.push_back(&l);
 
   Image image(options.width, options.height);
   image.coverage.assign(image.pixels.size(), 0.0f);
