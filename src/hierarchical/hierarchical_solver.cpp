@@ -22,6 +22,7 @@
 
 #include "cluster/face_cluster_cache.h"
 #include "cluster/face_cluster_tree.h"
+#include "core/content_hash.h"
 #include "core/spherical_harmonics.h"
 #include "core/stopwatch.h"
 #include "hierarchical/cluster_points.h"
@@ -44,6 +45,13 @@ constexpr uint32_t kParallelFaces = 2048;
 // How far below a receiver cluster's horizon (a sine: 0.1 is 5.7 degrees) an emitter may reach
 // and still send it one vector (cluster/cluster_geometry.h, whollyFaces).
 constexpr float kHorizonSlack = 0.1f;
+
+// Changes of the analytic light are followed (HierarchicalSolver::sourcesChanged) until their power,
+// summed since the solve started, reaches this share of the light's: past it the links, chosen
+// for a light that is no longer there, are made again. On Sibenik's turning sun (about 1.2% a
+// frame) a solve followed 60 frames was 10% further from the converged light than one made
+// afresh, 30 frames as near (docs/performance.md).
+constexpr double kMostChangeFollowed = 0.5;
 
 // A receiver point nearer an emitter cluster than this times the cluster's half diagonal makes the
 // link refine (HierarchicalSolver::transportLight).
@@ -80,6 +88,12 @@ struct Field {
     for (size_t k = 0; k < c.size(); ++k) c[k] += o.c[k];
     for (size_t k = 0; k < sh.size(); ++k) sh[k] += o.sh[k];
     for (size_t k = 0; k < radiance.size(); ++k) radiance[k] += o.radiance[k];
+    return *this;
+  }
+  Field& operator-=(const Field& o) {
+    for (size_t k = 0; k < c.size(); ++k) c[k] -= o.c[k];
+    for (size_t k = 0; k < sh.size(); ++k) sh[k] -= o.sh[k];
+    for (size_t k = 0; k < radiance.size(); ++k) radiance[k] -= o.radiance[k];
     return *this;
   }
 };
@@ -159,26 +173,11 @@ class HierarchicalSolver final : public Solver {
       }
     }
     for (size_t e = 0; e < ne; ++e) emittedPower_ += double(sys.area[e]) * maxChannel(unshot_[e]);
-    std::vector<uint32_t> height(nodes, 0);
-    for (uint32_t i = uint32_t(ne); i < nodes; ++i)
-      height[i] = std::max(height[tree_.joined(i).child[0]], height[tree_.joined(i).child[1]]) + 1;
-    const uint32_t levels = nodes > ne ? height[tree_.root] : 0;
-    levelStart_.assign(size_t(levels) + 1, 0);
-    for (uint32_t i = uint32_t(ne); i < nodes; ++i) ++levelStart_[height[i]];  // counts, shifted by one below
-    for (uint32_t h = 1; h <= levels; ++h) levelStart_[h] += levelStart_[h - 1];
-    mix_.resize(nodes - ne);
-    std::vector<size_t> fill(levelStart_.begin(), levelStart_.end() - 1);
-    for (uint32_t i = uint32_t(ne); i < nodes; ++i) {
-      const FaceCluster& c = tree_.joined(i);
-      const float w = c.area > 0.0f ? 1.0f / c.area : 0.0f;
-      mix_[fill[height[i] - 1]++] = {i, c.child[0], c.child[1], areaOf(c.child[0]) * w, areaOf(c.child[1]) * w};
-    }
-    next_.assign(ne, Rgb(0.0f));
-    faces_.resize(ne);
-    for (size_t k = 0; k < ne; ++k) {
-      const Element& el = sys.surfaces.elements[tree_.order[k]];
-      faces_[k] = {el.centroid, el.normal, el.reflectance, sys.area[tree_.order[k]]};
-    }
+    startPower_ = emittedPower_;
+    iterationLimit_ = uint32_t(s.maxIterations);
+    analyticShot_ = sys.analytic;
+    materials_ = materialsDigest();
+    prepareSweeps();
     split_.assign(nodes, 0);
     field_ = std::make_unique<std::atomic<uint32_t>[]>(nodes);
     since_ = std::make_unique<std::atomic<uint32_t>[]>(nodes);
@@ -204,6 +203,50 @@ class HierarchicalSolver final : public Solver {
   }
 
   bool done() const override { return done_; }
+
+  // The analytic light changed (a lamp or the sun moved or was recoloured): the difference is shot
+  // from the last solution, as Puech et al.'s surface-property edits shoot it (seed 001, notes
+  // 2.5). Its reflection rho * (H0' - H0) is split into where light arrived and where it left, each
+  // shot as a positive series of Jacobi sweeps with the links refined against the new light's
+  // power, the second taken off the fields; clamped fields and the push's half-space test hold
+  // only for positive light. An edit of the emission or the reflectance, a first change before
+  // any sweep, or light fallen below half of what the solve started with (whose error was sized
+  // to it) starts again.
+  bool sourcesChanged() override {
+    const size_t ne = sys_.elementCount();
+    if (iterations_ == 0 || recordSh_ || sys_.analytic.size() != ne || materialsDigest() != materials_) return false;
+    double power = 0.0, change = 0.0;
+    for (size_t e = 0; e < ne; ++e) {
+      power += double(sys_.area[e]) * maxChannel(sys_.reflectance[e] * (sys_.analytic[e] + emitterDirect_.irradiance[e]) +
+                                                (exactDirect_ ? Rgb(0.0f) : sys_.emission[e]));
+      change += double(sys_.area[e]) * maxChannel(glm::abs(sys_.reflectance[e] * (sys_.analytic[e] - analyticShot_[e])));
+    }
+    if (!(power > 0.5 * startPower_) || changeFollowed_ + change / power > kMostChangeFollowed) return false;
+    changeFollowed_ += change / power;
+    const Stopwatch watch;
+    if (faces_.empty()) prepareSweeps();
+    // What either series left unshot at the last stop is netted with the difference: dropped,
+    // the negative series' remainder would stay in the solution as light, frame after frame.
+    negative_.resize(tree_.nodeCount(), Rgb(0.0f));
+    nextNegative_.assign(ne, Rgb(0.0f));
+    double unshotPower = 0.0;
+    for (size_t e = 0; e < ne; ++e) {
+      const Rgb net = unshot_[e] - negative_[e] + sys_.reflectance[e] * (sys_.analytic[e] - analyticShot_[e]);
+      unshot_[e] = glm::max(net, Rgb(0.0f));
+      negative_[e] = glm::max(-net, Rgb(0.0f));
+      unshotPower += double(sys_.area[e]) * (maxChannel(unshot_[e]) + maxChannel(negative_[e]));
+    }
+    analyticShot_ = sys_.analytic;
+    mixClusters(unshot_), mixClusters(negative_);
+    emittedPower_ = power;
+    clusterMeans_ = true;
+    iterationLimit_ = iterations_ + uint32_t(s_.maxIterations);
+    unshotFraction_ = unshotPower / emittedPower_;
+    done_ = unshotFraction_ < s_.unshot;
+    ++redistributions_;
+    seconds_ += watch.seconds();
+    return true;
+  }
 
   Solution solution() override {
     Solution out;
@@ -295,6 +338,9 @@ class HierarchicalSolver final : public Solver {
       out.value(counter->load());
     out.value(uint64_t(leaves_.load())), out.value(uint64_t(elements_.load()));
     out.value(recordSh_);
+    out.array(analyticShot_), out.array(negative_);
+    out.value(clusterMeans_), out.value(emittedPower_), out.value(iterationLimit_), out.value(redistributions_);
+    out.value(changeFollowed_);
   }
   void restoreState(StateReader& in) override {
     const size_t nodes = tree_.nodeCount();
@@ -320,6 +366,13 @@ class HierarchicalSolver final : public Solver {
     // The directions saved are whole for what was recorded then: enough for what is asked now,
     // or none at all (incidentSh then says so, and its owner gathers them).
     if (in.value<int>() != recordSh_) recordSh_ = 0;
+    in.array(analyticShot_, sys_.elementCount());
+    in.array(negative_);
+    if (!negative_.empty() && negative_.size() != nodes)
+      throw Error(fmt::format("checkpoint: the negative series has {} clusters, the tree {}", negative_.size(), nodes));
+    nextNegative_.assign(negative_.empty() ? 0 : sys_.elementCount(), Rgb(0.0f));
+    in.value(clusterMeans_), in.value(emittedPower_), in.value(iterationLimit_), in.value(redistributions_);
+    in.value(changeFollowed_);
   }
 
   SolveStats stats() const override {
@@ -327,6 +380,7 @@ class HierarchicalSolver final : public Solver {
     s.method = "hierarchical";
     s.backend = "cpu";
     s.iterations = iterations_;
+    s.redistributions = redistributions_;
     s.residual = s.unshotFraction = unshotFraction_;
     s.links = links_.load();
     s.rays = emitterDirect_.rays;
@@ -533,7 +587,9 @@ class HierarchicalSolver final : public Solver {
   // Each emitter point carries the radiosity of its own element, not the cluster's mean: light
   // leaving a cluster towards a receiver comes from the faces that face it, and those are often
   // the lit ones (a floor beside the dark sides of a block on it), so the mean would be too dark
-  // one way and too bright the other.
+  // one way and too bright the other. After a change of the light the difference shot is mostly
+  // thin strips along the shadows that moved, which a cluster's few points catch or miss by
+  // chance, so there each point carries the cluster's mean (clusterMeans_).
   float couple(uint32_t j, const FaceCluster& b, const Receiver& r, Scratch& s, bool asHarmonics) const {
     const size_t np = r.points.size();
     s.transport.assign(np, {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)});
@@ -654,7 +710,7 @@ class HierarchicalSolver final : public Solver {
         if (!counts && !hidden) continue;
         const float a = q[k].weight * b.area;
         const Polygon square = squareAround(q[k], a, b.box);
-        const Rgb unshot = emitterUnshot(q[k].element), emitted = emitterEmission(q[k].element);
+        const Rgb unshot = emitterUnshot(clusterMeans_ ? j : q[k].element), emitted = emitterEmission(q[k].element);
         if (counts) {
           const Vec3 m = polygonIrradianceVector(x.position, x.normal, square, q[k].normal);
           for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] += unshot[ch] * m, s.direct[p][size_t(ch)] += emitted[ch] * m;
@@ -864,7 +920,8 @@ class HierarchicalSolver final : public Solver {
       const uint32_t f = field_[i].load(std::memory_order_relaxed);
       Field& keep = fields_[f];
       Field& keepDirect = fields_[f + 1];
-      keep += total, keepDirect += direct;
+      if (shootingNegative_) keep -= total, keepDirect -= direct;
+      else keep += total, keepDirect += direct;
       for (uint32_t k = c.begin; k < c.begin + c.count; ++k) {
         const FaceSample& face = faces_[k];
         next_[k] = face.reflectance * irradiance(total, c.box, face.centroid, face.normal);
@@ -878,9 +935,49 @@ class HierarchicalSolver final : public Solver {
     else visit(0), visit(1);
   }
 
-  void iterate() {
-    if (faces_.empty()) throw Error("hierarchical solver: stepped after it finished");
-    const Stopwatch watch;
+  // What a sweep reads of every face and cluster: the faces in the tree's order, and the
+  // clusters bottom-up for the means. Made for the solve and again after a change of the light;
+  // released when the solve is done.
+  void prepareSweeps() {
+    const size_t nodes = tree_.nodeCount(), ne = sys_.elementCount();
+    std::vector<uint32_t> height(nodes, 0);
+    for (uint32_t i = uint32_t(ne); i < nodes; ++i)
+      height[i] = std::max(height[tree_.joined(i).child[0]], height[tree_.joined(i).child[1]]) + 1;
+    const uint32_t levels = nodes > ne ? height[tree_.root] : 0;
+    levelStart_.assign(size_t(levels) + 1, 0);
+    for (uint32_t i = uint32_t(ne); i < nodes; ++i) ++levelStart_[height[i]];  // counts, shifted by one below
+    for (uint32_t h = 1; h <= levels; ++h) levelStart_[h] += levelStart_[h - 1];
+    mix_.resize(nodes - ne);
+    std::vector<size_t> fill(levelStart_.begin(), levelStart_.end() - 1);
+    for (uint32_t i = uint32_t(ne); i < nodes; ++i) {
+      const FaceCluster& c = tree_.joined(i);
+      const float w = c.area > 0.0f ? 1.0f / c.area : 0.0f;
+      mix_[fill[height[i] - 1]++] = {i, c.child[0], c.child[1], areaOf(c.child[0]) * w, areaOf(c.child[1]) * w};
+    }
+    next_.assign(ne, Rgb(0.0f));
+    faces_.resize(ne);
+    for (size_t k = 0; k < ne; ++k) {
+      const Element& el = sys_.surfaces.elements[tree_.order[k]];
+      faces_[k] = {el.centroid, el.normal, el.reflectance, sys_.area[tree_.order[k]]};
+    }
+  }
+
+  // Every cluster's value as the area mean of its elements' (each level one parallel pass).
+  void mixClusters(std::vector<Rgb>& values) const {
+    for (size_t level = 0; level + 1 < levelStart_.size(); ++level)
+      tbb::parallel_for(tbb::blocked_range<size_t>(levelStart_[level], levelStart_[level + 1], 4096),
+                        [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t k = range.begin(); k != range.end(); ++k) {
+                            const Mix& m = mix_[k];
+                            values[m.node] = m.wa * values[m.a] + m.wb * values[m.b];
+                          }
+                        });
+  }
+
+  // One Jacobi sweep of the series whose unshot radiosity unshot_ holds: its light shot and
+  // added to the fields (subtracted, for the negative series), what the faces gathered made the
+  // next unshot. Returns the power left unshot.
+  double sweep() {
     transportLight(tree_.root, kNoCluster, nullptr, nullptr, {});
     // The Jacobi swap: what the faces gathered is shot next, and every cluster's mean is what it
     // shoots as a whole. In parallel, streaming through compact arrays (this pass touches every
@@ -901,18 +998,28 @@ class HierarchicalSolver final : public Solver {
     });
     double unshotPower = 0.0;
     for (double power : chunkPower) unshotPower += power;
-    for (size_t level = 0; level + 1 < levelStart_.size(); ++level)
-      tbb::parallel_for(tbb::blocked_range<size_t>(levelStart_[level], levelStart_[level + 1], 4096),
-                        [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t k = range.begin(); k != range.end(); ++k) {
-                            const Mix& m = mix_[k];
-                            unshot_[m.node] = m.wa * unshot_[m.a] + m.wb * unshot_[m.b];
-                          }
-                        });
+    mixClusters(unshot_);
+    return unshotPower;
+  }
+
+  void iterate() {
+    if (faces_.empty()) throw Error("hierarchical solver: stepped after it finished");
+    const Stopwatch watch;
+    // After a change of the light, either series may have nothing to shoot.
+    double unshotPower = maxChannel(unshot_[tree_.root]) > 0.0f || negative_.empty() ? sweep() : 0.0;
+    if (!negative_.empty() && maxChannel(negative_[tree_.root]) > 0.0f) {
+      // The negative series (where light left) shoots as a positive one into its own unshot and
+      // next arrays, and what it gathers is taken off the fields.
+      std::swap(unshot_, negative_), std::swap(next_, nextNegative_);
+      shootingNegative_ = true;
+      unshotPower += sweep();
+      shootingNegative_ = false;
+      std::swap(unshot_, negative_), std::swap(next_, nextNegative_);
+    }
     ++iterations_;
     std::vector<Rgb>().swap(emission_);  // read in the first iteration only
     unshotFraction_ = emittedPower_ > 0.0 ? unshotPower / emittedPower_ : 0.0;
-    done_ = unshotFraction_ < s_.unshot || int(iterations_) >= s_.maxIterations;
+    done_ = unshotFraction_ < s_.unshot || iterations_ >= iterationLimit_;
     if (done_) {
       // What only a sweep reads goes before the solution is asked for, which allocates its own
       // arrays: at millions of faces the two together were the solve's peak (docs/performance.md).
@@ -920,8 +1027,18 @@ class HierarchicalSolver final : public Solver {
       std::vector<FaceSample>().swap(faces_);
       std::vector<Rgb>().swap(next_);
       std::vector<Mix>().swap(mix_);
+      std::vector<Rgb>().swap(nextNegative_);  // negative_ keeps its remainder for the next change
     }
     seconds_ += watch.seconds();
+  }
+
+  // A digest of the emission and reflectance the solve was made for: a change of either takes a
+  // solve from scratch (sourcesChanged follows only the analytic light).
+  uint64_t materialsDigest() const {
+    ContentHash h;
+    h.bytes(sys_.emission.data(), sys_.emission.size() * sizeof(Rgb));
+    h.bytes(sys_.reflectance.data(), sys_.reflectance.size() * sizeof(Rgb));
+    return h.digest();
   }
 
   const RadiositySystem& sys_;
@@ -952,6 +1069,19 @@ class HierarchicalSolver final : public Solver {
   std::unique_ptr<std::atomic<uint32_t>[]> since_;  // the iteration a cluster became an element
   tbb::concurrent_vector<Field> fields_;
   double emittedPower_ = 0.0;
+  double startPower_ = 0.0;  // emittedPower_ when the solve started from nothing
+  // Following changes of the analytic light (sourcesChanged): what was shot, the negative
+  // series' unshot radiosity per cluster and what its faces gathered in a sweep (empty when
+  // there is none), the series being swept, whether emitter points carry their cluster's mean,
+  // the digest of the materials the solve was made for, and the sweeps allowed.
+  std::vector<Rgb> analyticShot_;
+  std::vector<Rgb> negative_, nextNegative_;
+  bool shootingNegative_ = false;
+  bool clusterMeans_ = false;
+  uint64_t materials_ = 0;
+  uint32_t iterationLimit_ = 0;
+  uint64_t redistributions_ = 0;
+  double changeFollowed_ = 0.0;  // the changes' power since the solve started, over the power
   double unshotFraction_ = 0.0;
   uint32_t iterations_ = 0;
   std::atomic<uint64_t> links_{0};

@@ -37,7 +37,7 @@ constexpr double kMaxAbsorbedShare = 1.5;
 constexpr double kHealthCheckSeconds = 0.25;
 
 // The checkpoints' format, in their key: bump it when a solver's saved state changes.
-constexpr const char* kCheckpointFormat = "luxel-checkpoint-2";  // 2: lights' refined samples, direct light per element
+constexpr const char* kCheckpointFormat = "luxel-checkpoint-3";  // 2: lights' refined samples, direct light per element; 3: the hierarchy's changes of light
 
 const char* const kLikelyCauses =
     "likely causes: coincident faces (a mesh loaded twice in one place, which the importers remove but "
