@@ -68,6 +68,9 @@ struct HierarchicalSettings {
   // The emitting surfaces' direct light per element (solve/emitter_direct.h), or through links as
   // the paper shoots it (also where there are more emitting polygons than per-element visits allow).
   bool emitterLightPerElement;
+  // Changes of the analytic light are followed from the last solution (sourcesChanged), or solved
+  // again from scratch.
+  bool followLight = true;
 };
 
 // Vector irradiance of one element: per basis function, per channel, a vector (Gobbetti et al.
@@ -214,7 +217,7 @@ class HierarchicalSolver final : public Solver {
   // to it) starts again.
   bool sourcesChanged() override {
     const size_t ne = sys_.elementCount();
-    if (iterations_ == 0 || recordSh_ || sys_.analytic.size() != ne || materialsDigest() != materials_) return false;
+    if (!s_.followLight || iterations_ == 0 || recordSh_ || sys_.analytic.size() != ne || materialsDigest() != materials_) return false;
     double power = 0.0, change = 0.0;
     for (size_t e = 0; e < ne; ++e) {
       power += double(sys_.area[e]) * maxChannel(sys_.reflectance[e] * (sys_.analytic[e] + emitterDirect_.irradiance[e]) +
@@ -253,20 +256,28 @@ class HierarchicalSolver final : public Solver {
     const SurfaceSet& surfaces = sys_.surfaces;
     const size_t ne = sys_.elementCount();
     out.radiosity.resize(ne), out.irradiance.resize(ne), out.directIrradiance.resize(ne);
-    tbb::parallel_for(uint32_t(0), uint32_t(ne), [&](uint32_t e) {
-      uint32_t m = e;
-      while (since_[m].load(std::memory_order_relaxed) == kNever) m = tree_.parent(m);
-      const Element& el = surfaces.elements[e];
-      Rgb h(0.0f), hd(0.0f);
-      const uint32_t f = field_[m].load(std::memory_order_relaxed);
-      if (f != kNever) {
-        const OrientedBox box = node(m).box;
-        h = irradiance(fields_[f], box, el.centroid, el.normal);
-        hd = irradiance(fields_[f + 1], box, el.centroid, el.normal);
+    // Leaf by leaf of the element tree, each field's box found once for all of its faces (read
+    // every frame of an animation, this was a walk up the tree and a box per face).
+    const std::vector<uint32_t> leaves = elementLeaves();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 8), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t i = range.begin(); i != range.end(); ++i) {
+        const uint32_t m = leaves[i];
+        const FaceCluster c = node(m);
+        const uint32_t f = field_[m].load(std::memory_order_relaxed);
+        for (uint32_t k = c.begin; k < c.begin + c.count; ++k) {
+          const uint32_t e = tree_.order[k];
+          const Element& el = surfaces.elements[e];
+          Rgb h(0.0f), hd(0.0f);
+          if (f != kNever) {
+            h = irradiance(fields_[f], c.box, el.centroid, el.normal);
+            // With the emitters' light per element, no link carries emitted light: zero.
+            if (!exactDirect_) hd = irradiance(fields_[f + 1], c.box, el.centroid, el.normal);
+          }
+          out.irradiance[e] = h + sys_.analytic[e] + emitterDirect_.irradiance[e];
+          out.directIrradiance[e] = hd + sys_.analytic[e] + emitterDirect_.irradiance[e];
+          out.radiosity[e] = sys_.emission[e] + sys_.reflectance[e] * out.irradiance[e];
+        }
       }
-      out.irradiance[e] = h + sys_.analytic[e] + emitterDirect_.irradiance[e];
-      out.directIrradiance[e] = hd + sys_.analytic[e] + emitterDirect_.irradiance[e];
-      out.radiosity[e] = sys_.emission[e] + sys_.reflectance[e] * out.irradiance[e];
     });
     out.stats = stats();
     return out;
@@ -402,6 +413,18 @@ class HierarchicalSolver final : public Solver {
   double progressFraction() const {
     if (unshotFraction_ <= 0.0) return 1.0;
     return std::clamp(std::log(unshotFraction_) / std::log(s_.unshot), 0.0, 1.0);
+  }
+
+  // The leaves of the element tree, which hold the fields.
+  std::vector<uint32_t> elementLeaves() const {
+    std::vector<uint32_t> leaves, stack{tree_.root};
+    while (!stack.empty()) {
+      const uint32_t i = stack.back();
+      stack.pop_back();
+      if (split_[i]) stack.push_back(tree_.joined(i).child[1]), stack.push_back(tree_.joined(i).child[0]);
+      else leaves.push_back(i);
+    }
+    return leaves;
   }
 
   // Two fields (all light, direct light) in the pool; returns the index of the first.
@@ -1124,11 +1147,14 @@ void registerCpuHierarchical(SolverRegistry& registry) {
   o.push_back(choiceOption("emitter-light", "elements", {"elements", "links"},
                            "the emitting surfaces' direct light: per element with shadow rays, or through the "
                            "hierarchy's links as seed 002 shoots it (faster on millions of faces, coarser)"));
+  o.push_back(flagOption("follow-light", true,
+                         "after a light is moved or recoloured, shoot the difference from the last solution "
+                         "(false: solve again from scratch)"));
   for (SolverOption& a : analyticLightOptions()) o.push_back(std::move(a));
   e.make = [](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
     HierarchicalSettings s{basisSize(v.choice("basis")), v.real("error"),           v.real("unshot"),
                            v.integer("iterations"),       v.integer("receiver-points"), v.integer("emitter-points"),
-                           v.flag("cache"),               v.choice("emitter-light") == "elements"};
+                           v.flag("cache"),               v.choice("emitter-light") == "elements", v.flag("follow-light")};
     return std::make_unique<HierarchicalSolver>(r.system, r.transport, s,
                                                 std::static_pointer_cast<CachedFaceClusterTree>(r.prepared));
   };

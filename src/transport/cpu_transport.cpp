@@ -614,6 +614,9 @@ void CpuTransport::appendSamplesOfLight(uint32_t element, uint32_t li, int k, ui
   const Vec3 up = glm::normalize(scene_.up);
   const int m = k * k;
   const Element& e = surfaces_.elements[element];
+  // Every sample would be dark (a sun behind the element): none drawn, as none would be kept.
+  if (!lightMayReachFront(scene_.lights[li], e.polygon, e.normal)) return;
+  const PreparedLight light = prepareLight(scene_.lights[li]);
   // Seeded by the light's index in the scene, so that a light's samples do not depend on
   // which other lights are asked for.
   Rng rng(hashCombine(hashCombine(options_.seed ^ 0xA5A5A5A5u ^ pass, element), li));
@@ -624,7 +627,7 @@ void CpuTransport::appendSamplesOfLight(uint32_t element, uint32_t li, int k, ui
     Vec3 x = polygonPoint(e.polygon, s, t);
     // Light samples are stratified independently of the point strata (shuffled index).
     float u1 = (float(permutation[i]) + rng.next()) / float(m), u2 = rng.next();
-    LightSample ls = sampleLight(scene_.lights[li], x, e.normal, Sides::Front, up, u1, u2);
+    LightSample ls = sampleLight(light, x, e.normal, Sides::Front, up, u1, u2);
     if (!ls.valid()) continue;
     Vec3 xo = x + e.normal * (glm::dot(e.normal, ls.direction) >= 0.0f ? rayOffset_ : -rayOffset_);
     rays.push_back(makeRay(xo, ls.direction, 0.0f, ls.tfar));
@@ -664,6 +667,10 @@ void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& v
   if (refinedLight_.size() < scene_.lights.size()) refinedLight_.resize(scene_.lights.size());
   for (uint32_t li : lights) refinedLight_[li].resize(surfaces_.elements.size(), 0);
   const size_t count = elements.empty() ? surfaces_.elements.size() : elements.size();
+  // An element's rays towards lamps and suns leave a small patch in nearly one direction, which
+  // Embree traces faster as packets; a sky's go every way.
+  bool coherent = true;
+  for (uint32_t li : lights) coherent = coherent && !isSkyLight(scene_.lights[li]);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<RTCRay> rays, finer;
     std::vector<LightSample> samples, reached, finerSamples;
@@ -673,7 +680,7 @@ void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& v
       const uint32_t ei = elements.empty() ? uint32_t(i) : elements[i];
       rays.clear(), samples.clear(), lightOf.clear();
       appendLightSamples(ei, lights, rays, samples, &lightOf);
-      tracer_.occluded(rays);
+      tracer_.occluded(rays, coherent);
       arrived.assign(lights.size(), 0), traced.assign(lights.size(), 0);
       for (size_t j = 0; j < rays.size(); ++j) ++traced[lightOf[j]], arrived[lightOf[j]] += !isOccluded(rays[j]);
       // A light whose samples disagree has a shadow's edge across the element: its light there
@@ -690,7 +697,7 @@ void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& v
       for (size_t j = 0; j < rays.size(); ++j)
         if (!isOccluded(rays[j]) && !refinedLight_[lights[lightOf[j]]][ei]) reached.push_back(samples[j]);
       if (!finer.empty()) {
-        tracer_.occluded(finer);
+        tracer_.occluded(finer, coherent);
         for (size_t j = 0; j < finer.size(); ++j)
           if (!isOccluded(finer[j])) reached.push_back(finerSamples[j]);
       }

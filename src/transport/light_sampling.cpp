@@ -44,7 +44,46 @@ Rgb skyRadiance(const Light& light, Vec3 w, Vec3 up) {
   return light.power();
 }
 
+bool lightMayReachFront(const Light& light, const Polygon& polygon, Vec3 n) {
+  switch (light.type) {
+    case Light::Type::Point:
+    case Light::Type::Spot:
+      // A sample point is a convex combination of the corners, so its cosine's sign is theirs.
+      for (int i = 0; i < polygon.count; ++i)
+        if (glm::dot(n, light.position - polygon.v[size_t(i)]) >= 0.0f) return true;
+      return false;
+    case Light::Type::Directional:
+      // The disc's directions are within angularRadius of the axis: all behind the plane when
+      // the axis is further than that below it (with a margin for the samples' rounding).
+      return glm::dot(n, -glm::normalize(light.direction)) > -std::sin(light.angularRadius) - 1e-5f;
+    case Light::Type::Sky:
+    case Light::Type::CieOvercastSky:
+      return true;
+  }
+  return true;
+}
+
+PreparedLight prepareLight(const Light& light) {
+  PreparedLight p;
+  p.light = &light;
+  p.power = light.power();
+  if (light.type == Light::Type::Spot) {
+    p.cosOuter = std::cos(light.outerConeAngle), p.cosInner = std::cos(light.innerConeAngle);
+    p.axis = glm::normalize(light.direction);
+  } else if (light.type == Light::Type::Directional) {
+    p.axis = -glm::normalize(light.direction);
+    basis(p.axis, p.t, p.b);
+    p.cosMax = std::cos(light.angularRadius);
+  }
+  return p;
+}
+
 LightSample sampleLight(const Light& light, Vec3 x, Vec3 n, Sides sides, Vec3 up, float u1, float u2) {
+  return sampleLight(prepareLight(light), x, n, sides, up, u1, u2);
+}
+
+LightSample sampleLight(const PreparedLight& prepared, Vec3 x, Vec3 n, Sides sides, Vec3 up, float u1, float u2) {
+  const Light& light = *prepared.light;
   LightSample s;
   switch (light.type) {
     case Light::Type::Point:
@@ -56,26 +95,25 @@ LightSample sampleLight(const Light& light, Vec3 x, Vec3 n, Sides sides, Vec3 up
       float falloff = 1.0f;
       if (light.type == Light::Type::Spot) {
         // glTF KHR_lights_punctual's recommended falloff: quadratic in the cosine between the cones.
-        float cosOuter = std::cos(light.outerConeAngle), cosInner = std::cos(light.innerConeAngle);
-        float cosAngle = glm::dot(-w, glm::normalize(light.direction));
+        const float cosOuter = prepared.cosOuter, cosInner = prepared.cosInner;
+        float cosAngle = glm::dot(-w, prepared.axis);
         float t = std::clamp((cosAngle - cosOuter) / std::max(cosInner - cosOuter, 1e-6f), 0.0f, 1.0f);
         falloff = t * t;
       }
-      s.irradiance = light.power() * (falloff * receiverCosine(n, w, sides) / r2);
+      s.irradiance = prepared.power * (falloff * receiverCosine(n, w, sides) / r2);
       s.direction = d;
       s.tfar = 1.0f - 1e-4f;
       return s;
     }
     case Light::Type::Directional: {
       // Uniform direction in the cone of the sun's disc.
-      Vec3 axis = -glm::normalize(light.direction), t, b;
-      basis(axis, t, b);
-      float cosMax = std::cos(light.angularRadius);
+      const Vec3 axis = prepared.axis, t = prepared.t, b = prepared.b;
+      const float cosMax = prepared.cosMax;
       float cosTheta = 1.0f - u1 * (1.0f - cosMax);
       float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
       float phi = 2.0f * kPi * u2;
       Vec3 w = glm::normalize(axis * cosTheta + (t * std::cos(phi) + b * std::sin(phi)) * sinTheta);
-      s.irradiance = light.power() * receiverCosine(n, w, sides);
+      s.irradiance = prepared.power * receiverCosine(n, w, sides);
       s.direction = w;
       s.tfar = kInfinity;
       return s;

@@ -20,6 +20,8 @@
 
 #include "luxel/solve.h"
 #include "scene/builtin/builtin_scenes.h"
+#include "core/random.h"
+#include "transport/form_factor.h"
 #include "transport/light_sampling.h"
 
 namespace luxel {
@@ -330,6 +332,59 @@ TEST(Shadows, OccluderDarkensTheFloorBelowItOnly) {
     const float want = a.sol.irradiance[e].g;
     EXPECT_NEAR(b.sol.irradiance[e].g, want, 1e-4f * want) << "x = " << x;
   }
+}
+
+}  // namespace
+}  // namespace luxel
+
+namespace luxel {
+namespace {
+
+// lightMayReachFront may only skip elements whose samples would all be dark, and a prepared light
+// samples the same numbers as the light itself.
+TEST(LightSkipping, SkippedElementsWouldHaveDrawnOnlyDarkSamples) {
+  Rng rng(7);
+  auto unit = [&] {
+    return glm::normalize(Vec3(rng.next() - 0.5f, rng.next() - 0.5f, rng.next() - 0.5f) + Vec3(1e-3f));
+  };
+  std::vector<Light> lights;
+  for (int i = 0; i < 40; ++i) {
+    Light sun{.type = Light::Type::Directional, .intensity = 1000.0f};
+    sun.direction = unit(), sun.angularRadius = i % 2 ? 0.0f : 0.02f * float(i);
+    lights.push_back(sun);
+    Light lamp{.type = i % 3 ? Light::Type::Point : Light::Type::Spot, .intensity = 100.0f};
+    lamp.position = 2.0f * unit(), lamp.direction = unit();
+    lamp.innerConeAngle = 0.3f, lamp.outerConeAngle = 0.6f;
+    lights.push_back(lamp);
+  }
+  size_t skipped = 0, kept = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    // A small quad about a random point, facing a random way (its corners in its plane).
+    const Vec3 c = unit(), n = unit();
+    Vec3 t = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
+    const Vec3 b = glm::cross(n, t);
+    t *= 0.3f;
+    Polygon quad;
+    quad.count = 4;
+    quad.v = {c - t - 0.3f * b, c + t - 0.3f * b, c + t + 0.3f * b, c - t + 0.3f * b};
+    for (const Light& light : lights) {
+      const PreparedLight prepared = prepareLight(light);
+      const bool may = lightMayReachFront(light, quad, n);
+      (may ? kept : skipped) += 1;
+      for (int k = 0; k < 64; ++k) {
+        const float s = rng.next(), u = rng.next(), u1 = rng.next(), u2 = rng.next();
+        const Vec3 x = polygonPoint(quad, s, u);
+        const LightSample a = sampleLight(light, x, n, Sides::Front, kUp, u1, u2);
+        const LightSample p = sampleLight(prepared, x, n, Sides::Front, kUp, u1, u2);
+        ASSERT_EQ(a.irradiance, p.irradiance);
+        ASSERT_EQ(a.direction, p.direction);
+        if (!may) ASSERT_FALSE(a.valid()) << "a skipped element would have been lit";
+      }
+    }
+  }
+  // Both cases occur: a light behind the plane about half the time.
+  EXPECT_GT(skipped, kept / 4);
+  EXPECT_GT(kept, skipped / 4);
 }
 
 }  // namespace
