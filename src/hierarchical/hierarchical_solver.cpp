@@ -48,9 +48,8 @@ constexpr float kHorizonSlack = 0.1f;
 
 // Changes of the analytic light are followed (HierarchicalSolver::sourcesChanged) until their power,
 // summed since the solve started, reaches this share of the light's: past it the links, chosen
-// for a light that is no longer there, are made again. On Sibenik's turning sun (about 1.2% a
-// frame) a solve followed 60 frames was 10% further from the converged light than one made
-// afresh, 30 frames as near (docs/performance.md).
+// for a light that is no longer there, are made again (a followed solution drifts from the
+// converged light as the changes add up: docs/performance.md, "Moving the sun over Sibenik").
 constexpr double kMostChangeFollowed = 0.5;
 
 // A receiver point nearer an emitter cluster than this times the cluster's half diagonal makes the
@@ -246,6 +245,7 @@ class HierarchicalSolver final : public Solver {
     iterationLimit_ = iterations_ + uint32_t(s_.maxIterations);
     unshotFraction_ = unshotPower / emittedPower_;
     done_ = unshotFraction_ < s_.unshot;
+    if (done_) releaseSweeps();
     ++redistributions_;
     seconds_ += watch.seconds();
     return true;
@@ -1043,16 +1043,19 @@ class HierarchicalSolver final : public Solver {
     std::vector<Rgb>().swap(emission_);  // read in the first iteration only
     unshotFraction_ = emittedPower_ > 0.0 ? unshotPower / emittedPower_ : 0.0;
     done_ = unshotFraction_ < s_.unshot || iterations_ >= iterationLimit_;
-    if (done_) {
-      // What only a sweep reads goes before the solution is asked for, which allocates its own
-      // arrays: at millions of faces the two together were the solve's peak (docs/performance.md).
-      // The fields, the tree and unshot_ (saved in checkpoints) stay.
-      std::vector<FaceSample>().swap(faces_);
-      std::vector<Rgb>().swap(next_);
-      std::vector<Mix>().swap(mix_);
-      std::vector<Rgb>().swap(nextNegative_);  // negative_ keeps its remainder for the next change
-    }
+    if (done_) releaseSweeps();
     seconds_ += watch.seconds();
+  }
+
+  // What only a sweep reads goes before the solution is asked for, which allocates its own
+  // arrays: at millions of faces the two together were the solve's peak (docs/performance.md).
+  // The fields, the tree, unshot_ (saved in checkpoints) and negative_ (its remainder, for the
+  // next change) stay.
+  void releaseSweeps() {
+    std::vector<FaceSample>().swap(faces_);
+    std::vector<Rgb>().swap(next_);
+    std::vector<Mix>().swap(mix_);
+    std::vector<Rgb>().swap(nextNegative_);
   }
 
   // A digest of the emission and reflectance the solve was made for: a change of either takes a

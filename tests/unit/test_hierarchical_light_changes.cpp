@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
+#include <filesystem>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -144,6 +146,32 @@ TEST(HierarchicalLightChanges, LinksAreMadeAgainOnceTheLightHasChangedByHalf) {
   }
   EXPECT_TRUE(restarted) << "followed " << followed << " changes without making the links again";
   EXPECT_GE(followed, 3u) << "made the links again after only " << followed << " changes";
+}
+
+TEST(HierarchicalLightChanges, ACheckpointTakenWhileFollowingResumesToTheSameBits) {
+  const std::filesystem::path dir = std::filesystem::path(LUXEL_TEST_TMP) / "hierarchical-light";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path file = dir / "following.ckpt";
+  std::filesystem::remove(file);
+  Scene scene = sunScene();
+  SessionOptions writing = hierarchical();
+  writing.solve.settings.set("unshot", 1e-5);  // sweeps enough to stop between
+  writing.solve.checkpoint = {.path = file, .intervalSeconds = 1e-9};  // at every step
+  Session s(scene, DiscretiseOptions{}, writing);
+  s.solve();
+  const std::vector<Light> turned = sunTurned(scene, 8.0f);
+  s.setLights(turned);
+  ASSERT_TRUE(s.step({.units = 1}));  // one sweep of each series, then the checkpoint
+  ASSERT_TRUE(std::filesystem::exists(file));
+  scene.lights = turned;
+  SessionOptions resuming = hierarchical();
+  resuming.solve.settings.set("unshot", 1e-5);
+  resuming.solve.checkpoint = {.resume = file};
+  Session again(scene, DiscretiseOptions{}, resuming);
+  const Solution expected = s.solve(), resumed = again.solve();
+  EXPECT_EQ(resumed.stats.redistributions, 1u);
+  ASSERT_EQ(expected.radiosity.size(), resumed.radiosity.size());
+  EXPECT_EQ(std::memcmp(expected.radiosity.data(), resumed.radiosity.data(), expected.radiosity.size() * sizeof(Rgb)), 0);
 }
 
 TEST(HierarchicalLightChanges, AMaterialEditOrADimmedSunStartsAgain) {
