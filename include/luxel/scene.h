@@ -68,10 +68,13 @@ struct Material {
   // wall. Faces whose back receives more direct light than their front are turned round at
   // discretisation (docs/algorithms.md, "Sides and winding").
   bool twoSided = false;
-  // The file says light passes through it (glass: OBJ d below 1 or a transparent illum with a
-  // filter, glTF transmission or blending). luxel's surfaces are opaque, so such a material blocks
-  // light as a surface of its reflectance would; loadScene names the ones meshes use in a warning.
-  bool transmits = false;
+  // Thin glass: the share of light that passes straight through the surface, per channel (OBJ Tf
+  // with a transparent illum, or 1 - d; glTF KHR_materials_transmission times the base colour);
+  // zero for an opaque surface. The shadow rays of the lights' direct light pass it, filtered
+  // by it; light reflected by surfaces (the interreflection) does not: docs/algorithms.md,
+  // "Thin glass". At most 1 - reflectance per channel.
+  Rgb transmittance{0.0f};
+  bool transmits() const { return transmittance.r > 0.0f || transmittance.g > 0.0f || transmittance.b > 0.0f; }
 
   bool isEmissive() const { return emission.r > 0.0f || emission.g > 0.0f || emission.b > 0.0f; }
   // Whether the viewer draws a highlight: a positive exponent and a specular colour that is not black.

@@ -63,7 +63,7 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
   // a vertex for a hit, calls add again before this call is done), kept between calls.
   struct Scratch {
     std::vector<RTCRay> shadowRays;
-    std::vector<Rgb> shadowValues;
+    std::vector<Rgb> shadowValues, shadowThrough;
     std::vector<Rgb*> shadowTargets;
     std::vector<RTCRayHit> second;  // the near hits' own gathers
     std::vector<Rgb> secondWeights;
@@ -78,7 +78,7 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
   } nested(depth);
   if (levels.size() < depth) levels.push_back(std::make_unique<Scratch>());
   Scratch& scratch = *levels[depth - 1];
-  auto& [shadowRays, shadowValues, shadowTargets, second, secondWeights, secondTargets] = scratch;
+  auto& [shadowRays, shadowValues, shadowThrough, shadowTargets, second, secondWeights, secondTargets] = scratch;
   shadowRays.clear(), shadowValues.clear(), shadowTargets.clear();
   second.clear(), secondWeights.clear(), secondTargets.clear();
   size_t backs = 0;
@@ -131,9 +131,9 @@ size_t FinalGather::add(std::span<RTCRayHit> rays, std::span<const Rgb> weights,
       shadowTargets.push_back(targets[k]);
     }
   }
-  tracer_.occluded(shadowRays);
+  tracer_.transmitted(shadowRays, shadowThrough);
   for (size_t r = 0; r < shadowRays.size(); ++r)
-    if (!isOccluded(shadowRays[r])) *shadowTargets[r] += shadowValues[r];
+    if (!isOccluded(shadowRays[r])) *shadowTargets[r] += shadowValues[r] * shadowThrough[r];
   if (!second.empty()) add(second, secondWeights, secondTargets, hashCombine(seed, 0x5ec0u), false);
   return backs;
 }
@@ -148,7 +148,7 @@ std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer&
   const float perSample = 1.0f / float(samples);
   const auto estimate = [&](const tbb::blocked_range<uint32_t>& range) {
     std::vector<RTCRay> rays;
-    std::vector<Rgb> values;
+    std::vector<Rgb> values, through;
     std::vector<uint32_t> owners;
     for (uint32_t i = range.begin(); i < range.end(); ++i) {
       const uint32_t e = elements.empty() ? i : elements[i];
@@ -165,9 +165,9 @@ std::vector<Rgb> elementDirectLight(const SurfaceSet& surfaces, const RayTracer&
       }
       out[i] = always * perSample;
     }
-    tracer.occluded(rays);
+    tracer.transmitted(rays, through);
     for (size_t r = 0; r < rays.size(); ++r)
-      if (!isOccluded(rays[r])) out[owners[r]] += values[r] * perSample;
+      if (!isOccluded(rays[r])) out[owners[r]] += values[r] * through[r] * perSample;
   };
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(count), 64), estimate);
   return out;

@@ -13,6 +13,7 @@
 #include "render/corner_values.h"
 #include "render/gather_refinement.h"
 #include "trace/element_polygons.h"
+#include "trace/thin_glass.h"
 
 namespace luxel {
 namespace {
@@ -62,6 +63,7 @@ GatherPipeline::GatherPipeline(const Scene& scene, const SurfaceSet& surfaces, c
   corners_ = mesh_->corners(elementCornerValues(surfaces, field));
   polygons_ = elementPolygonsTwinsApart(shown);
   tracer_.emplace(polygons_);
+  tracer_->setGlass(std::make_shared<ThinGlass>(ThinGlass::overElements(scene, shown)));
   direct_.emplace(scene, surfaces, &shown);
   // A vertex gather's hits a few elements away read their direct light per element, each element's
   // estimated here. Past a million elements the estimates would cost more rays than the hits they
@@ -165,7 +167,8 @@ std::vector<Rgb> pixelDirectLight(const Scene& scene, const SurfaceSet& solved, 
       throw Error("pixelDirectLight: element " + std::to_string(e) + " is past the surfaces' " +
                   std::to_string(solved.elements.size()));
   const std::vector<Polygon> polygons = elementPolygonsTwinsApart(solved);
-  const RayTracer tracer(polygons);
+  RayTracer tracer(polygons);
+  tracer.setGlass(std::make_shared<ThinGlass>(ThinGlass::overElements(scene, solved)));
   const DirectLight direct(scene, solved, &solved, skies);
   return elementDirectLight(solved, tracer, direct, samples, seed, elements);
 }

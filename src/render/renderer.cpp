@@ -214,13 +214,16 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   std::optional<VertexGather> vertexGathered;
   std::optional<GatherRefinement> refinement;
   std::optional<DirectLight> skyless;
+  // Gather rays do not pass glass (only the lights' shadow rays do, trace/thin_glass.h): in a scene
+  // with glass the pixels trace the skies too.
+  const bool skiesGathered = !skies.empty() && !tracer.hasGlass();
   if (vertexGather) {
     const std::vector<float> seen =
         pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options);
     vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed, seen, &mesh,
-                           skies.empty() ? nullptr : &scene);
+                           skiesGathered ? &scene : nullptr);
     refinement.emplace(shown, *vertexGathered, seen, seen);
-    if (!skies.empty()) skyless.emplace(scene, surfaces, &shown, /*skies=*/false);
+    if (skiesGathered) skyless.emplace(scene, surfaces, &shown, /*skies=*/false);
   }
   const DirectLight& pixelDirect = skyless ? *skyless : direct;
   const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;
@@ -254,6 +257,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     std::vector<Rgb> sums(size_t(kTile * kTile), Rgb(0.0f));
     std::vector<int> hitSamples(size_t(kTile * kTile), 0);  // for Image::coverage
     std::vector<RTCRay> shadowRays;
+    std::vector<Rgb> shadowThrough;  // what glass passes of each
     std::vector<Rgb> shadowValues;
     std::vector<Rgb*> shadowTargets;
     std::vector<RTCRayHit> gathers;
@@ -360,9 +364,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
           gatherTargets.push_back(&sum);
         }
       }
-      tracer.occluded(shadowRays);
+      tracer.transmitted(shadowRays, shadowThrough);
       for (size_t k = 0; k < shadowRays.size(); ++k)
-        if (!isOccluded(shadowRays[k])) *shadowTargets[k] += shadowValues[k];
+        if (!isOccluded(shadowRays[k])) *shadowTargets[k] += shadowValues[k] * shadowThrough[k];
       if (!gathers.empty())
         finalGather.add(gathers, gatherWeights, gatherTargets, hashCombine(uint32_t(tile) * 0x9E3779B9u, uint32_t(s)));
     }

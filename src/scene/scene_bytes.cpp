@@ -9,10 +9,10 @@ namespace {
 
 // Every field of every struct below is written. A field added to one of them must be added here
 // too: these sizes (x86-64, libstdc++) make the build say so, unless the field fits in padding
-// (Material::transmits did, beside twoSided): tests/unit/test_child_process_import.cpp's round
+// (a bool beside Material::twoSided would): tests/unit/test_child_process_import.cpp's round
 // trip checks the fields one by one.
 static_assert(sizeof(Texture) == 64, "Texture changed: update scene_bytes.cpp");
-static_assert(sizeof(Material) == 96, "Material changed: update scene_bytes.cpp");
+static_assert(sizeof(Material) == 104, "Material changed: update scene_bytes.cpp");
 static_assert(sizeof(Object) == 168, "Object changed: update scene_bytes.cpp");
 static_assert(sizeof(Mesh) == 192, "Mesh changed: update scene_bytes.cpp");
 static_assert(sizeof(Light) == 96, "Light changed: update scene_bytes.cpp");
@@ -51,7 +51,7 @@ std::vector<std::byte> sceneBytes(const Scene& scene) {
     put(out, m.name);
     out.value(m.reflectance), out.value(m.reflectanceTexture), out.value(m.emission), out.value(m.emissionTexture);
     out.value(m.normalTexture), out.value(m.normalScale);
-    out.value(m.specular), out.value(m.shininess), out.value(m.twoSided), out.value(m.transmits);
+    out.value(m.specular), out.value(m.shininess), out.value(m.twoSided), out.value(m.transmittance);
   }
   out.value(uint64_t(scene.textures.size()));
   for (const Texture& t : scene.textures) put(out, t.path), out.value(t.width), out.value(t.height), out.array(t.texels);
@@ -97,7 +97,7 @@ Scene sceneFromBytes(std::span<const std::byte> bytes) {
     get(in, m.name);
     in.value(m.reflectance), in.value(m.reflectanceTexture), in.value(m.emission), in.value(m.emissionTexture);
     in.value(m.normalTexture), in.value(m.normalScale);
-    in.value(m.specular), in.value(m.shininess), in.value(m.twoSided), in.value(m.transmits);
+    in.value(m.specular), in.value(m.shininess), in.value(m.twoSided), in.value(m.transmittance);
   }
   scene.textures.resize(count());
   for (Texture& t : scene.textures) get(in, t.path), in.value(t.width), in.value(t.height), in.array(t.texels);

@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "luxel/error.h"
+#include "trace/thin_glass.h"
 
 namespace luxel {
 namespace {
@@ -254,6 +255,15 @@ void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
   context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   rtcOccluded1M(traced(), &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
   rays_.fetch_add(rays.size(), std::memory_order_relaxed);
+}
+
+bool RayTracer::hasGlass() const { return glass_ && glass_->any(); }
+
+void RayTracer::transmitted(std::span<RTCRay> rays, std::vector<Rgb>& through, bool coherent) const {
+  if (hasGlass()) return glass_->occluded(*this, rays, through, coherent);
+  occluded(rays, coherent);
+  through.resize(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) through[i] = Rgb(isOccluded(rays[i]) ? 0.0f : 1.0f);
 }
 
 void RayTracer::intersect(std::span<RTCRayHit> hits, bool coherent) const {

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <span>
 #include <utility>
@@ -18,6 +19,8 @@
 #include "luxel/surface.h"
 
 namespace luxel {
+
+class ThinGlass;
 
 class RayTracer {
  public:
@@ -39,6 +42,13 @@ class RayTracer {
 
   // Occlusion: on return, rays[i].tfar is -inf where something lies between tnear and tfar.
   void occluded(std::span<RTCRay> rays, bool coherent = false) const;
+  // Thin glass (trace/thin_glass.h): the transmittance of each primitive, which shadow rays pass.
+  void setGlass(std::shared_ptr<const ThinGlass> glass) { glass_ = std::move(glass); }
+  bool hasGlass() const;
+  // Shadow rays: `through[i]` is what ray i carries of its light, 1 where nothing is in the way,
+  // the panes' transmittance where only glass is, 0 (and marked occluded) where something opaque
+  // is. Without glass, occluded().
+  void transmitted(std::span<RTCRay> rays, std::vector<Rgb>& through, bool coherent = false) const;
   // Closest hit: on return, hits[i].hit.geomID is RTC_INVALID_GEOMETRY_ID on a miss; otherwise
   // hit.primID is the polygon and hit.u, hit.v its parameters. Triangles: barycentric towards
   // corners 1 and 2. Quads are the triangles (0,1,2) and (0,2,3), as elements, bake and glTF cut
@@ -82,6 +92,7 @@ class RayTracer {
   void resetRayCount() { rays_.store(0, std::memory_order_relaxed); }
 
  private:
+  std::shared_ptr<const ThinGlass> glass_;
   // The one-level BVH of every polygon, traced until an instance moves; with instances, the
   // two-level form (parts_: the static polygons' scene, then each instance's) traced after.
   RTCScene flat_ = nullptr;

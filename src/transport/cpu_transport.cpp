@@ -109,6 +109,7 @@ CpuTransport::CpuTransport(const Scene& scene, const SurfaceSet& surfaces,
       tracer_(facePolygons_, faceInstances(scene, surfaces)),
       threadLocal_(std::make_unique<ThreadLocal>()) {
   rayOffset_ = rayOffsetFor(surfaces.sceneExtent);
+  tracer_.setGlass(std::make_shared<ThinGlass>(ThinGlass::overFaces(scene, surfaces)));
   for (uint32_t o : scene.dynamicObjects()) builtAt_.emplace_back(o, scene.objects[o].transform);
   // A static scene's polygons never change: the tracer's corners serve (facePolygon), and a copy
   // of every face here would be 52 bytes a face for nothing.
@@ -676,11 +677,12 @@ void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& v
     std::vector<LightSample> samples, reached, finerSamples;
     std::vector<uint32_t> lightOf;
     std::vector<uint32_t> arrived, traced;
+    std::vector<Rgb> through, finerThrough;  // what glass passes of each ray (trace/thin_glass.h)
     for (size_t i = r.begin(); i < r.end(); ++i) {
       const uint32_t ei = elements.empty() ? uint32_t(i) : elements[i];
       rays.clear(), samples.clear(), lightOf.clear();
       appendLightSamples(ei, lights, rays, samples, &lightOf);
-      tracer_.occluded(rays, coherent);
+      tracer_.transmitted(rays, through, coherent);
       arrived.assign(lights.size(), 0), traced.assign(lights.size(), 0);
       for (size_t j = 0; j < rays.size(); ++j) ++traced[lightOf[j]], arrived[lightOf[j]] += !isOccluded(rays[j]);
       // A light whose samples disagree has a shadow's edge across the element: its light there
@@ -694,12 +696,16 @@ void CpuTransport::visitLightSamples(std::span<const uint32_t> lights, Visit&& v
         refinedLight_[lights[q]][ei] = refine;
         if (refine) appendSamplesOfLight(ei, lights[q], side, kRefinedPass, finer, finerSamples);
       }
+      auto reach = [&](LightSample s, const Rgb& passed) {
+        s.irradiance *= passed;
+        reached.push_back(s);
+      };
       for (size_t j = 0; j < rays.size(); ++j)
-        if (!isOccluded(rays[j]) && !refinedLight_[lights[lightOf[j]]][ei]) reached.push_back(samples[j]);
+        if (!isOccluded(rays[j]) && !refinedLight_[lights[lightOf[j]]][ei]) reach(samples[j], through[j]);
       if (!finer.empty()) {
-        tracer_.occluded(finer, coherent);
+        tracer_.transmitted(finer, finerThrough, coherent);
         for (size_t j = 0; j < finer.size(); ++j)
-          if (!isOccluded(finer[j])) reached.push_back(finerSamples[j]);
+          if (!isOccluded(finer[j])) reach(finerSamples[j], finerThrough[j]);
       }
       visit(ei, std::span<const LightSample>(reached));
     }
@@ -718,7 +724,8 @@ void CpuTransport::lightIrradiance(std::span<const uint32_t> lights, std::span<R
 size_t CpuTransport::updateLightIrradianceAfterMove(std::span<const uint32_t> lights, std::span<Rgb> irradiance) {
   bool known = true;  // each light's refined elements are those of its last computation
   for (uint32_t li : lights) known = known && li < refinedLight_.size() && refinedLight_[li].size() == surfaces_.elements.size();
-  if (!movedBefore_ || !known) {
+  // With glass a ray's light is not decided by its first hit alone, which the verdicts below are.
+  if (!movedBefore_ || !known || tracer_.hasGlass()) {
     lightIrradiance(lights, irradiance);
     return surfaces_.elements.size();
   }

@@ -16,6 +16,7 @@
 #include "transport/light_sampling.h"
 #include "trace/convex_solid.h"
 #include "trace/ray_tracer.h"
+#include "trace/thin_glass.h"
 #include "transport/transport.h"
 
 namespace luxel {
@@ -73,7 +74,7 @@ class CpuTransport final : public Transport {
   Polygon facePolygon(uint32_t face) const {
     return facePolygons_.empty() ? tracer_.polygonAsBuilt(face) : facePolygons_[face];
   }
-  RayTracer tracer_;
+  RayTracer tracer_;  // with the faces' glass (trace/thin_glass.h), for the lights' shadow rays
   float rayOffset_ = 0.0f;
   enum class PairVisibility : uint8_t { Unknown, Clear, Partial };
   // Traces the samples of `lights` at every element and calls visit(element, samples) with the

@@ -49,7 +49,7 @@ Scene everyField() {
   s.materials.push_back(Material{.name = "grey"});
   s.materials.push_back(Material{.name = "lit", .reflectance = Rgb(0.1f, 0.2f, 0.3f), .reflectanceTexture = 0,
                                  .emission = Rgb(4, 5, 6), .emissionTexture = 0, .specular = Rgb(0.4f, 0.5f, 0.6f),
-                                 .shininess = 32, .twoSided = true, .transmits = true});
+                                 .shininess = 32, .twoSided = true, .transmittance = Rgb(0.5f, 0.25f, 0.125f)});
   s.textures.push_back(Texture{.path = "tex/a.png", .width = 2, .height = 1, .texels = {Rgb(0.25f), Rgb(0.5f)}});
   s.lights.push_back(Light{.type = Light::Type::Spot, .name = "spot", .color = Rgb(1, 0.5f, 0.25f), .intensity = 7,
                            .position = {1, 2, 3}, .direction = {0, 0, -1}, .innerConeAngle = 0.1f,
@@ -83,8 +83,8 @@ void expectSame(const Scene& a, const Scene& b) {
   EXPECT_EQ(b.materials[1].specular, Rgb(0.4f, 0.5f, 0.6f));
   EXPECT_EQ(b.materials[1].shininess, 32.0f);
   EXPECT_TRUE(b.materials[1].twoSided);
-  EXPECT_TRUE(b.materials[1].transmits);
-  EXPECT_FALSE(b.materials[0].transmits);
+  EXPECT_EQ(b.materials[1].transmittance, Rgb(0.5f, 0.25f, 0.125f));
+  EXPECT_FALSE(b.materials[0].transmits());
   EXPECT_EQ(b.textures[0].texels, a.textures[0].texels);
   EXPECT_EQ(b.lights[0].type, Light::Type::Spot);
   EXPECT_EQ(b.lights[0].angularRadius, 0.3f);

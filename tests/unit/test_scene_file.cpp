@@ -273,6 +273,21 @@ TEST(SceneFile, SpecularAndShininessSetTheHighlight) {
   EXPECT_TRUE(s.warnings.empty());
 }
 
+TEST(SceneFile, TransmittanceMakesGlass) {
+  fs::path dir = tmpDir("transmittance");
+  writeFile(dir / "quad.obj", "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl window\nf 1 2 3\n");
+  writeFile(dir / "quad.mtl", "newmtl window\nKd 0.1 0.1 0.1\nillum 2\n");
+  writeFile(dir / "scene.json", R"({ "meshes": [ { "file": "quad.obj" } ],
+    "materials": { "window": { "transmittance": [0.8, 0.7, 0.6] } } })");
+  Scene s = luxel::loadScene((dir / "scene.json").string());
+  const luxel::Material& window = s.materials[size_t(s.findMaterial("window"))];
+  expectVec(window.transmittance, Vec3(0.8f, 0.7f, 0.6f));
+  EXPECT_TRUE(window.transmits());
+  // The scene is told what passes the glass and what does not.
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("material 'window' lets light through"), std::string::npos) << s.warnings[0];
+}
+
 TEST(SceneFile, EveryLightType) {
   Scene s = loadWithQuad("lights", R"({
     "meshes": [ { "file": "models/quad.obj" } ],
@@ -432,6 +447,17 @@ TEST(SceneFileErrors, SpecularAndShininess) {
               {"/materials/m/shininess", "expected a number, got an array of 1"});
   expectError("shininess-huge", R"({ "materials": { "m": { "shininess": 1e300 } } })",
               {"/materials/m/shininess", "number out of range"});
+}
+
+// Thin glass: at most 1 a channel, and with the reflectance at most what arrives.
+TEST(SceneFileErrors, Transmittance) {
+  expectError("transmittance-above", R"({ "materials": { "m": { "transmittance": [1.5, 0, 0] } } })",
+              {"/materials/m/transmittance", "transmittance (1.5, 0, 0) is above 1"});
+  expectError("transmittance-negative", R"({ "materials": { "m": { "transmittance": -0.5 } } })",
+              {"/materials/m/transmittance", "must not be negative, got -0.5"});
+  expectError("transmittance-with-reflectance",
+              R"({ "materials": { "m": { "reflectance": 0.5, "transmittance": [0.2, 0.6, 0.2] } } })",
+              {"/materials/m/transmittance", "reflectance (0.5, 0.5, 0.5) plus transmittance (0.2, 0.6, 0.2) is above 1"});
 }
 
 TEST(SceneFileErrors, MissingFilesNameBoth) {

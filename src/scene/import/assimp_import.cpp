@@ -177,24 +177,29 @@ class AssimpImport {
     }
   }
 
-  // Whether the file says light passes through the material: OBJ's dissolve below 1 (d, or Tr),
-  // or an illumination model with transparency (4, 6, 7, 9) and a transmission filter (Tf) that
-  // is not black; glTF's KHR_materials_transmission, or alpha blending below full opacity.
-  bool transmits(const aiMaterial& am) const {
+  // How much light the file says passes straight through the material (its base colour `base`):
+  // an illumination model with transparency (OBJ illum 4, 6, 7, 9) with a transmission filter (Tf)
+  // that is not black passes Tf; else a dissolve below 1 (d, or Tr) passes 1 - d; glTF's
+  // KHR_materials_transmission passes its factor times the base colour, alpha blending 1 - alpha.
+  // Zero: opaque. (Clamped to [0, 1] by the caller.)
+  Rgb transmittance(const aiMaterial& am, Rgb base) const {
     float opacity = 1.0f;
     am.Get(AI_MATKEY_OPACITY, opacity);
+    if (!std::isfinite(opacity)) opacity = 1.0f;
     if (format_ == Format::Gltf) {
       float transmission = 0.0f;
       am.Get(AI_MATKEY_TRANSMISSION_FACTOR, transmission);
+      if (std::isfinite(transmission) && transmission > 0.0f) return transmission * base;
       aiString mode;
       const bool blends = am.Get(AI_MATKEY_GLTF_ALPHAMODE, mode) == AI_SUCCESS && std::string(mode.C_Str()) == "BLEND";
-      return transmission > 0.0f || (blends && opacity < 1.0f);
+      return blends && opacity < 1.0f ? Rgb(1.0f - opacity) : Rgb(0.0f);
     }
-    if (opacity < 1.0f) return true;
     int illum = 0;
     aiColor3D filter(0.0f, 0.0f, 0.0f);
-    return am.Get(AI_MATKEY_OBJ_ILLUM, illum) == AI_SUCCESS && (illum == 4 || illum == 6 || illum == 7 || illum == 9) &&
-           am.Get(AI_MATKEY_COLOR_TRANSPARENT, filter) == AI_SUCCESS && filter.r + filter.g + filter.b > 0.0f;
+    if (am.Get(AI_MATKEY_OBJ_ILLUM, illum) == AI_SUCCESS && (illum == 4 || illum == 6 || illum == 7 || illum == 9) &&
+        am.Get(AI_MATKEY_COLOR_TRANSPARENT, filter) == AI_SUCCESS && filter.r + filter.g + filter.b > 0.0f)
+      return Rgb(filter.r, filter.g, filter.b);
+    return opacity < 1.0f ? Rgb(1.0f - opacity) : Rgb(0.0f);
   }
 
   Material importMaterial(unsigned index) {
@@ -264,7 +269,15 @@ class AssimpImport {
     if (am.Get(AI_MATKEY_TWOSIDED, twoSided) == AI_SUCCESS) mat.twoSided = twoSided != 0;
 
     importSpecular(am, mat);
-    mat.transmits = transmits(am);
+    // Glass passes at most what it does not reflect: more would make light.
+    const Rgb passes = transmittance(am, Rgb(base.r, base.g, base.b));
+    for (int c = 0; c < 3; ++c)
+      mat.transmittance[c] = std::isfinite(passes[c]) ? std::clamp(passes[c], 0.0f, 1.0f - mat.reflectance[c]) : 0.0f;
+    if (mat.transmittance != glm::clamp(passes, Rgb(0.0f), Rgb(1.0f)))
+      scene_.warnings.push_back(fmt::format(
+          "{}: material '{}': transmittance ({}, {}, {}) lowered to ({}, {}, {}): with its reflectance it would pass "
+          "and reflect more light than arrives",
+          file_, mat.name, passes.r, passes.g, passes.b, mat.transmittance.r, mat.transmittance.g, mat.transmittance.b));
 
     mat.reflectanceTexture =
         materialTexture(am, mat.name, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE});

@@ -15,8 +15,8 @@
 namespace luxel {
 namespace {
 
-// One warning naming the glass that meshes of the scene use (Material::transmits): what the file
-// meant to let light through, luxel blocks. Given here, once the whole scene is known, so that a
+// One warning naming the glass that meshes of the scene use (Material::transmittance): luxel lets
+// only the lights' direct light through it. Given here, once the whole scene is known, so that a
 // scene file that leaves the glass out (/materials/NAME/omit) hears nothing of it.
 void warnAboutGlass(Scene& scene) {
   std::vector<uint8_t> used(scene.materials.size(), 0);
@@ -24,18 +24,18 @@ void warnAboutGlass(Scene& scene) {
     if (m.material < used.size()) used[m.material] = 1;
   std::vector<std::string> names;
   for (size_t i = 0; i < scene.materials.size(); ++i)
-    if (used[i] && scene.materials[i].transmits &&
+    if (used[i] && scene.materials[i].transmits() &&
         std::find(names.begin(), names.end(), scene.materials[i].name) == names.end())
       names.push_back(scene.materials[i].name);
   if (names.empty()) return;
   const bool many = names.size() > 1;
   scene.warnings.push_back(fmt::format(
-      "scene '{}': material{} '{}' let{} light through in the file (glass: OBJ d, or a transparent illum with Tf; "
-      "glTF transmission or blending); luxel's surfaces are opaque, so {} block{} it as a surface of {} reflectance "
-      "would, and glass that closes a room leaves it lit by leakage alone. Leave such glass out where light should "
-      "pass (a scene file's /materials/NAME/omit), or give it a reflectance",
-      scene.name, many ? "s" : "", fmt::join(names, "', '"), many ? "" : "s", many ? "they" : "it",
-      many ? "" : "s", many ? "their" : "its"));
+      "scene '{}': material{} '{}' let{} light through (glass: OBJ Tf or d, glTF transmission or blending): the "
+      "lights' direct light (lamps, suns, skies, emitting surfaces) passes {}, filtered by {} transmittance, but light "
+      "reflected by surfaces does not, so a room closed by glass gets no light bounced in from outside. Leave such "
+      "glass out where all light should pass (a scene file's /materials/NAME/omit)",
+      scene.name, many ? "s" : "", fmt::join(names, "', '"), many ? "" : "s", many ? "them" : "it",
+      many ? "their" : "its"));
 }
 
 }  // namespace

@@ -559,7 +559,7 @@ class SceneFileLoader {
     in_.keys(
         spec, ptr,
         {"reflectance", "emission", "emissionStrength", "twoSided", "texture", "emissionTexture", "specular",
-         "shininess", "normalTexture", "normalScale", "omit"});
+         "shininess", "normalTexture", "normalScale", "transmittance", "omit"});
     if (auto it = spec.find("omit"); it != spec.end() && in_.boolean(*it, Reader::child(ptr, "omit")))
       omitted_.insert(name);
     std::vector<size_t> targets;
@@ -572,7 +572,7 @@ class SceneFileLoader {
       scene_.materials.push_back(added);
     }
 
-    std::optional<Rgb> reflectance, emission, specular;
+    std::optional<Rgb> reflectance, emission, specular, transmittance;
     std::optional<float> strength, shininess, normalScale;
     std::optional<bool> twoSided;
     std::optional<int> texture, emissionTexture, normalTexture;  // -1 removes
@@ -608,6 +608,14 @@ class SceneFileLoader {
       if (v > kMaxShininess) in_.fail(p, fmt::format("shininess {} is above {:g}", v, kMaxShininess));
       shininess = v;
     }
+    // Thin glass (scene.h): what passes straight through, at most 1 a channel.
+    if (auto it = spec.find("transmittance"); it != spec.end()) {
+      std::string p = Reader::child(ptr, "transmittance");
+      Rgb t = in_.color(*it, p);
+      if (t.x > 1.0f || t.y > 1.0f || t.z > 1.0f)
+        in_.fail(p, fmt::format("transmittance ({}, {}, {}) is above 1", t.x, t.y, t.z));
+      transmittance = t;
+    }
     if (auto it = spec.find("texture"); it != spec.end())
       texture = readTexture(*it, Reader::child(ptr, "texture"));
     if (auto it = spec.find("emissionTexture"); it != spec.end())
@@ -630,6 +638,16 @@ class SceneFileLoader {
       if (emissionTexture) m.emissionTexture = *emissionTexture;
       if (normalTexture) m.normalTexture = *normalTexture;
       if (normalScale) m.normalScale = *normalScale;
+      if (transmittance) m.transmittance = *transmittance;
+      // Passing and reflecting more than arrives would make light. Said where the user typed it;
+      // a file's glass is lowered with a warning at import instead.
+      if ((transmittance || reflectance) && m.transmits())
+        for (int c = 0; c < 3; ++c)
+          if (m.reflectance[c] + m.transmittance[c] > 1.0f)
+            in_.fail(Reader::child(ptr, transmittance ? "transmittance" : "reflectance"),
+                     fmt::format("reflectance ({}, {}, {}) plus transmittance ({}, {}, {}) is above 1", m.reflectance.r,
+                                 m.reflectance.g, m.reflectance.b, m.transmittance.r, m.transmittance.g,
+                                 m.transmittance.b));
     }
   }
 
