@@ -70,8 +70,8 @@ struct Material {
   bool twoSided = false;
   // Thin glass: the share of light that passes straight through the surface, per channel (OBJ Tf
   // with a transparent illum, or 1 - d; glTF KHR_materials_transmission times the base colour);
-  // zero for an opaque surface. The shadow rays of the lights' direct light pass it, filtered
-  // by it; light reflected by surfaces (the interreflection) does not: docs/algorithms.md,
+  // zero for an opaque surface. The shadow rays of the lights (lamps, suns, skies) pass it,
+  // filtered by it; light from surfaces (emitting or reflecting) does not: docs/algorithms.md,
   // "Thin glass". At most 1 - reflectance per channel.
   Rgb transmittance{0.0f};
   bool transmits() const { return transmittance.r > 0.0f || transmittance.g > 0.0f || transmittance.b > 0.0f; }

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "trace/element_polygons.h"
+#include "trace/thin_glass.h"
 #include "transport/emitting_polygons.h"
 #include "transport/light_sampling.h"
 #include "transport/shaft.h"
@@ -115,6 +116,9 @@ Rgb DirectLight::sampleEmitter(const Emitter& em, float weight, Vec3 x, Vec3 n, 
     const Vec3 xo = x + n * (glm::dot(n, d) >= 0.0f ? rayOffset : -rayOffset);
     const Vec3 yo = y + pn * (glm::dot(pn, d) <= 0.0f ? rayOffset : -rayOffset);
     rays.push_back(makeRay(xo, yo - xo, 0.0f, 1.0f));
+    // An emitting surface's light is blocked by glass, as in the solution, whose surfaces' light
+    // does not pass it (trace/thin_glass.h).
+    rays.back().id = kOpaqueToGlass;
     values.push_back(em.exitance * (decided * weight));
   }
   return always;

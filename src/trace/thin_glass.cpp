@@ -53,7 +53,8 @@ void ThinGlass::occluded(const RayTracer& tracer, std::span<RTCRay> rays, std::v
   // The blocked rays again, pane by pane: each search starts just past the last pane found.
   std::vector<size_t> pending;
   for (size_t i = 0; i < rays.size(); ++i)
-    if (isOccluded(rays[i])) pending.push_back(i);
+    if (isOccluded(rays[i]) && rays[i].id != kOpaqueToGlass) pending.push_back(i);
+    else if (isOccluded(rays[i])) through[i] = Rgb(0.0f);
   std::vector<float> from(rays.size(), 0.0f);
   for (size_t i : pending) from[i] = rays[i].tnear;
   std::vector<Pane> last(rays.size());

@@ -15,6 +15,10 @@
 
 namespace luxel {
 
+// RTCRay::id of a shadow ray that glass blocks (light from a surface, which the solvers do not pass
+// through glass); 0, makeRay's, for the lights' rays, which pass it.
+inline constexpr unsigned kOpaqueToGlass = 1;
+
 class ThinGlass {
  public:
   // The transmittance of each primitive of a ray tracer, in its order (zero: opaque); `offset`
@@ -29,8 +33,9 @@ class ThinGlass {
   bool any() const { return any_; }
 
   // Occlusion with glass: `through[i]` is what ray i carries, 1 where nothing is in the way, the
-  // product of the panes' transmittances where only glass is, 0 where something opaque is; rays
-  // that carry nothing are marked occluded (tfar = -inf) and the others are not.
+  // product of the panes' transmittances where only glass is, 0 where something opaque is (or
+  // anything, for a ray marked kOpaqueToGlass); rays that carry nothing are marked occluded
+  // (tfar = -inf) and the others are not.
   void occluded(const RayTracer& tracer, std::span<RTCRay> rays, std::vector<Rgb>& through, bool coherent = false) const;
 
  private:

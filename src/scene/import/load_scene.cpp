@@ -31,8 +31,8 @@ void warnAboutGlass(Scene& scene) {
   const bool many = names.size() > 1;
   scene.warnings.push_back(fmt::format(
       "scene '{}': material{} '{}' let{} light through (glass: OBJ Tf or d, glTF transmission or blending): the "
-      "lights' direct light (lamps, suns, skies, emitting surfaces) passes {}, filtered by {} transmittance, but light "
-      "reflected by surfaces does not, so a room closed by glass gets no light bounced in from outside. Leave such "
+      "lights' direct light (lamps, suns, skies) passes {}, filtered by {} transmittance, but light from surfaces "
+      "(emitting or reflecting) does not, so a room closed by glass gets no light bounced in from outside. Leave such "
       "glass out where all light should pass (a scene file's /materials/NAME/omit)",
       scene.name, many ? "s" : "", fmt::join(names, "', '"), many ? "" : "s", many ? "them" : "it",
       many ? "their" : "its"));
