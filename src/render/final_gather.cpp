@@ -314,14 +314,28 @@ VertexGather::PointGather VertexGather::gatherAt(Vec3 position, Vec3 n, Vec3 tow
   const std::vector<Rgb*> targets(static_cast<size_t>(count), &out.irradiance);
   const size_t backs = gather_.add(hits, weights, targets, hashCombine(seed_, index));
   out.inside = 2 * backs > size_t(count);
-  // What the rays met nearest, and the skies (skiesOf) through those that met nothing.
+  // What the rays met nearest, and the skies (skiesOf) through those that met nothing, or only glass:
+  // a sky is a light, and the lights' rays pass glass (trace/thin_glass.h).
+  const RayTracer& tracer = gather_.tracer();
+  std::vector<RTCRay> throughGlass;
   for (const RTCRayHit& h : hits) {
+    const Vec3 dir(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z);
     if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
       out.reach = std::min(out.reach, h.ray.tfar);
+      if (!skies_.empty() && tracer.transmittanceOf(h.hit.primID) != Rgb(0.0f))
+        throughGlass.push_back(makeRay(origin, dir, 0.0f, std::numeric_limits<float>::infinity()));
       continue;
     }
-    for (const Light* sky : skies_)
-      out.irradiance += weights[0] * skyRadiance(*sky, Vec3(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z), up_);
+    for (const Light* sky : skies_) out.irradiance += weights[0] * skyRadiance(*sky, dir, up_);
+  }
+  if (!throughGlass.empty()) {
+    std::vector<Rgb> through;
+    tracer.transmitted(throughGlass, through);
+    for (size_t k = 0; k < throughGlass.size(); ++k) {
+      if (isOccluded(throughGlass[k])) continue;
+      const Vec3 dir(throughGlass[k].dir_x, throughGlass[k].dir_y, throughGlass[k].dir_z);
+      for (const Light* sky : skies_) out.irradiance += weights[0] * through[k] * skyRadiance(*sky, dir, up_);
+    }
   }
   return out;
 }

@@ -80,6 +80,7 @@ class FinalGather {
   // inside a solid).
   size_t add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets,
              uint32_t seed) const;
+  const RayTracer& tracer() const { return tracer_; }
 
  private:
   size_t add(std::span<RTCRayHit> rays, std::span<const Rgb> weights, std::span<Rgb* const> targets, uint32_t seed,

@@ -214,9 +214,7 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   std::optional<VertexGather> vertexGathered;
   std::optional<GatherRefinement> refinement;
   std::optional<DirectLight> skyless;
-  // Gather rays do not pass glass (only the lights' shadow rays do, trace/thin_glass.h): in a scene
-  // with glass the pixels trace the skies too.
-  const bool skiesGathered = !skies.empty() && !tracer.hasGlass();
+  const bool skiesGathered = !skies.empty();
   if (vertexGather) {
     const std::vector<float> seen =
         pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options);

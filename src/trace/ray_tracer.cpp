@@ -258,6 +258,7 @@ void RayTracer::occluded(std::span<RTCRay> rays, bool coherent) const {
 }
 
 bool RayTracer::hasGlass() const { return glass_ && glass_->any(); }
+Rgb RayTracer::transmittanceOf(uint32_t primitive) const { return glass_ ? glass_->of(primitive) : Rgb(0.0f); }
 
 void RayTracer::transmitted(std::span<RTCRay> rays, std::vector<Rgb>& through, bool coherent) const {
   if (hasGlass()) return glass_->occluded(*this, rays, through, coherent);

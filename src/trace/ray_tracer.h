@@ -45,6 +45,7 @@ class RayTracer {
   // Thin glass (trace/thin_glass.h): the transmittance of each primitive, which shadow rays pass.
   void setGlass(std::shared_ptr<const ThinGlass> glass) { glass_ = std::move(glass); }
   bool hasGlass() const;
+  Rgb transmittanceOf(uint32_t primitive) const;  // zero for an opaque one
   // Shadow rays: `through[i]` is what ray i carries of its light, 1 where nothing is in the way,
   // the panes' transmittance where only glass is, 0 (and marked occluded) where something opaque
   // is. Without glass, occluded().

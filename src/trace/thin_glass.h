@@ -31,6 +31,9 @@ class ThinGlass {
 
   // Whether any primitive transmits: when not, occluded() is the tracer's.
   bool any() const { return any_; }
+  Rgb of(uint32_t primitive) const {
+    return primitive < transmittance_.size() ? transmittance_[primitive] : Rgb(0.0f);
+  }
 
   // Occlusion with glass: `through[i]` is what ray i carries, 1 where nothing is in the way, the
   // product of the panes' transmittances where only glass is, 0 where something opaque is (or

@@ -13,6 +13,7 @@
 #include "render/final_gather.h"
 #include "scene/builtin/builtin_scenes.h"
 #include "trace/element_polygons.h"
+#include "trace/thin_glass.h"
 #include "transport/form_factor.h"
 #include "transport/light_sampling.h"
 
@@ -30,8 +31,9 @@ Light uniformSky(float luminance) {
 }
 
 // A closed 2 x 1 x 2 box (black inside: no bounce reaches the gather) with a 0.5 m square hole in
-// the middle of its ceiling, under a uniform sky. From the middle of the floor the sky is the hole.
-TEST(SkyGather, ThroughAnOpeningTheSkyIsTheOpeningsFormFactor) {
+// the middle of its ceiling, under a uniform sky. From the middle of the floor the sky is the hole;
+// glazed (thin glass, trace/thin_glass.h), the hole passes the sky filtered by the glass.
+void expectSkyThroughTheHole(const Rgb* glass) {
   Scene scene;
   scene.name = "skylight";
   scene.materials = {Material{.name = "black", .reflectance = Rgb(0.0f)}};
@@ -48,10 +50,17 @@ TEST(SkyGather, ThroughAnOpeningTheSkyIsTheOpeningsFormFactor) {
   builtin::addQuad(box, {-1, 0, -1}, {-1, 1, -1}, {-1, 1, 1}, {-1, 0, 1});
   builtin::addQuad(box, {1, 0, -1}, {1, 0, 1}, {1, 1, 1}, {1, 1, -1});
   scene.meshes = {box};
+  if (glass) {
+    scene.materials.push_back(Material{.name = "glass", .reflectance = Rgb(0.0f), .transmittance = *glass});
+    Mesh pane{.name = "pane", .material = 1};
+    builtin::addQuad(pane, {-0.25f, 1, -0.25f}, {0.25f, 1, -0.25f}, {0.25f, 1, 0.25f}, {-0.25f, 1, 0.25f});
+    scene.meshes.push_back(pane);
+  }
   scene.lights = {uniformSky(1000.0f)};
   const SurfaceSet surfaces = discretise(scene, DiscretiseOptions{.elementBudget = 64});
   const std::vector<Polygon> polygons = elementPolygonsTwinsApart(surfaces);
-  const RayTracer tracer(polygons);
+  RayTracer tracer(polygons);
+  tracer.setGlass(std::make_shared<ThinGlass>(ThinGlass::overElements(scene, surfaces)));
   const DirectLight direct(scene, surfaces, &surfaces);
   const std::vector<Rgb> corners(surfaces.elements.size() * 4, Rgb(0.0f));
   const FinalGather gather(surfaces, tracer, direct, corners, /*gatherNearHits=*/false);
@@ -63,14 +72,22 @@ TEST(SkyGather, ThroughAnOpeningTheSkyIsTheOpeningsFormFactor) {
   const float f = pointToPolygonFormFactor(x, n, hole, Sides::Front, Sides::Both);
   const float radiance = skyRadiance(scene.lights[0], n, scene.up).g;
   const int side = 64;  // 4,096 rays
-  const float got = withSky.gatherAt(x, n, towards, side, 1u << 20).irradiance.g;
-  const float expected = kPi * radiance * f;
+  const Rgb got = withSky.gatherAt(x, n, towards, side, 1u << 20).irradiance;
+  const Rgb passed = glass ? *glass : Rgb(1.0f);
   // Each ray escapes through the hole with probability f (the rays are cosine-distributed):
   // binomial noise, less for the strata.
   const float sigma = kPi * radiance * std::sqrt(f * (1.0f - f) / float(side * side));
   ASSERT_GT(f, 0.05f);
-  EXPECT_NEAR(got, expected, 4.0f * sigma) << "form factor " << f;
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(got[c], kPi * radiance * f * passed[c], 4.0f * sigma * passed[c]) << "form factor " << f << " channel " << c;
   EXPECT_EQ(without.gatherAt(x, n, towards, side, 1u << 20).irradiance.g, 0.0f);
+}
+
+TEST(SkyGather, ThroughAnOpeningTheSkyIsTheOpeningsFormFactor) { expectSkyThroughTheHole(nullptr); }
+
+TEST(SkyGather, ThroughGlassTheSkyIsFilteredByIt) {
+  const Rgb glass(0.5f, 0.25f, 1.0f);
+  expectSkyThroughTheHole(&glass);
 }
 
 // A floor (reflectance 0.5) under a uniform sky of luminance L and nothing else: each point's
