@@ -595,27 +595,15 @@ class SceneFileLoader {
       twoSided = in_.boolean(*it, Reader::child(ptr, "twoSided"));
     // The viewer's highlight (display only, scene.h): unlike an imported file's, values out of
     // range are an error here, where the user typed them.
-    if (auto it = spec.find("specular"); it != spec.end()) {
-      std::string p = Reader::child(ptr, "specular");
-      Rgb k = in_.color(*it, p);
-      if (k.x > 1.0f || k.y > 1.0f || k.z > 1.0f)
-        in_.fail(p, fmt::format("specular ({}, {}, {}) is above 1", k.x, k.y, k.z));
-      specular = k;
-    }
+    specular = fraction(spec, ptr, "specular");
     if (auto it = spec.find("shininess"); it != spec.end()) {
       std::string p = Reader::child(ptr, "shininess");
       float v = in_.nonNegative(*it, p);
       if (v > kMaxShininess) in_.fail(p, fmt::format("shininess {} is above {:g}", v, kMaxShininess));
       shininess = v;
     }
-    // Thin glass (scene.h): what passes straight through, at most 1 a channel.
-    if (auto it = spec.find("transmittance"); it != spec.end()) {
-      std::string p = Reader::child(ptr, "transmittance");
-      Rgb t = in_.color(*it, p);
-      if (t.x > 1.0f || t.y > 1.0f || t.z > 1.0f)
-        in_.fail(p, fmt::format("transmittance ({}, {}, {}) is above 1", t.x, t.y, t.z));
-      transmittance = t;
-    }
+    // Thin glass (scene.h): what passes straight through.
+    transmittance = fraction(spec, ptr, "transmittance");
     if (auto it = spec.find("texture"); it != spec.end())
       texture = readTexture(*it, Reader::child(ptr, "texture"));
     if (auto it = spec.find("emissionTexture"); it != spec.end())
@@ -649,6 +637,17 @@ class SceneFileLoader {
                                  m.reflectance.g, m.reflectance.b, m.transmittance.r, m.transmittance.g,
                                  m.transmittance.b));
     }
+  }
+
+  // A material's colour `key` that is a share of the light (the highlight's, the glass's): each
+  // channel in [0, 1], an error above, where the user typed it.
+  std::optional<Rgb> fraction(const Json& spec, const std::string& ptr, const char* key) const {
+    auto it = spec.find(key);
+    if (it == spec.end()) return std::nullopt;
+    std::string p = Reader::child(ptr, key);
+    Rgb c = in_.color(*it, p);
+    if (c.x > 1.0f || c.y > 1.0f || c.z > 1.0f) in_.fail(p, fmt::format("{} ({}, {}, {}) is above 1", key, c.x, c.y, c.z));
+    return c;
   }
 
   // A path relative to the scene file, decoded from sRGB (colour) or read as stored (data, when
