@@ -13,12 +13,20 @@ Rgb faceTransmittance(const Scene& scene, const SurfaceFace& face) {
   return face.material < scene.materials.size() ? scene.materials[face.material].transmittance : Rgb(0.0f);
 }
 
-// Where a ray last passed a pane: its point and unit normal.
+// Where a ray last passed a pane: its point, unit normal and primitive.
 struct Pane {
   Vec3 point{0.0f}, normal{0.0f};
   uint32_t primitive = 0;
   bool any = false;
 };
+
+// Whether any material transmits: when none does, no array a primitive is made (12 bytes a face,
+// at ten million faces a transient 120 MB for nothing).
+bool anyGlass(const Scene& scene) {
+  for (const Material& m : scene.materials)
+    if (m.transmits()) return true;
+  return false;
+}
 
 }  // namespace
 
@@ -28,12 +36,14 @@ ThinGlass::ThinGlass(std::vector<Rgb> perPrimitive, float offset) : offset_(offs
 }
 
 ThinGlass ThinGlass::overFaces(const Scene& scene, const SurfaceSet& surfaces) {
+  if (!anyGlass(scene)) return ThinGlass({}, 0.0f);
   std::vector<Rgb> t(surfaces.faces.size());
   for (size_t f = 0; f < t.size(); ++f) t[f] = faceTransmittance(scene, surfaces.faces[f]);
   return ThinGlass(std::move(t), rayOffsetFor(surfaces.sceneExtent));
 }
 
 ThinGlass ThinGlass::overElements(const Scene& scene, const SurfaceSet& surfaces) {
+  if (!anyGlass(scene)) return ThinGlass({}, 0.0f);
   std::vector<Rgb> t(surfaces.elements.size());
   for (size_t e = 0; e < t.size(); ++e) t[e] = faceTransmittance(scene, surfaces.faces[surfaces.elements[e].face]);
   return ThinGlass(std::move(t), rayOffsetFor(surfaces.sceneExtent));
