@@ -66,6 +66,7 @@ bool DirectLight::seesWhole(uint32_t element, size_t k) const {
 
 DirectLight::DirectLight(const Scene& scene, const SurfaceSet& surfaces, const SurfaceSet* receivers, bool skies)
     : scene_(scene), skies_(skies), up_(glm::normalize(scene.up)) {
+  for (const Light& l : scene.lights) lights_.push_back(prepareLight(l));
   for (const EmittingPolygon& p : emittingPolygons(surfaces))
     emitters_.push_back({p.polygon, p.normal, p.polygon.area(), p.exitance, Sides::Front});
   float total = 0.0f;
@@ -152,7 +153,7 @@ Rgb DirectLight::sample(Vec3 x, Vec3 n, Vec3 shading, Sides sides, std::span<con
       // The cosine at the shading normal; a direction behind the geometric plane is blocked by the
       // surface (never the case when shading == n: sampleLight gives those no light).
       const Vec2 ul = rotated(u, emitters_.size() + k);
-      LightSample ls = sampleLight(light, x, shading, sides, up_, ul.x, ul.y);
+      LightSample ls = sampleLight(lights_[k], x, shading, sides, up_, ul.x, ul.y);
       if (!ls.valid()) continue;
       if (sides == Sides::Front && glm::dot(n, ls.direction) < 0.0f) continue;
       Vec3 xo = x + n * (glm::dot(n, ls.direction) >= 0.0f ? rayOffset : -rayOffset);

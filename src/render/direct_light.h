@@ -18,6 +18,7 @@
 #include "luxel/surface.h"
 #include "trace/ray_tracer.h"
 #include "transport/form_factor.h"
+#include "transport/light_sampling.h"
 
 namespace luxel {
 
@@ -88,6 +89,7 @@ class DirectLight {
   std::unique_ptr<Shafts> shafts_;
 
   const Scene& scene_;
+  std::vector<PreparedLight> lights_;  // the scene's lights, each prepared once for every sample
   bool skies_ = true;
   Vec3 up_;
   std::vector<Emitter> emitters_;
