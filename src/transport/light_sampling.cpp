@@ -55,6 +55,7 @@ bool lightMayReachFront(const Light& light, const Polygon& polygon, Vec3 n) {
     case Light::Type::Directional:
       // The disc's directions are within angularRadius of the axis: all behind the plane when
       // the axis is further than that below it (with a margin for the samples' rounding).
+      if (!(light.angularRadius < 0.5f * kPi)) return true;  // a disc wider than a hemisphere
       return glm::dot(n, -glm::normalize(light.direction)) > -std::sin(light.angularRadius) - 1e-5f;
     case Light::Type::Sky:
     case Light::Type::CieOvercastSky:
