@@ -59,9 +59,12 @@ TEST(HierarchicalLightChanges, ATurnedSunEndsAsNearTheConvergedLightAsASolveFrom
   Scene scene = sunScene();
   Session s(scene, DiscretiseOptions{}, hierarchical());
   s.solve();
-  // Three frames of a turning sun, each continued from the last.
-  for (int frame = 1; frame <= 3; ++frame) s.setLights(sunTurned(scene, 2.0f * float(frame)));
-  const Solution continued = s.solve();
+  // Three frames of a turning sun, each solved on from the last.
+  Solution continued;
+  for (int frame = 1; frame <= 3; ++frame) {
+    s.setLights(sunTurned(scene, 2.0f * float(frame)));
+    continued = s.solve();
+  }
   EXPECT_EQ(continued.stats.redistributions, 3u);
   scene.lights = sunTurned(scene, 6.0f);
   Session fresh(scene, DiscretiseOptions{}, hierarchical());
