@@ -164,8 +164,7 @@ class HierarchicalSolver final : public Solver {
     for (uint32_t i = 0; i < nodes; ++i) {
       if (tree_.isLeaf(i)) {
         if (!exactDirect_) emission_[i] = sys.emission[i];
-        unshot_[i] = (exactDirect_ ? Rgb(0.0f) : emission_[i]) +
-                     sys.reflectance[i] * (sys.analytic[i] + emitterDirect_.irradiance[i]);
+        unshot_[i] = firstUnshot(i);
       } else {
         const FaceCluster& c = tree_.joined(i);
         const float a = areaOf(c.child[0]), b = areaOf(c.child[1]);
@@ -219,8 +218,7 @@ class HierarchicalSolver final : public Solver {
     if (!s_.followLight || iterations_ == 0 || recordSh_ || sys_.analytic.size() != ne || materialsDigest() != materials_) return false;
     double power = 0.0, change = 0.0;
     for (size_t e = 0; e < ne; ++e) {
-      power += double(sys_.area[e]) * maxChannel(sys_.reflectance[e] * (sys_.analytic[e] + emitterDirect_.irradiance[e]) +
-                                                (exactDirect_ ? Rgb(0.0f) : sys_.emission[e]));
+      power += double(sys_.area[e]) * maxChannel(firstUnshot(e));
       change += double(sys_.area[e]) * maxChannel(glm::abs(sys_.reflectance[e] * (sys_.analytic[e] - analyticShot_[e])));
     }
     if (!(power > 0.5 * startPower_) || changeFollowed_ + change / power > kMostChangeFollowed) return false;
@@ -241,7 +239,6 @@ class HierarchicalSolver final : public Solver {
     analyticShot_ = sys_.analytic;
     mixClusters(unshot_), mixClusters(negative_);
     emittedPower_ = power;
-    clusterMeans_ = true;
     iterationLimit_ = iterations_ + uint32_t(s_.maxIterations);
     unshotFraction_ = unshotPower / emittedPower_;
     done_ = unshotFraction_ < s_.unshot;
@@ -350,7 +347,7 @@ class HierarchicalSolver final : public Solver {
     out.value(uint64_t(leaves_.load())), out.value(uint64_t(elements_.load()));
     out.value(recordSh_);
     out.array(analyticShot_), out.array(negative_);
-    out.value(clusterMeans_), out.value(emittedPower_), out.value(iterationLimit_), out.value(redistributions_);
+    out.value(emittedPower_), out.value(iterationLimit_), out.value(redistributions_);
     out.value(changeFollowed_);
   }
   void restoreState(StateReader& in) override {
@@ -382,7 +379,7 @@ class HierarchicalSolver final : public Solver {
     if (!negative_.empty() && negative_.size() != nodes)
       throw Error(fmt::format("checkpoint: the negative series has {} clusters, the tree {}", negative_.size(), nodes));
     nextNegative_.assign(negative_.empty() ? 0 : sys_.elementCount(), Rgb(0.0f));
-    in.value(clusterMeans_), in.value(emittedPower_), in.value(iterationLimit_), in.value(redistributions_);
+    in.value(emittedPower_), in.value(iterationLimit_), in.value(redistributions_);
     in.value(changeFollowed_);
   }
 
@@ -425,6 +422,13 @@ class HierarchicalSolver final : public Solver {
       else leaves.push_back(i);
     }
     return leaves;
+  }
+
+  // What element e shoots first, its light from the sources: the reflected direct light (analytic
+  // lights and emitting surfaces), and its emission where the emitters' light goes through links.
+  Rgb firstUnshot(size_t e) const {
+    return (exactDirect_ ? Rgb(0.0f) : sys_.emission[e]) +
+           sys_.reflectance[e] * (sys_.analytic[e] + emitterDirect_.irradiance[e]);
   }
 
   // Two fields (all light, direct light) in the pool; returns the index of the first.
@@ -612,7 +616,7 @@ class HierarchicalSolver final : public Solver {
   // the lit ones (a floor beside the dark sides of a block on it), so the mean would be too dark
   // one way and too bright the other. After a change of the light the difference shot is mostly
   // thin strips along the shadows that moved, which a cluster's few points catch or miss by
-  // chance, so there each point carries the cluster's mean (clusterMeans_).
+  // chance, so there each point carries the cluster's mean (once a change has been followed).
   float couple(uint32_t j, const FaceCluster& b, const Receiver& r, Scratch& s, bool asHarmonics) const {
     const size_t np = r.points.size();
     s.transport.assign(np, {Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)});
@@ -733,7 +737,7 @@ class HierarchicalSolver final : public Solver {
         if (!counts && !hidden) continue;
         const float a = q[k].weight * b.area;
         const Polygon square = squareAround(q[k], a, b.box);
-        const Rgb unshot = emitterUnshot(clusterMeans_ ? j : q[k].element), emitted = emitterEmission(q[k].element);
+        const Rgb unshot = emitterUnshot(redistributions_ > 0 ? j : q[k].element), emitted = emitterEmission(q[k].element);
         if (counts) {
           const Vec3 m = polygonIrradianceVector(x.position, x.normal, square, q[k].normal);
           for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] += unshot[ch] * m, s.direct[p][size_t(ch)] += emitted[ch] * m;
@@ -1098,12 +1102,12 @@ class HierarchicalSolver final : public Solver {
   double startPower_ = 0.0;  // emittedPower_ when the solve started from nothing
   // Following changes of the analytic light (sourcesChanged): what was shot, the negative
   // series' unshot radiosity per cluster and what its faces gathered in a sweep (empty when
-  // there is none), the series being swept, whether emitter points carry their cluster's mean,
-  // the digest of the materials the solve was made for, and the sweeps allowed.
+  // there is none), the series being swept, the digest of the materials the solve was made for,
+  // the sweeps allowed, and the changes followed (after the first, emitter points carry their
+  // cluster's mean: couple).
   std::vector<Rgb> analyticShot_;
   std::vector<Rgb> negative_, nextNegative_;
   bool shootingNegative_ = false;
-  bool clusterMeans_ = false;
   uint64_t materials_ = 0;
   uint32_t iterationLimit_ = 0;
   uint64_t redistributions_ = 0;

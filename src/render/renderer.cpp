@@ -214,14 +214,13 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   std::optional<VertexGather> vertexGathered;
   std::optional<GatherRefinement> refinement;
   std::optional<DirectLight> skyless;
-  const bool skiesGathered = !skies.empty();
   if (vertexGather) {
     const std::vector<float> seen =
         pixelsSeen(tracer, shown, CameraFrame(options.camera, options.width, options.height), options);
     vertexGathered.emplace(shown, finalGather, options.gatherRays, options.seed, seen, &mesh,
-                           skiesGathered ? &scene : nullptr);
+                           skies.empty() ? nullptr : &scene);
     refinement.emplace(shown, *vertexGathered, seen, seen);
-    if (skiesGathered) skyless.emplace(scene, surfaces, &shown, /*skies=*/false);
+    if (!skies.empty()) skyless.emplace(scene, surfaces, &shown, /*skies=*/false);
   }
   const DirectLight& pixelDirect = skyless ? *skyless : direct;
   const int gatherRays = !pixelGather ? 0 : options.gatherRays > 0 ? options.gatherRays : kDefaultPixelGatherRays;

@@ -51,12 +51,6 @@ ThinGlass ThinGlass::overElements(const Scene& scene, const SurfaceSet& surfaces
 
 void ThinGlass::occluded(const RayTracer& tracer, std::span<RTCRay> rays, std::vector<Rgb>& through, bool coherent) const {
   through.assign(rays.size(), Rgb(1.0f));
-  if (!any_) {
-    tracer.occluded(rays, coherent);
-    for (size_t i = 0; i < rays.size(); ++i)
-      if (isOccluded(rays[i])) through[i] = Rgb(0.0f);
-    return;
-  }
   std::vector<float> tfar(rays.size());
   for (size_t i = 0; i < rays.size(); ++i) tfar[i] = rays[i].tfar;
   tracer.occluded(rays, coherent);
@@ -82,7 +76,7 @@ void ThinGlass::occluded(const RayTracer& tracer, std::span<RTCRay> rays, std::v
       const size_t i = pending[k];
       const RTCRayHit& h = hits[k];
       if (h.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // past the last pane: it arrives
-      const Rgb t = h.hit.primID < transmittance_.size() ? transmittance_[h.hit.primID] : Rgb(0.0f);
+      const Rgb t = of(h.hit.primID);
       const Vec3 dir(h.ray.dir_x, h.ray.dir_y, h.ray.dir_z);
       const Vec3 point = Vec3(h.ray.org_x, h.ray.org_y, h.ray.org_z) + h.ray.tfar * dir;
       Vec3 normal(h.hit.Ng_x, h.hit.Ng_y, h.hit.Ng_z);
@@ -90,7 +84,7 @@ void ThinGlass::occluded(const RayTracer& tracer, std::span<RTCRay> rays, std::v
       // The other side of the pane just passed (a two-sided glass face's twin, in its plane or
       // nudged a ray offset off it) is the same glass: it filters the light once.
       const Pane& was = last[i];
-      const bool sameGlass = was.any && t == transmittance_[was.primitive] &&
+      const bool sameGlass = was.any && t == of(was.primitive) &&
                              std::abs(glm::dot(normal, was.normal)) > 0.999f &&
                              std::abs(glm::dot(point - was.point, was.normal)) < 4.0f * offset_;
       if (!sameGlass) through[i] *= t;

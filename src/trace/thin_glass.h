@@ -29,13 +29,13 @@ class ThinGlass {
   static ThinGlass overFaces(const Scene& scene, const SurfaceSet& surfaces);
   static ThinGlass overElements(const Scene& scene, const SurfaceSet& surfaces);
 
-  // Whether any primitive transmits: when not, occluded() is the tracer's.
+  // Whether any primitive transmits (RayTracer::transmitted asks this glass only then).
   bool any() const { return any_; }
   Rgb of(uint32_t primitive) const {
     return primitive < transmittance_.size() ? transmittance_[primitive] : Rgb(0.0f);
   }
 
-  // Occlusion with glass: `through[i]` is what ray i carries, 1 where nothing is in the way, the
+  // Occlusion with glass (for a tracer over the same primitives): `through[i]` is what ray i carries, 1 where nothing is in the way, the
   // product of the panes' transmittances where only glass is, 0 where something opaque is (or
   // anything, for a ray marked kOpaqueToGlass); rays that carry nothing are marked occluded
   // (tfar = -inf) and the others are not.

@@ -96,6 +96,7 @@ TEST(HierarchicalLightChanges, TheSameLightsChangeNothing) {
   s.setLights(scene.lights);
   EXPECT_TRUE(s.done());
   const Solution after = s.solve();
+  EXPECT_EQ(after.stats.redistributions, 1u);  // followed, not started again (which would give the same)
   EXPECT_EQ(after.stats.iterations, before.stats.iterations);
   EXPECT_EQ(after.radiosity, before.radiosity);
 }
