@@ -37,6 +37,20 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+// The solver's time by phase over one frame (GL solvers; gl/gpu_timeline.h): `after` less
+// `before`, in milliseconds on the GPU and on the CPU. A solver that started again counts from zero.
+nlohmann::ordered_json phaseMilliseconds(const std::vector<PhaseTime>& before, const std::vector<PhaseTime>& after) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const PhaseTime& p : after) {
+    PhaseTime d = p;
+    for (const PhaseTime& b : before)
+      if (b.name == p.name && b.count <= p.count)
+        d.count -= b.count, d.secondsGpu -= b.secondsGpu, d.secondsCpu -= b.secondsCpu;
+    if (d.count > 0) out[p.name] = {{"count", d.count}, {"gpu", 1e3 * d.secondsGpu}, {"cpu", 1e3 * d.secondsCpu}};
+  }
+  return out;
+}
+
 // A folder of its own under the system's temporary folder, removed with everything in it.
 class TemporaryFolder {
  public:
@@ -216,6 +230,7 @@ int runAnimate(const AnimateArgs& a) {
   std::string statsLines;
   for (int64_t k = 0; k < a.frames; ++k) {
     const double t = a.start + double(k) / a.fps;
+    const std::vector<PhaseTime> phasesBefore = session.stats().phases;
     auto clock = Clock::now();
     poseAt(session, t);
     const double msUpdate = msSince(clock);
@@ -260,6 +275,7 @@ int runAnimate(const AnimateArgs& a) {
         // A solver that started again counts from zero.
         {"shots", after.shots >= before.shots ? after.shots - before.shots : after.shots},
         {"unshot_fraction", after.unshotFraction}};
+    if (!after.phases.empty()) line["phases_ms"] = phaseMilliseconds(phasesBefore, after.phases);
     if (atRest) {
       nowDoing(fmt::format("solving frame {} of scene '{}' from scratch (--error)", k, sceneName),
                solveSizeHint(a.solve, false));

@@ -11,6 +11,14 @@
 
 namespace luxel {
 
+// One phase of a solver's work (GL solvers: gl/gpu_timeline.h), summed over its occurrences.
+struct PhaseTime {
+  std::string name;
+  uint64_t count = 0;
+  double secondsGpu = 0.0;  // between GL timestamps bracketing it: the GPU's own time
+  double secondsCpu = 0.0;  // wall time on the CPU issuing it (driver calls and CPU work)
+};
+
 struct SolveStats {
   std::string method;                 // the registered method, e.g. "progressive"
   std::string backend;                // "cpu" or "gl"
@@ -44,6 +52,7 @@ struct SolveStats {
   double secondsTotal = 0.0;
   size_t refinedElements = 0;
   int refinePasses = 0;
+  std::vector<PhaseTime> phases;  // GL progressive solvers: time by phase, cumulative
   double emittedPower = 0.0;   // W: sum of A E plus analytic-light power reaching surfaces
   double absorbedPower = 0.0;  // W: sum of A (1 - rho) H
   double raysPerSecond() const { return secondsFormFactors > 0 ? double(rays) / secondsFormFactors : 0; }

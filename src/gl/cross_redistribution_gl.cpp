@@ -9,6 +9,7 @@
 #include "core/position_key.h"
 #include "gl/gl_context.h"
 #include "gl/gpu_system.h"
+#include "gl/gpu_timeline.h"
 #include "gl/hemicube.h"
 #include "gl/hemicube_glsl.h"
 #include "gl/layered_hemicubes.h"
@@ -439,10 +440,10 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system,
     if (drawn(set, p)) polygons.push_back(set.patches[p].polygon), items.push_back(p + 1);
   gather_ = std::make_unique<LayeredHemicubes>(
       polygons, items, LayeredHemicubes::Content::ItemsAndDistances, s_.gatherResolution,
-      gatherCapacity_, nearPlane, farPlane);
+      gatherCapacity_, nearPlane, farPlane, s_.layering);
   back_ = std::make_unique<LayeredHemicubes>(
       polygons, items, LayeredHemicubes::Content::ItemsAndDistances, s_.backResolution,
-      std::max(backCapacity_, 1), nearPlane, farPlane);
+      std::max(backCapacity_, 1), nearPlane, farPlane, s_.layering);
   const DeltaFormFactors deltas(s_.gatherResolution);
   std::vector<float> table(deltas.top);
   table.insert(table.end(), deltas.side.begin(), deltas.side.end());
@@ -593,7 +594,7 @@ void CrossRedistribution::setReconstructionUniforms(GLuint program, int emitterS
 }
 
 void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states,
-                                      GLuint amounts) {
+                                      GLuint amounts, GpuTimeline& timeline) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementBinding, elements);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPatchBinding, patches);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kElementStateBinding, states);
@@ -607,12 +608,15 @@ void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patche
     const size_t perBatch = size_t(std::max(gatherCapacity_ / rule.samples, 1));
     for (size_t first = 0; first < rule.elements.size(); first += perBatch) {
       const int count = int(std::min(perBatch, rule.elements.size() - first));
+      timeline.mark("gather: eyes");
       rule.eyes->use();
       glUniform1ui(glGetUniformLocation(rule.eyes->id(), "first"), GLuint(first));
       glUniform1ui(glGetUniformLocation(rule.eyes->id(), "count"), GLuint(count));
       glDispatchCompute(groupsOf(size_t(count * rule.samples), kPowerGroup), 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      timeline.mark("gather: hemicubes");
       gather_->render(0, count * rule.samples);
+      timeline.mark("gather: integrate");
       gather_->bindTextures();
       rule.integrate->use();
       glUniform1ui(glGetUniformLocation(rule.integrate->id(), "first"), GLuint(first));

@@ -56,6 +56,7 @@
 
 namespace luxel::gl {
 
+class GpuTimeline;
 class LayeredHemicubes;
 class ShaderProgram;
 
@@ -100,7 +101,9 @@ class CrossRedistribution {
   // the redistribution's amounts pass writes them) of the patches that stay, at the geometry now
   // in `elements` and `patches`, and adds `sign` times it to its state (irradiance, radiosity,
   // unshot and direct light). Leaves the bindings it used changed: the caller binds its own again.
-  void gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states, GLuint amounts);
+  // Its phases are marked on `timeline`.
+  void gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states, GLuint amounts,
+                   GpuTimeline& timeline);
 
   bool moved(uint32_t patch) const { return moved_[patch] != 0; }
   // Whether the moved set, as begin() last saw it, shows no one-sided face's back outside (every

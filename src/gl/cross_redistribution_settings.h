@@ -2,12 +2,15 @@
 // objects so that the solver's settings can name them without OpenGL.
 #pragma once
 
+#include "gl/hemicube_layering.h"
+
 namespace luxel::gl {
 
 struct CrossRedistributionSettings {
   int gatherResolution = 64;  // the moved elements' gather hemicubes, pixels a side
   int backResolution = 32;    // the back hemicubes (001: "as low as 16 x 16 per face")
   int grid = 4;               // g x g rays from a receiver point through a moved patch
+  HemicubeLayering layering = HemicubeLayering::Auto;  // the gather and back hemicubes'
 };
 
 }  // namespace luxel::gl

@@ -48,7 +48,10 @@ SolverEntry glProgressiveEntry(const char* method, Follows follows, const char* 
           integerOption("emitter-hemicubes-per-side", d.emitterSamplesPerSide, 0, 8,
                         "k x k hemicubes for an emitting patch's first shot (0: as other shooters)"),
           choiceOption("hemicube-visibility", "item", {"item", "distance"},
-                       "a shooter sees a point by face id (seed 001) or by depth (seed 003)")});
+                       "a shooter sees a point by face id (seed 001) or by depth (seed 003)"),
+          choiceOption("hemicube-layering", "auto", {"auto", "geometry", "vertex"},
+                       "how a hemicube's triangles reach its layers: a geometry shader, or the vertex shader "
+                       "(ARB_shader_viewport_layer_array; auto: it where the driver has it)")});
   if (followChanges) e.description.options.push_back(settleOption());
   if (cross) {
     const gl::CrossRedistributionSettings c;
@@ -65,6 +68,11 @@ SolverEntry glProgressiveEntry(const char* method, Follows follows, const char* 
     if (followChanges) s.settleThreshold = v.real("settle-unshot");
     s.resolution = hemicubeResolution(v);
     s.samplesPerSide = v.integer("hemicubes-per-side");
+    const std::string layering = v.choice("hemicube-layering");
+    s.layering = layering == "geometry" ? gl::HemicubeLayering::GeometryShader
+                 : layering == "vertex" ? gl::HemicubeLayering::VertexShader
+                                        : gl::HemicubeLayering::Auto;
+    s.cross.layering = s.layering;
     s.emitterSamplesPerSide = v.integer("emitter-hemicubes-per-side");
     s.visibility = v.choice("hemicube-visibility") == "item" ? gl::HemicubeVisibility::Item
                                                              : gl::HemicubeVisibility::Distance;

@@ -43,6 +43,27 @@ void main() {
 }
 )";
 
+// The same, routing the triangle to its layer from the vertex shader: the rasteriser's clipping
+// drops what the geometry shader's test would have.
+const char* kShooterVertexLayered = R"(
+layout(location = POSITION_LOCATION) in vec3 position;
+layout(location = ITEM_LOCATION) in uint item;
+layout(std430, binding = SHOOTER_BINDING) readonly buffer Shooters { GpuShooter shooters[]; };
+uniform int first;
+uniform float nearPlane, farPlane;
+flat out uint vItem;
+out vec3 vFromEye;
+void main() {
+  const int layer = gl_InstanceID;
+  GpuShooter s = shooters[first + layer / 5];
+  vItem = item;
+  gl_Layer = layer;
+  vFromEye = position - s.eye.xyz;
+  gl_Position = s.ids.y == 0u ? vec4(2.0, 2.0, 2.0, 1.0)  // an empty slot: outside the clip volume
+                              : hemicubeClip(position, s.eye.xyz, hemicubeFrame(s.normal.xyz, s.normal.w), layer % 5, nearPlane, farPlane);
+}
+)";
+
 const char* kLayerGeometry = R"(
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
@@ -168,7 +189,8 @@ std::vector<uint32_t> LayeredHemicubes::neighbourItems(const SurfaceSet& surface
 }
 
 LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<const uint32_t> polygonItems,
-                                   Content content, int resolution, int capacity, float nearPlane, float farPlane)
+                                   Content content, int resolution, int capacity, float nearPlane, float farPlane,
+                                   Layering layering)
     : impl_(std::make_unique<Impl>()), content_(content), resolution_(resolution), capacity_(capacity),
       near_(nearPlane), far_(farPlane) {
   GLint maxLayers = 0, vertexBlocks = 0;
@@ -207,10 +229,23 @@ LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<
   glNamedFramebufferDrawBuffers(m.framebuffer, 2, drawBuffers);
   if (glCheckNamedFramebufferStatus(m.framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw Error("OpenGL: the layered hemicube framebuffer (R32UI, R32F or RGBA32F, depth) is incomplete");
+  const bool vertexLayers = epoxy_has_gl_extension("GL_ARB_shader_viewport_layer_array");
+  if (layering == Layering::VertexShader && !vertexLayers)
+    throw Error(fmt::format("OpenGL: hemicube layers from the vertex shader need GL_ARB_shader_viewport_layer_array, "
+                            "which {} lacks; use the geometry shader's layering",
+                            reinterpret_cast<const char*>(glGetString(GL_RENDERER))));
+  layering_ = layering == Layering::GeometryShader || !vertexLayers ? Layering::GeometryShader : Layering::VertexShader;
   const std::string preamble = glslPreamble() + kHemicubeGlsl;
-  m.program = std::make_unique<ShaderProgram>(radiosity ? "radiosity hemicube" : "item and distance hemicube",
-                                              preamble + kShooterVertex, preamble + kLayerGeometry,
-                                              preamble + (radiosity ? kRadiosityFragment : kItemDistanceFragment));
+  const std::string fragment = preamble + (radiosity ? kRadiosityFragment : kItemDistanceFragment);
+  const char* name = radiosity ? "radiosity hemicube" : "item and distance hemicube";
+  if (layering_ == Layering::VertexShader) {
+    // An #extension line must come before anything but other directives: right after #version.
+    std::string vertex = preamble + kShooterVertexLayered;
+    vertex.insert(vertex.find('\n') + 1, "#extension GL_ARB_shader_viewport_layer_array : require\n");
+    m.program = std::make_unique<ShaderProgram>(name, vertex, fragment);
+  } else {
+    m.program = std::make_unique<ShaderProgram>(name, preamble + kShooterVertex, preamble + kLayerGeometry, fragment);
+  }
   m.first = glGetUniformLocation(m.program->id(), "first");
   m.program->use();
   glUniform1f(glGetUniformLocation(m.program->id(), "nearPlane"), near_);

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "gl/hemicube_layering.h"
 #include "luxel/surface.h"
 
 namespace luxel::gl {
@@ -19,11 +20,14 @@ namespace luxel::gl {
 class LayeredHemicubes {
  public:
   enum class Content { ItemsAndDistances, Radiosity };
+  using Layering = HemicubeLayering;
 
   // `items[i]` (>= 1) is the id polygon i draws. Needs a current OpenGL 4.5 context. Room for
   // `capacity` hemicubes of five faces, `resolution` pixels a side.
+  // Throws Error when `layering` asks for the vertex shader and the driver lacks the extension.
   LayeredHemicubes(std::span<const Polygon> polygons, std::span<const uint32_t> items, Content content,
-                   int resolution, int capacity, float nearPlane, float farPlane);
+                   int resolution, int capacity, float nearPlane, float farPlane,
+                   Layering layering = Layering::Auto);
   ~LayeredHemicubes();
   LayeredHemicubes(const LayeredHemicubes&) = delete;
   LayeredHemicubes& operator=(const LayeredHemicubes&) = delete;
@@ -40,6 +44,7 @@ class LayeredHemicubes {
   void bindTextures(int itemUnit, int distanceUnit) const;
 
   int resolution() const { return resolution_; }
+  Layering layering() const { return layering_; }  // GeometryShader or VertexShader, as chosen
   int capacity() const { return capacity_; }
   float nearPlane() const { return near_; }
   float farPlane() const { return far_; }
@@ -59,6 +64,7 @@ class LayeredHemicubes {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   Content content_;
+  Layering layering_ = Layering::GeometryShader;
   int resolution_ = 0, capacity_ = 0;
   float near_ = 0.0f, far_ = 0.0f;
 };

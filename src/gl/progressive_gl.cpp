@@ -13,6 +13,7 @@
 #include "gl/cross_redistribution_gl.h"
 #include "gl/gl_context.h"
 #include "gl/gpu_system.h"
+#include "gl/gpu_timeline.h"
 #include "gl/hemicube_glsl.h"
 #include "gl/shader_program.h"
 #include "gl/shared_layout.h"
@@ -600,7 +601,7 @@ class GlProgressiveSolver final : public Solver {
     }
     hemicubes_ = std::make_unique<LayeredHemicubes>(facePolygons, faceItems,
                                                     LayeredHemicubes::Content::ItemsAndDistances, o.resolution,
-                                                    capacity, o.nearPlane * extent, 2.0f * extent);
+                                                    capacity, o.nearPlane * extent, 2.0f * extent, o.layering);
 
     buf_.elements = storageBuffer(elements.data(), elements.size() * sizeof(GpuElement));
     buf_.patches = storageBuffer(patches.patches.data(), patches.patches.size() * sizeof(GpuPatch));
@@ -691,6 +692,7 @@ class GlProgressiveSolver final : public Solver {
       }
       for (int pass = 0; pass < o_.passesPerCheck; ++pass) shoot(batch_, o_.samplesPerSide, false);
       ++units;
+      timeline_.mark("shoot: read state");
       const GpuSolverState s = readState();  // the only read-back while shooting: a few bytes every few passes
       Context::check("GPU progressive refinement");
       shots_ = s.shots;
@@ -704,7 +706,10 @@ class GlProgressiveSolver final : public Solver {
       if (throttle_.due(shown))
         reportProgress(progress, "solve", shown, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
     }
+    timeline_.mark("finish");
     glFinish();  // the step's GPU work belongs to its time
+    timeline_.stop();
+    timeline_.collect();
     seconds_ += watch.seconds();
     if (done_) reportProgress(progress, "solve", 1.0, fmt::format("unshot {:.3f}%", 100.0 * unshotFraction_));
     return !done_;
@@ -717,6 +722,7 @@ class GlProgressiveSolver final : public Solver {
     const size_t ne = sys_.elementCount();
     choose(0, o_.samplesPerSide, false);  // the unshot power left
     const GpuSolverState s = readState();
+    timeline_.stop();
     std::vector<GpuElementState> states(ne);
     glGetNamedBufferSubData(buf_.elementStates, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
     Context::check("reading back the GPU solution");
@@ -790,6 +796,7 @@ class GlProgressiveSolver final : public Solver {
     if (!o_.followChanges) return false;
     const Stopwatch watch;
     if (cross_) {
+      timeline_.mark("move: moved set");
       cross_->begin(objects);
       if (cross_->closedToOutside()) {
         crossRedistribute();
@@ -857,6 +864,7 @@ class GlProgressiveSolver final : public Solver {
     st.unshotFraction = st.residual = unshotFraction_;
     // Everything on the GPU is form factors and their use at once: one figure, as the seed's.
     st.secondsFormFactors = setupSeconds_ + seconds_;
+    st.phases = timeline_.totals();
     return st;
   }
 
@@ -880,6 +888,7 @@ class GlProgressiveSolver final : public Solver {
   // Redistribution (see the shaders above). Each patch's shot radiosity and first-shot emission,
   // before anything changes.
   void computeAmounts() {
+    timeline_.mark("move: amounts");
     buf_.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
     amounts_->use();
@@ -911,6 +920,7 @@ class GlProgressiveSolver final : public Solver {
     for (const auto& g : groupsOf) {
       for (size_t done = 0; done < g.count; done += size_t(g.batch)) {
         const int count = int(std::min(size_t(g.batch), g.count - done)), samples = g.side * g.side;
+        timeline_.mark("redistribute: shooters");
         buf_.bind();
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionListBinding, buf_.list);
@@ -925,13 +935,16 @@ class GlProgressiveSolver final : public Solver {
         if (crossing) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBackShooterBinding, cross_->backShooters());
         glDispatchCompute(groups(size_t(count * samples), kPowerGroup), 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        timeline_.mark("redistribute: hemicubes");
         hemicubes_->render(0, count * samples);
         if (crossing) {
+          timeline_.mark("redistribute: back hemicubes");
           cross_->renderBackHemicubes(count);
           buf_.bind();  // the shooters' buffer again in SHOOTER_BINDING
           glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
           cross_->bindForReconstruction();
         }
+        timeline_.mark("redistribute: reconstruct");
         hemicubes_->bindTextures();
         reconstruct_->use();
         glUniform1ui(reconstructSamples_, GLuint(samples));
@@ -958,9 +971,13 @@ class GlProgressiveSolver final : public Solver {
       if (cross_->moved(p)) (channelSum(emission[p]) > 0.0 ? emitters : others).push_back(p);
     computeAmounts();
     for (const float sign : {-1.0f, 1.0f}) {
-      if (sign > 0.0f) uploadGeometry(), cross_->geometryMoved();
+      if (sign > 0.0f) {
+        uploadGeometry();
+        timeline_.mark("move: gather geometry");
+        cross_->geometryMoved();
+      }
       redistribute(sign, emitters, others, false, /*crossing=*/true);
-      cross_->gatherMoved(sign, buf_.elements, buf_.patches, buf_.elementStates, buf_.amounts);
+      cross_->gatherMoved(sign, buf_.elements, buf_.patches, buf_.elementStates, buf_.amounts, timeline_);
     }
     rebase();
     crossMoved_ = true;
@@ -968,6 +985,7 @@ class GlProgressiveSolver final : public Solver {
 
   // The surfaces' current geometry, reflectance and emission into the buffers and the mesh.
   void uploadGeometry() {
+    timeline_.mark("move: upload geometry");
     const std::vector<GpuElement> elements = elementRecords();
     glNamedBufferSubData(buf_.elements, 0, GLsizeiptr(elements.size() * sizeof(GpuElement)), elements.data());
     const GpuPatches patches = gpuPatches(sys_);
@@ -985,6 +1003,7 @@ class GlProgressiveSolver final : public Solver {
   // `emissionShot`: the emission's change since the last update was shot as light already, by the
   // emitters that have shot.
   void rebase(bool emissionShot = false) {
+    timeline_.mark("move: rebase");
     const size_t ne = sys_.elementCount();
     std::vector<glm::vec4> inputs(4 * ne);
     for (size_t e = 0; e < ne; ++e)
@@ -1008,7 +1027,10 @@ class GlProgressiveSolver final : public Solver {
     sourcePower_ = sys_.sourcePower();
     setThreshold(o_.unshotThreshold);
     done_ = false;
+    timeline_.mark("move: finish");
     glFinish();  // the redistribution's GPU work belongs to its time
+    timeline_.stop();
+    timeline_.collect();
     Context::check("GPU redistribution");
     ++redistributions_;
     secondsRedistributing_ += watch.seconds();
@@ -1025,6 +1047,7 @@ class GlProgressiveSolver final : public Solver {
   // Power, then selection of `shooters` patches with k x k hemicubes each (0 shooters: only the
   // total, for the final state).
   void choose(int shooters, int side, bool emittersOnly) {
+    timeline_.mark("shoot: choose");
     buf_.bind();
     power_->use();
     glDispatchCompute(groups(sys_.patchCount(), kPowerGroup), 1, 1);
@@ -1038,7 +1061,9 @@ class GlProgressiveSolver final : public Solver {
   }
   void shoot(int shooters, int side, bool emittersOnly) {
     choose(shooters, side, emittersOnly);
+    timeline_.mark("shoot: hemicubes");
     hemicubes_->render(0, shooters * side * side);  // centres from the shooter buffer choose() bound
+    timeline_.mark("shoot: reconstruct");
     hemicubes_->bindTextures();
     reconstruct_->use();
     glUniform1ui(reconstructSamples_, GLuint(side * side));
@@ -1078,6 +1103,7 @@ class GlProgressiveSolver final : public Solver {
   int shCount_ = 0;  // every shot so far added this many SH coefficients an element to buf_.elementSh
   double sourcePower_ = 0.0, unshotFraction_ = 1.0;
   ProgressThrottle throttle_;
+  GpuTimeline timeline_;
   double setupSeconds_ = 0.0, seconds_ = 0.0;
   uint64_t shots_ = 0;
   uint32_t emitterShots_ = 0;

@@ -36,6 +36,7 @@ enum class HemicubeVisibility { Item, Distance };
 struct GlProgressiveSettings {
   HemicubeVisibility visibility = HemicubeVisibility::Item;
   int resolution = 64;          // hemicube top face, pixels a side
+  HemicubeLayering layering = HemicubeLayering::Auto;
   int samplesPerSide = 3;       // k: k x k hemicubes per shooting patch
   // An emitting patch's first shot, which carries the direct light and its penumbrae, uses
   // k_e x k_e hemicubes (001's "dynamic shooter subdivision": more, smaller shooters where much

@@ -49,6 +49,8 @@ std::string statsJson(const RunRecord& r) {
     j["redistribution"] = {{"count", s.redistributions},
                            {"factors_recomputed", s.factorsRecomputed},
                            {"seconds", s.secondsRedistribution}};
+  for (const PhaseTime& p : s.phases)
+    j["phases"][p.name] = {{"count", p.count}, {"seconds_gpu", p.secondsGpu}, {"seconds_cpu", p.secondsCpu}};
   if (r.image)
     j["image"] = {{"width", r.image->width},         {"height", r.image->height},
                   {"spp", r.image->samplesPerPixel}, {"mode", r.image->mode},

@@ -10,6 +10,7 @@
 #include "gl/gl_parity.h"
 #include "gl/gl_test_context.h"
 #include "luxel/bench.h"
+#include "luxel/error.h"
 #include "luxel/solve.h"
 #include "scene/builtin/builtin_scenes.h"
 
@@ -120,6 +121,40 @@ TEST(GlEmitterSubdivision, SharpensTheDirectLight) {
   EXPECT_LT(after, 0.85 * before);
   EXPECT_GT(subdivided.stats.hemicubes, plain.stats.hemicubes);
   EXPECT_LT(subdivided.stats.hemicubes, plain.stats.hemicubes + 100);  // only the light's first shot
+}
+
+// The two ways a hemicube's triangles reach their layers (a geometry shader, or the vertex shader
+// with ARB_shader_viewport_layer_array; GPUs take the second) rasterise the same triangles into
+// the same pixels: the same solve to the bit. Where the driver lacks the extension, asking for it
+// is an error that names it.
+TEST(GlHemicubeLayering, VertexShaderLayersDrawWhatTheGeometryShaderDraws) {
+  std::string why;
+  auto context = luxel::test::glContextOr(why);
+  if (!context) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  context.reset();
+  const luxel::Scene scene = luxel::builtin::cornellBox();
+  luxel::DiscretiseOptions d;
+  d.elementBudget = 600;
+  const luxel::SurfaceSet surfaces = luxel::discretise(scene, d);
+  auto solveWith = [&](const char* layering) {
+    SolveOptions o = glProgressive("item");
+    o.settings.set("hemicube-layering", layering).set("shooters-per-pass", 8);
+    luxel::SurfaceSet s = surfaces;
+    return luxel::solve(scene, s, o);
+  };
+  const luxel::Solution geometry = solveWith("geometry");
+  luxel::Solution vertex;
+  try {
+    vertex = solveWith("vertex");
+  } catch (const luxel::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("GL_ARB_shader_viewport_layer_array"), std::string::npos) << e.what();
+    GTEST_SKIP() << "this OpenGL has no vertex-shader layers: " << e.what();
+  }
+  ASSERT_GT(geometry.stats.shots, 0u);
+  EXPECT_EQ(vertex.stats.shots, geometry.stats.shots);
+  size_t differ = 0;
+  for (size_t e = 0; e < surfaces.elements.size(); ++e) differ += vertex.radiosity[e] != geometry.radiosity[e] ? 1 : 0;
+  EXPECT_EQ(differ, 0u) << "of " << surfaces.elements.size() << " elements";
 }
 
 INSTANTIATE_TEST_SUITE_P(GlVisibility, GlProgressive,
