@@ -44,6 +44,7 @@ layout(binding = BACK_DISTANCE_TEXTURE_UNIT) uniform sampler2DArray backDistance
 layout(std430, binding = BACK_SHOOTER_BINDING) readonly buffer BackShooters { GpuShooter backShooters[]; };
 layout(std430, binding = CROSS_PATCH_BINDING) readonly buffer CrossPatches { uvec2 crossPatches[]; };
 layout(std430, binding = REDISTRIBUTION_AMOUNT_BINDING) readonly buffer CrossAmounts { vec4 crossAmounts[]; };
+layout(std430, binding = CROSS_BEHIND_BINDING) buffer CrossBehind { vec4 crossBehind[]; };
 uniform int backResolution, crossGrid;
 uniform float backNear, backFar;
 
@@ -187,7 +188,8 @@ void emittersHidden(vec3 x, vec3 n, GpuPatch J, out vec3 shot, out vec3 emitted)
 
 // The shot radiosity of the static patches (but the exactly sampled emitters) that x sees
 // through moved patch P, kernel-weighted mean over P's g x g rays; and their first-shot emission.
-void crossProjected(uint k, vec3 x, vec3 n, GpuPatch P, out vec3 shot, out vec3 emitted) {
+// Returns the rays' summed weight: 0 where x sees none of P.
+float crossProjected(uint k, vec3 x, vec3 n, GpuPatch P, out vec3 shot, out vec3 emitted) {
   shot = vec3(0.0);
   emitted = vec3(0.0);
   const GpuShooter c = backShooters[k];
@@ -212,6 +214,34 @@ void crossProjected(uint k, vec3 x, vec3 n, GpuPatch P, out vec3 shot, out vec3 
       emitted += w * crossAmounts[2u * p + 1u].rgb;
     }
   if (weight > 0.0) shot /= weight, emitted /= weight;
+  return weight;
+}
+)";
+
+// What each static patch sees behind each moved patch of a crossing pass, crossProjected from the
+// patch's centre, for its elements' points to share (crossBehind, 2 x (slot x patchCount + p)).
+// Per element point it was two thirds of a cross-redistribution frame on a GPU, and what it
+// estimates is the light reflected by the surfaces behind the moved patch, smooth across a
+// receiver patch; the emitters it hides are sampled per point (emittersHidden), and a point whose
+// patch centre sees none of the moved patch casts its own rays (w = 0 here).
+const char* kCrossBehindCompute = R"(
+layout(local_size_x = POWER_GROUP) in;
+uniform uint patchCount, count, samples;
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= patchCount * count) return;
+  const uint r = i % patchCount, k = i / patchCount;
+  vec3 shot = vec3(0.0), emitted = vec3(0.0);
+  float weight = 0.0;
+  if ((crossPatches[r].x & 1u) == 0u) {
+    const GpuPatch R = patches[r];
+    const int corners = int(R.corners[0].w);
+    vec3 centre = vec3(0.0);
+    for (int c = 0; c < corners; ++c) centre += R.corners[c].xyz / float(corners);
+    weight = crossProjected(k, centre, R.normalArea.xyz, patches[shooters[k * samples].ids.x], shot, emitted);
+  }
+  crossBehind[2u * i] = vec4(shot, weight > 0.0 ? 1.0 : 0.0);
+  crossBehind[2u * i + 1u] = vec4(emitted, 0.0);
 }
 )";
 
@@ -349,6 +379,14 @@ constexpr float kNearLight = 1.0f;
 // (emittersHidden); with more, all of them are left to the back hemicubes.
 constexpr size_t kMaxSampledEmitters = 64;
 
+// The largest table of what each patch sees behind the movers (kCrossBehindCompute), 32 bytes a
+// patch and pass slot: past it, each element point casts its own rays.
+constexpr size_t kMostBehindBytes = size_t(256) << 20;
+
+// The most memory the moved elements' gather hemicubes keep from one move to the next (one set
+// of layers a batch); past it, one set is drawn again for each batch.
+constexpr size_t kMostGatherBytes = size_t(512) << 20;
+
 // Whether every one-sided face among `faces` has each edge shared with another of them: then
 // nothing outside sees a back, and the cross projection (which follows only the light that passes
 // a moved patch's front) sees every occlusion. Corners are matched bit for bit; a T-junction
@@ -438,9 +476,10 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system,
   std::vector<uint32_t> items;
   for (uint32_t p = 0; p < np; ++p)
     if (drawn(set, p)) polygons.push_back(set.patches[p].polygon), items.push_back(p + 1);
-  gather_ = std::make_unique<LayeredHemicubes>(
+  gathers_.push_back(std::make_unique<LayeredHemicubes>(
       polygons, items, LayeredHemicubes::Content::ItemsAndDistances, s_.gatherResolution,
-      gatherCapacity_, nearPlane, farPlane, s_.layering);
+      gatherCapacity_, nearPlane, farPlane, s_.layering));
+  gatherPolygons_ = polygons, gatherItems_ = items;
   back_ = std::make_unique<LayeredHemicubes>(
       polygons, items, LayeredHemicubes::Content::ItemsAndDistances, s_.backResolution,
       std::max(backCapacity_, 1), nearPlane, farPlane, s_.layering);
@@ -452,6 +491,15 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system,
   gatherEyes_ = storageBuffer(nullptr, size_t(gatherCapacity_) * sizeof(GpuShooter));
   patchTable_ = storageBuffer(nullptr, std::max<size_t>(np, 1) * sizeof(glm::uvec2));
   uploadPatchTable();
+  const size_t behindBytes = 2 * np * size_t(std::max(backCapacity_, 1)) * sizeof(glm::vec4);
+  if (s_.behindPerPatch && np > 0 && behindBytes <= kMostBehindBytes) {
+    behind_ = storageBuffer(nullptr, behindBytes);
+    behindProgram_ = std::make_unique<ShaderProgram>(
+        "cross-redistribution: what each patch sees behind the movers",
+        preamble + crossProjectionGlsl() + kCrossBehindCompute);
+    behindProgram_->use();
+    glUniform1ui(glGetUniformLocation(behindProgram_->id(), "patchCount"), GLuint(np));
+  }
 
   for (GatherRule& rule : rules_) {
     const std::string samples = fmt::format("#define GATHER_SAMPLES {}\n", rule.samples);
@@ -464,16 +512,16 @@ CrossRedistribution::CrossRedistribution(const RadiositySystem& system,
     glUniform1f(glGetUniformLocation(rule.eyes->id(), "offset"), offset_);
     rule.integrate->use();
     glUniform1i(glGetUniformLocation(rule.integrate->id(), "resolution"), s_.gatherResolution);
-    glUniform1f(glGetUniformLocation(rule.integrate->id(), "nearPlane"), gather_->nearPlane());
-    glUniform1f(glGetUniformLocation(rule.integrate->id(), "farPlane"), gather_->farPlane());
+    glUniform1f(glGetUniformLocation(rule.integrate->id(), "nearPlane"), gathers_[0]->nearPlane());
+    glUniform1f(glGetUniformLocation(rule.integrate->id(), "farPlane"), gathers_[0]->farPlane());
     glUniform1f(glGetUniformLocation(rule.integrate->id(), "offset"), offset_);
   }
   Context::check("setting up GPU cross-redistribution");
 }
 
 CrossRedistribution::~CrossRedistribution() {
-  const GLuint all[] = {patchTable_,  backShooters_,  gatherEyes_,   deltas_,
-                        emitterList_, rules_[0].list, rules_[1].list};
+  const GLuint all[] = {patchTable_,  backShooters_,  gatherEyes_,    deltas_,
+                        emitterList_, rules_[0].list, rules_[1].list, behind_};
   glDeleteBuffers(GLsizei(std::size(all)), all);
 }
 
@@ -553,6 +601,25 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
     if (!moved_[p] && drawn(set, p))
       polygons.push_back(set.patches[p].polygon), items.push_back(p + 1);
   back_->setPolygons(polygons, items);
+  // A set of gather hemicubes per batch where they fit, drawing what the first draws.
+  imagesKept_ = false;
+  size_t batches = 0;
+  for (const GatherRule& rule : rules_) {
+    const size_t perBatch = size_t(std::max(gatherCapacity_ / rule.samples, 1));
+    batches += (rule.elements.size() + perBatch - 1) / perBatch;
+  }
+  const size_t setBytes = size_t(5 * gatherCapacity_) * size_t(s_.gatherResolution) * size_t(s_.gatherResolution) *
+                          (sizeof(uint32_t) + 2 * sizeof(float));  // item, distance, depth
+  keepGathers_ = s_.keepGathers && batches * setBytes <= kMostGatherBytes;
+  if (keepGathers_) {
+    const LayeredHemicubes& first = *gathers_[0];
+    while (gathers_.size() < batches)
+      gathers_.push_back(std::make_unique<LayeredHemicubes>(
+          gatherPolygons_, gatherItems_, LayeredHemicubes::Content::ItemsAndDistances, s_.gatherResolution,
+          gatherCapacity_, first.nearPlane(), first.farPlane(), s_.layering));
+  } else {
+    gathers_.resize(1);
+  }
   Context::check("GPU cross-redistribution: the moved set");
 }
 
@@ -562,7 +629,9 @@ void CrossRedistribution::geometryMoved() {
   std::vector<uint32_t> items;
   for (uint32_t p = 0; p < set.patches.size(); ++p)
     if (drawn(set, p)) polygons.push_back(set.patches[p].polygon), items.push_back(p + 1);
-  gather_->setPolygons(polygons, items);
+  for (const auto& gather : gathers_) gather->setPolygons(polygons, items);
+  gatherPolygons_ = std::move(polygons), gatherItems_ = std::move(items);
+  imagesKept_ = false;
 }
 
 void CrossRedistribution::renderBackHemicubes(int count) {
@@ -572,14 +641,34 @@ void CrossRedistribution::renderBackHemicubes(int count) {
 
 void CrossRedistribution::bindForReconstruction() const {
   back_->bindTextures(kBackItemTextureUnit, kBackDistanceTextureUnit);
+  if (behind_) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossBehindBinding, behind_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossPatchBinding, patchTable_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBackShooterBinding, backShooters_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossEmitterBinding, emitterList_);
 }
 
+void CrossRedistribution::projectBehind(int count, int samples) {
+  if (!behindProgram_ || count <= 0) return;
+  behindProgram_->use();
+  glUniform1ui(glGetUniformLocation(behindProgram_->id(), "count"), GLuint(count));
+  glUniform1ui(glGetUniformLocation(behindProgram_->id(), "samples"), GLuint(samples));
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  glDispatchCompute(groupsOf(sys_.patchCount() * size_t(count), kPowerGroup), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
 void CrossRedistribution::setReconstructionUniforms(GLuint program, int emitterSide) {
   reconstruction_ = program;
+  if (behindProgram_) {
+    const GLuint behind = behindProgram_->id();
+    glUseProgram(behind);
+    glUniform1i(glGetUniformLocation(behind, "backResolution"), s_.backResolution);
+    glUniform1i(glGetUniformLocation(behind, "crossGrid"), s_.grid);
+    glUniform1f(glGetUniformLocation(behind, "backNear"), back_->nearPlane());
+    glUniform1f(glGetUniformLocation(behind, "backFar"), back_->farPlane());
+  }
   glUseProgram(program);
+  glUniform1ui(glGetUniformLocation(program, "crossPatchCount"), behindProgram_ ? GLuint(sys_.patchCount()) : 0u);
   glUniform1i(glGetUniformLocation(program, "crossEmitterSide"), emitterSide);
   glUniform1ui(glGetUniformLocation(program, "crossEmitterCount"), 0u);
   glUniform1i(glGetUniformLocation(program, "backResolution"), s_.backResolution);
@@ -603,10 +692,13 @@ void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patche
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossDeltaBinding, deltas_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShooterBinding, gatherEyes_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCrossEmitterBinding, emitterList_);
+  const bool reuse = sign < 0.0f && imagesKept_;
+  size_t batch = 0;
   for (const GatherRule& rule : rules_) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionListBinding, rule.list);
     const size_t perBatch = size_t(std::max(gatherCapacity_ / rule.samples, 1));
-    for (size_t first = 0; first < rule.elements.size(); first += perBatch) {
+    for (size_t first = 0; first < rule.elements.size(); first += perBatch, ++batch) {
+      LayeredHemicubes& gather = *gathers_[keepGathers_ ? batch : 0];
       const int count = int(std::min(perBatch, rule.elements.size() - first));
       timeline.mark("gather: eyes");
       rule.eyes->use();
@@ -614,10 +706,12 @@ void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patche
       glUniform1ui(glGetUniformLocation(rule.eyes->id(), "count"), GLuint(count));
       glDispatchCompute(groupsOf(size_t(count * rule.samples), kPowerGroup), 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-      timeline.mark("gather: hemicubes");
-      gather_->render(0, count * rule.samples);
+      if (!reuse) {
+        timeline.mark("gather: hemicubes");
+        gather.render(0, count * rule.samples);
+      }
       timeline.mark("gather: integrate");
-      gather_->bindTextures();
+      gather.bindTextures();
       rule.integrate->use();
       glUniform1ui(glGetUniformLocation(rule.integrate->id(), "first"), GLuint(first));
       glUniform1f(glGetUniformLocation(rule.integrate->id(), "sign"), sign);
@@ -626,6 +720,7 @@ void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patche
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   }
+  imagesKept_ = keepGathers_ && sign > 0.0f;
   Context::check("GPU cross-redistribution: the moved elements' gather");
 }
 

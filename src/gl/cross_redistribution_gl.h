@@ -24,8 +24,10 @@
 //    came from whose segment to i crosses j. 001's known weakness, small bright lights
 //    undersampled by the rays (notes 3.7), was most of the error. The moved elements' gathers
 //    take them the same way, with the gather hemicube for the visibility of each point;
-//  - P is evaluated at each of the receiver's 2 x 2 points with that point's share of F, not once
-//    per element;
+//  - P is cast from each receiver patch's centre and shared by its elements, each of whose 2 x 2
+//    points weighs it by its share of F (settings.behindPerPatch; or cast from every point): P is
+//    the light reflected by what lies behind the mover, smooth over a receiver patch, and per
+//    point it was half a frame's GPU time;
 //  - rays are marched through the back hemicube (the seed's single reprojection step, depth along
 //    the parallel ray from j's centre, is kept as the first try);
 //  - the moved elements' part from C is a difference of two gathers (where it was, where it is)
@@ -84,7 +86,8 @@ class CrossRedistribution {
   // to sample; when the moved set changed, makes the back hemicubes draw the rest and picks each
   // moved element's gather.
   void begin(std::span<const uint32_t> objects);
-  // After the surfaces' new geometry is in the solver's buffers: the gather hemicubes draw it.
+  // After the surfaces' new geometry is in the solver's buffers (or any change of it the
+  // solver made): the gather hemicubes draw it, and none kept from before is used again.
   void geometryMoved();
 
   // The back hemicubes of a shooting pass: their centres are written by the pass's shooter
@@ -93,6 +96,11 @@ class CrossRedistribution {
   GLuint backShooters() const { return backShooters_; }
   void renderBackHemicubes(int count);
   void bindForReconstruction() const;
+  // What each static patch's centre sees behind each of the pass's `count` moved patches
+  // (`samples` shooters each in the pass's shooter buffer), which the reconstruction shares
+  // among the patch's elements. After bindForReconstruction, with the pass's buffers bound.
+  // Nothing where that table would be too large: each element point then casts its own rays.
+  void projectBehind(int count, int samples);
   // The reconstruction program's fixed uniforms; `emitterSide`: k_e, the emitters' hemicubes a
   // side (their shots' points, which emittersHidden and the moved elements' gather sample again).
   void setReconstructionUniforms(GLuint program, int emitterSide);
@@ -101,7 +109,8 @@ class CrossRedistribution {
   // the redistribution's amounts pass writes them) of the patches that stay, at the geometry now
   // in `elements` and `patches`, and adds `sign` times it to its state (irradiance, radiosity,
   // unshot and direct light). Leaves the bindings it used changed: the caller binds its own again.
-  // Its phases are marked on `timeline`.
+  // Its phases are marked on `timeline`. A negative gather after a positive one with nothing moved
+  // between (geometryMoved not called) reads the positive one's hemicubes, where they were kept.
   void gatherMoved(float sign, GLuint elements, GLuint patches, GLuint states, GLuint amounts,
                    GpuTimeline& timeline);
 
@@ -125,6 +134,8 @@ class CrossRedistribution {
   std::vector<uint8_t> moved_;           // per patch
   std::vector<uint8_t> sampledEmitter_;  // per patch: sampled exactly (emittersHidden)
   GLuint reconstruction_ = 0, emitterList_ = 0;
+  std::unique_ptr<ShaderProgram> behindProgram_;  // null where the table would be too large
+  GLuint behind_ = 0;
   bool closed_ = true;
   // The moved elements that gather with one hemicube at their centre, and those near a light
   // that gather with 2 x 2 (the .cpp's kNearLight): their list and their passes.
@@ -136,7 +147,16 @@ class CrossRedistribution {
   };
   GatherRule rules_[2] = {{.samples = 1}, {.samples = 4}};
   int gatherCapacity_ = 0;  // hemicubes a gather batch
-  std::unique_ptr<LayeredHemicubes> back_, gather_;
+  std::unique_ptr<LayeredHemicubes> back_;
+  // The gather batches' hemicubes, one set a batch where they fit kMostGatherBytes (else one for
+  // all): a move's gather where the movers were is the last move's gather where they went, the
+  // same pixels, so those are kept and not drawn again while imagesKept_.
+  std::vector<std::unique_ptr<LayeredHemicubes>> gathers_;
+  // What they draw: every patch, where the solver's buffers last said (before a move's upload,
+  // where the movers were; the surfaces already say where they went).
+  std::vector<Polygon> gatherPolygons_;
+  std::vector<uint32_t> gatherItems_;
+  bool keepGathers_ = false, imagesKept_ = false;
   GLuint patchTable_ = 0, backShooters_ = 0, gatherEyes_ = 0, deltas_ = 0;
 };
 

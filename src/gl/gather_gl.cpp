@@ -147,7 +147,7 @@ struct Buffers {
 class GlGatherSolver final : public Solver {
  public:
   GlGatherSolver(const RadiositySystem& sys, Context& context, const GlGatherSettings& o)
-      : sys_(sys), context_(context), o_(o) {
+      : sys_(sys), device_(context.renderer()), o_(o) {
     const Stopwatch watch;
     const SurfaceSet& set = sys.surfaces;
     const size_t ne = sys.elementCount(), np = sys.patchCount();
@@ -296,7 +296,7 @@ class GlGatherSolver final : public Solver {
     SolveStats st;
     st.method = "gather";
     st.backend = "gl";
-    st.device = context_.renderer();
+    st.device = device_;
     st.iterations = uint64_t(iteration_);
     st.residual = residual_;
     st.hemicubes = rendered_;
@@ -342,7 +342,9 @@ class GlGatherSolver final : public Solver {
   }
 
   const RadiositySystem& sys_;
-  Context& context_;
+  // Read once: stats() may be asked while another session's context is current (luxel animate
+  // --error solves each frame's reference in its own).
+  const std::string device_;
   const GlGatherSettings o_;
   Buffers buf_;
   std::unique_ptr<LayeredHemicubes> hemicubes_;

@@ -58,7 +58,13 @@ SolverEntry glProgressiveEntry(const char* method, Follows follows, const char* 
     addAll(e.description.options,
            {integerOption("back-hemicube-resolution", c.backResolution, 4, 1024,
                           "pixels a side of each moved patch's back hemicube, which the cross projection samples (even)"),
-            integerOption("cross-grid", c.grid, 1, 16, "g: g x g rays from a receiver through each moved patch")});
+            integerOption("cross-grid", c.grid, 1, 16, "g: g x g rays from a receiver through each moved patch"),
+            choiceOption("cross-behind", "patch", {"patch", "point"},
+                         "what a receiver sees behind a moved patch: from its patch's centre, shared by the "
+                         "patch's elements, or from each element's 2 x 2 points (slower)"),
+            flagOption("keep-gather-hemicubes", c.keepGathers,
+                       "keep the moved elements' gather hemicubes from one move to the next (up to 512 MiB), where "
+                       "the next move's gather where they were draws the same pixels")});
   }
   addAll(e.description.options, analyticLightOptions());
   e.make = [followChanges, cross](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
@@ -89,6 +95,8 @@ SolverEntry glProgressiveEntry(const char* method, Follows follows, const char* 
       s.cross.backResolution = back;
       s.cross.gatherResolution = s.resolution;
       s.cross.grid = v.integer("cross-grid");
+      s.cross.behindPerPatch = v.choice("cross-behind") == "patch";
+      s.cross.keepGathers = v.flag("keep-gather-hemicubes");
       const SurfaceSet& set = r.system.surfaces;
       for (const Patch& p : set.patches) objectOfPatch.push_back(r.scene.meshes[set.faces[p.face].mesh].object);
     }

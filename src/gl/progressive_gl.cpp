@@ -182,6 +182,7 @@ uniform bool redistributing;         // shots that move light already shot: no s
 // static receiver also gains F (-crossSign) P, the light of the static patches behind them.
 uniform bool crossProjecting;
 uniform float crossSign;
+uniform uint crossPatchCount;  // crossBehind holds each patch's view behind the pass's movers (0: not kept)
 uniform float nearPlane, farPlane;
 // Directional bakes (Solver::recordIncidentSh): the SH of what each shot brings, shCount (4: L1,
 // 9: L2; 0: not recording) per element.
@@ -396,7 +397,12 @@ void main() {
       F += Fq;
       if (crossing && Fq > 0.0) {
         vec3 shotHere, emittedHere;
-        crossProjected(k, x[q], n, P, shotHere, emittedHere);  // mean radiosity behind P
+        // Mean radiosity behind P: as the element's patch centre sees it, or from this point.
+        const uint b = 2u * (k * crossPatchCount + el.ids.y);
+        if (crossPatchCount > 0u && crossBehind[b].w > 0.0)
+          shotHere = crossBehind[b].rgb, emittedHere = crossBehind[b + 1u].rgb;
+        else
+          crossProjected(k, x[q], n, P, shotHere, emittedHere);
         behind += Fq * shotHere, emittedBehind += Fq * emittedHere;
         emittersHidden(x[q], n, P, shotHere, emittedHere);  // irradiance P hides, were all of P seen
         behind += (Fq / f) * shotHere, emittedBehind += (Fq / f) * emittedHere;
@@ -550,7 +556,7 @@ class GlProgressiveSolver final : public Solver {
  public:
   GlProgressiveSolver(const RadiositySystem& sys, Context& context, const GlProgressiveSettings& o,
                       std::vector<uint32_t> objectOfPatch)
-      : sys_(sys), context_(context), o_(o) {
+      : sys_(sys), device_(context.renderer()), o_(o) {
     const Stopwatch watch;
     const SurfaceSet& set = sys.surfaces;
     const size_t ne = sys.elementCount(), np = sys.patchCount();
@@ -787,6 +793,7 @@ class GlProgressiveSolver final : public Solver {
   }
   void restoreState(StateReader& in) override {
     for (GLuint b : {buf_.elementStates, buf_.patchStates, buf_.state}) restoreBuffer(b, in);
+    if (cross_) cross_->geometryMoved();  // no gather hemicubes kept from before the checkpoint
     shCount_ = 0;
     in.value(emittersShot_), in.value(emitterShots_), in.value(shots_), in.value(unshotFraction_);
     in.value(seconds_), in.value(done_);
@@ -857,7 +864,7 @@ class GlProgressiveSolver final : public Solver {
     st.backend = "gl";
     st.redistributions = redistributions_;
     st.secondsRedistribution = secondsRedistributing_;
-    st.device = context_.renderer();
+    st.device = device_;
     st.shots = shots_;
     const uint64_t emitterShots = std::min<uint64_t>(emitterShots_, shots_);
     st.hemicubes = emitterShots * uint64_t(emitterSamples_) + (shots_ - emitterShots) * uint64_t(samples_);
@@ -943,6 +950,8 @@ class GlProgressiveSolver final : public Solver {
           buf_.bind();  // the shooters' buffer again in SHOOTER_BINDING
           glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionAmountBinding, buf_.amounts);
           cross_->bindForReconstruction();
+          timeline_.mark("redistribute: behind the movers");
+          cross_->projectBehind(count, samples);
         }
         timeline_.mark("redistribute: reconstruct");
         hemicubes_->bindTextures();
@@ -1078,7 +1087,9 @@ class GlProgressiveSolver final : public Solver {
   }
 
   const RadiositySystem& sys_;
-  Context& context_;
+  // Read once: stats() may be asked while another session's context is current (luxel animate
+  // --error solves each frame's reference in its own).
+  const std::string device_;
   const GlProgressiveSettings o_;
   Buffers buf_;
   std::unique_ptr<LayeredHemicubes> hemicubes_;

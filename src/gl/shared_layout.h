@@ -55,6 +55,9 @@ constexpr int kCrossPatchBinding = 12;
 constexpr int kBackShooterBinding = 13;
 constexpr int kCrossDeltaBinding = 14;
 constexpr int kCrossEmitterBinding = 15;  // uint[]: the static emitting patches sampled exactly
+// vec4[2 x pass slots x patches]: what each static patch's centre sees behind each moved patch of
+// the pass (shot radiosity, w = 1 where its rays saw any of it; first-shot emission).
+constexpr int kCrossBehindBinding = 16;
 constexpr int kBackItemTextureUnit = 2;
 constexpr int kBackDistanceTextureUnit = 3;
 constexpr int kDistanceTextureUnit = 1;    // R32F distances (or RGBA32F radiosity) of layered hemicubes
@@ -140,6 +143,7 @@ inline std::string glslPreamble() {
       "#define BACK_SHOOTER_BINDING {}\n"
       "#define CROSS_DELTA_BINDING {}\n"
       "#define CROSS_EMITTER_BINDING {}\n"
+      "#define CROSS_BEHIND_BINDING {}\n"
       "#define BACK_ITEM_TEXTURE_UNIT {}\n"
       "#define BACK_DISTANCE_TEXTURE_UNIT {}\n"
       "#define GATHER_GROUP {}\n"
@@ -159,7 +163,7 @@ inline std::string glslPreamble() {
       "struct GpuGatherElement {{ vec4 emissionArea; vec4 reflectance; vec4 analytic; }};\n",
       kPositionLocation, kItemLocation, kDeltaBinding, kItemSumBinding, kItemTextureUnit, kIntegrateGroup,
       kElementBinding, kPatchBinding, kPatchElementBinding, kPatchStateBinding, kShooterBinding,
-      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kElementShBinding, kCrossPatchBinding, kBackShooterBinding, kCrossDeltaBinding, kCrossEmitterBinding,
+      kSolverStateBinding, kElementStateBinding, kPatchRadiosityBinding, kFaceNeighbourBinding, kRedistributionAmountBinding, kRedistributionListBinding, kElementShBinding, kCrossPatchBinding, kBackShooterBinding, kCrossDeltaBinding, kCrossEmitterBinding, kCrossBehindBinding,
       kBackItemTextureUnit, kBackDistanceTextureUnit, kGatherGroup, kGatherDeltaBinding,
       kGatherElementBinding, kGatherResidualBinding, kDistanceTextureUnit, kPowerGroup, kSelectGroup,
       kReconstructGroup, kMaxShootersPerPass);
