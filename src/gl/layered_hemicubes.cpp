@@ -20,8 +20,8 @@ namespace luxel::gl {
 namespace {
 
 // One instance per layer (hemicube x face): the vertex shader projects for the instance's face,
-// and the geometry shader routes the triangle to that layer, so that a whole pass is one draw into
-// one layered framebuffer. (A framebuffer per layer, drawn one by one, measured 2.4x slower on
+// and routes the triangle to that layer itself (VERTEX_LAYERS) or leaves that to the geometry
+// shader, so that a whole pass is one draw into one layered framebuffer. (A framebuffer per layer, drawn one by one, measured 2.4x slower on
 // llvmpipe once a few hundred had been used: every later pass paid for all of them.)
 const char* kShooterVertex = R"(
 layout(location = POSITION_LOCATION) in vec3 position;
@@ -29,36 +29,28 @@ layout(location = ITEM_LOCATION) in uint item;
 layout(std430, binding = SHOOTER_BINDING) readonly buffer Shooters { GpuShooter shooters[]; };
 uniform int first;
 uniform float nearPlane, farPlane;
+#ifdef VERTEX_LAYERS  // the layer set here (ARB_shader_viewport_layer_array): straight to the fragments
+flat out uint vItem;
+out vec3 vFromEye;
+#define OUT_ITEM vItem
+#define OUT_FROM_EYE vFromEye
+#else
 flat out uint gItem;
 flat out int gLayer;
 out vec3 gFromEye;
+#define OUT_ITEM gItem
+#define OUT_FROM_EYE gFromEye
+#endif
 void main() {
   const int layer = gl_InstanceID;
   GpuShooter s = shooters[first + layer / 5];
-  gItem = item;
-  gLayer = layer;
-  gFromEye = position - s.eye.xyz;
-  gl_Position = s.ids.y == 0u ? vec4(2.0, 2.0, 2.0, 1.0)  // an empty slot: outside the clip volume
-                              : hemicubeClip(position, s.eye.xyz, hemicubeFrame(s.normal.xyz, s.normal.w), layer % 5, nearPlane, farPlane);
-}
-)";
-
-// The same, routing the triangle to its layer from the vertex shader: the rasteriser's clipping
-// drops what the geometry shader's test would have.
-const char* kShooterVertexLayered = R"(
-layout(location = POSITION_LOCATION) in vec3 position;
-layout(location = ITEM_LOCATION) in uint item;
-layout(std430, binding = SHOOTER_BINDING) readonly buffer Shooters { GpuShooter shooters[]; };
-uniform int first;
-uniform float nearPlane, farPlane;
-flat out uint vItem;
-out vec3 vFromEye;
-void main() {
-  const int layer = gl_InstanceID;
-  GpuShooter s = shooters[first + layer / 5];
-  vItem = item;
+  OUT_ITEM = item;
+#ifdef VERTEX_LAYERS
   gl_Layer = layer;
-  vFromEye = position - s.eye.xyz;
+#else
+  gLayer = layer;
+#endif
+  OUT_FROM_EYE = position - s.eye.xyz;
   gl_Position = s.ids.y == 0u ? vec4(2.0, 2.0, 2.0, 1.0)  // an empty slot: outside the clip volume
                               : hemicubeClip(position, s.eye.xyz, hemicubeFrame(s.normal.xyz, s.normal.w), layer % 5, nearPlane, farPlane);
 }
@@ -240,8 +232,9 @@ LayeredHemicubes::LayeredHemicubes(std::span<const Polygon> polygons, std::span<
   const char* name = radiosity ? "radiosity hemicube" : "item and distance hemicube";
   if (layering_ == Layering::VertexShader) {
     // An #extension line must come before anything but other directives: right after #version.
-    std::string vertex = preamble + kShooterVertexLayered;
-    vertex.insert(vertex.find('\n') + 1, "#extension GL_ARB_shader_viewport_layer_array : require\n");
+    std::string vertex = preamble + kShooterVertex;
+    vertex.insert(vertex.find('\n') + 1,
+                  "#extension GL_ARB_shader_viewport_layer_array : require\n#define VERTEX_LAYERS\n");
     m.program = std::make_unique<ShaderProgram>(name, vertex, fragment);
   } else {
     m.program = std::make_unique<ShaderProgram>(name, preamble + kShooterVertex, preamble + kLayerGeometry, fragment);
