@@ -1,6 +1,9 @@
 // `luxel render --backend gl|auto|cpu`: the GL backend end to end through the CLI, the fallback of
 // `auto`, and a bad backend name. GL runs skip, saying why, when no OpenGL 4.5 context exists.
 #include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -24,6 +27,41 @@ TEST(GlBackendCli, RendersOnTheGpuAndSaysSo) {
   EXPECT_FALSE(j["device"].get<std::string>().empty());
   EXPECT_NE(r.out.find("on gl"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(dir / "f.exr"));
+}
+
+// `luxel animate` with a GL dynamic solver: each frame's line says where the solver's time went
+// (phases_ms, gl/gpu_timeline.h), and --error, which solves each frame's reference in a context
+// of its own, works beside it (the session's stats once asked the driver for its name under the
+// reference's context, and threw).
+TEST(GlBackendCli, AnimateTimesEachPhaseOfTheGlSolver) {
+  std::string why;
+  if (!haveGl(why)) GTEST_SKIP() << "no OpenGL 4.5 context: " << why;
+  const fs::path dir = scratchDir();
+  CliRun r = luxel(dir, {"animate", "cornell-low", "--frames", "2", "--size", "16x16", "--elements", "400", "--backend",
+                         "gl", "--solver", "cross-redistribution", "--error", "--stats", "s.jsonl", "-o", "f%d.png",
+                         "-q"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::vector<nlohmann::json> lines;
+  std::istringstream in(readFile(dir / "s.jsonl"));
+  for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
+  ASSERT_EQ(lines.size(), 2u);
+  for (const nlohmann::json& l : lines) {
+    ASSERT_TRUE(l.contains("phases_ms")) << l.dump();
+    double cpu = 0.0;
+    for (const auto& [name, p] : l["phases_ms"].items()) {
+      EXPECT_GT(p["count"].get<int>(), 0) << name;
+      EXPECT_GE(p["gpu"].get<double>(), 0.0) << name;
+      EXPECT_GE(p["cpu"].get<double>(), 0.0) << name;
+      cpu += p["cpu"].get<double>();
+    }
+    // The phases are parts of the frame's update and solve.
+    EXPECT_LE(cpu, l["ms_update"].get<double>() + l["ms_solve"].get<double>() + 1.0) << l.dump();
+    EXPECT_LT(l["error"].get<double>(), 0.05) << l.dump();
+  }
+  // The second frame moved the box: the cross-redistribution's passes are there, the first's not.
+  EXPECT_FALSE(lines[0]["phases_ms"].contains("gather: integrate")) << lines[0].dump();
+  for (const char* phase : {"shoot: hemicubes", "redistribute: reconstruct", "gather: integrate"})
+    EXPECT_TRUE(lines[1]["phases_ms"].contains(phase)) << phase << " in " << lines[1].dump();
 }
 
 TEST(GlBackendCli, AutoUsesTheGpuWhenItCanAndBadNamesFail) {
