@@ -37,17 +37,12 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// The solver's time by phase over one frame (GL solvers; gl/gpu_timeline.h): `after` less
-// `before`, in milliseconds on the GPU and on the CPU. A solver that started again counts from zero.
+// The solver's time by phase over one frame (GL solvers; gl/gpu_timeline.h), in milliseconds on
+// the GPU and on the CPU.
 nlohmann::ordered_json phaseMilliseconds(const std::vector<PhaseTime>& before, const std::vector<PhaseTime>& after) {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
-  for (const PhaseTime& p : after) {
-    PhaseTime d = p;
-    for (const PhaseTime& b : before)
-      if (b.name == p.name && b.count <= p.count)
-        d.count -= b.count, d.secondsGpu -= b.secondsGpu, d.secondsCpu -= b.secondsCpu;
-    if (d.count > 0) out[p.name] = {{"count", d.count}, {"gpu", 1e3 * d.secondsGpu}, {"cpu", 1e3 * d.secondsCpu}};
-  }
+  for (const PhaseTime& d : phasesSince(before, after))
+    out[d.name] = {{"count", d.count}, {"gpu", 1e3 * d.secondsGpu}, {"cpu", 1e3 * d.secondsCpu}};
   return out;
 }
 

@@ -86,6 +86,9 @@ nlohmann::json dynamicCaseJson(const DynamicResult& r, std::optional<double> spe
       {"first_solve_seconds", r.firstSolveSeconds},
       {"reference_seconds", r.referenceSeconds},
   };
+  // GL cases: where a frame's time goes (gl/gpu_timeline.h), medians over the timed frames.
+  for (const PhaseTime& p : r.phases)
+    j["phases_ms"][p.name] = {{"gpu", 1e3 * p.secondsGpu}, {"cpu", 1e3 * p.secondsCpu}, {"frames", p.count}};
   return j;
 }
 

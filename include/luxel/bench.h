@@ -209,6 +209,9 @@ struct DynamicResult {
   double errorMedian = 0.0, errorMax = 0.0;
   std::vector<double> settleErrors;  // one per settle frame
   double referenceSeconds = 0.0;     // solving references (0 when all came from the cache)
+  // GL cases: each phase's median over the timed frames (secondsGpu, secondsCpu; a frame it did
+  // not run in counts 0) and, as count, the frames it ran in.
+  std::vector<PhaseTime> phases;
 };
 
 // Runs one case. Throws Error when a GL context cannot be made or the scene has no dynamic object

@@ -19,6 +19,10 @@ struct PhaseTime {
   double secondsCpu = 0.0;  // wall time on the CPU issuing it (driver calls and CPU work)
 };
 
+// Each phase of `after` less its part in `before` (two readings of SolveStats::phases), those
+// that ran between them; a phase whose count went down (the solver started again) whole.
+std::vector<PhaseTime> phasesSince(const std::vector<PhaseTime>& before, const std::vector<PhaseTime>& after);
+
 struct SolveStats {
   std::string method;                 // the registered method, e.g. "progressive"
   std::string backend;                // "cpu" or "gl"

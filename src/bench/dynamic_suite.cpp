@@ -172,6 +172,7 @@ DynamicResult runDynamicCase(const DynamicCase& c, const DynamicOptions& o) {
   };
 
   std::vector<double> factors, shots;
+  std::vector<std::vector<PhaseTime>> framePhases;  // the timed frames'
   SolveStats before = session->stats();
   for (int k = 1; k <= r.frames; ++k) {
     reportProgress(o.progress, c.name(), double(k - 1) / r.frames, fmt::format("frame {} of {}", k, r.frames));
@@ -189,13 +190,14 @@ DynamicResult runDynamicCase(const DynamicCase& c, const DynamicOptions& o) {
     if (k >= firstTimed) {
       factors.push_back(double(after.factorsRecomputed - before.factorsRecomputed));
       shots.push_back(double(newSessionPerFrame ? after.shots : after.shots - before.shots));
+      framePhases.push_back(phasesSince(newSessionPerFrame ? std::vector<PhaseTime>{} : before.phases, after.phases));
     }
-    before = after;
     if (o.reference && measured(k)) {
       reportProgress(o.progress, c.name(), double(k) / r.frames, fmt::format("reference at frame {}", k));
       r.errorFrames.push_back(k);
       r.errors.push_back(errorAt(k));
     }
+    before = session->stats();  // after the error's read-back, which is not the next frame's
   }
   // The motion stops: the session goes on from where the last frame left it, with no move.
   for (int k = 0; k < o.settleFrames && o.reference; ++k) {
@@ -208,6 +210,19 @@ DynamicResult runDynamicCase(const DynamicCase& c, const DynamicOptions& o) {
   r.msMedian = median(timed);
   r.msP95 = percentile95(timed);
   r.shotsPerFrame = median(shots);
+  for (const std::vector<PhaseTime>& frame : framePhases)
+    for (const PhaseTime& p : frame)
+      if (std::none_of(r.phases.begin(), r.phases.end(), [&](const PhaseTime& q) { return q.name == p.name; }))
+        r.phases.push_back({p.name, 0, 0.0, 0.0});
+  for (PhaseTime& p : r.phases) {
+    std::vector<double> gpu, cpu;
+    for (const std::vector<PhaseTime>& frame : framePhases) {
+      const auto it = std::find_if(frame.begin(), frame.end(), [&](const PhaseTime& q) { return q.name == p.name; });
+      p.count += it != frame.end() ? 1 : 0;
+      gpu.push_back(it != frame.end() ? it->secondsGpu : 0.0), cpu.push_back(it != frame.end() ? it->secondsCpu : 0.0);
+    }
+    p.secondsGpu = median(gpu), p.secondsCpu = median(cpu);
+  }
   // Progressive computes every factor it shoots with; GL's dynamic methods render hemicubes and
   // count no factors.
   if (c.method != "progressive" && c.backend == "cpu") r.factorsPerFrame = median(factors);

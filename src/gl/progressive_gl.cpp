@@ -729,6 +729,7 @@ class GlProgressiveSolver final : public Solver {
     choose(0, o_.samplesPerSide, false);  // the unshot power left
     const GpuSolverState s = readState();
     timeline_.stop();
+    timeline_.collect();  // now, not in the next step's: its time is this call's
     std::vector<GpuElementState> states(ne);
     glGetNamedBufferSubData(buf_.elementStates, 0, GLsizeiptr(ne * sizeof(GpuElementState)), states.data());
     Context::check("reading back the GPU solution");

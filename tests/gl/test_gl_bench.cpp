@@ -121,6 +121,19 @@ TEST(GlBench, DynamicCasesFollowTheBoxOnGl) {
     // leaves unshot.
     for (double e : r.errors) EXPECT_LT(e, 0.02);
     ASSERT_EQ(r.settleErrors.size(), 1u);
+    // Where the timed frame went, phase by phase: it shot, and cross-redistribution gathered.
+    auto phase = [&](const char* name) -> const luxel::PhaseTime* {
+      for (const luxel::PhaseTime& p : r.phases)
+        if (p.name == name) return &p;
+      return nullptr;
+    };
+    ASSERT_NE(phase("shoot: hemicubes"), nullptr);
+    EXPECT_EQ(phase("shoot: hemicubes")->count, 1u);
+    EXPECT_GT(phase("shoot: hemicubes")->secondsGpu, 0.0);
+    EXPECT_EQ(phase("gather: integrate") != nullptr, c.method == "cross-redistribution");
+    double cpu = 0.0;
+    for (const luxel::PhaseTime& p : r.phases) cpu += p.secondsCpu;
+    EXPECT_LE(1e3 * cpu, r.msMedian + 1.0);  // parts of the frame
   }
   std::error_code ec;
   std::filesystem::remove_all(o.cacheDir, ec);
