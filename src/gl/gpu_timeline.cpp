@@ -2,7 +2,6 @@
 
 #include <epoxy/gl.h>
 
-
 namespace luxel::gl {
 
 GpuTimeline::~GpuTimeline() {

@@ -6,8 +6,6 @@
 // solver calls after a glFinish it makes anyway: measuring adds no synchronisation.
 #pragma once
 
-#include <cstdint>
-#include <string>
 #include <vector>
 
 #include "core/stopwatch.h"

@@ -21,8 +21,9 @@ namespace {
 
 // One instance per layer (hemicube x face): the vertex shader projects for the instance's face,
 // and routes the triangle to that layer itself (VERTEX_LAYERS) or leaves that to the geometry
-// shader, so that a whole pass is one draw into one layered framebuffer. (A framebuffer per layer, drawn one by one, measured 2.4x slower on
-// llvmpipe once a few hundred had been used: every later pass paid for all of them.)
+// shader, so that a whole pass is one draw into one layered framebuffer. (A framebuffer per
+// layer, drawn one by one, measured 2.4x slower on llvmpipe once a few hundred had been used:
+// every later pass paid for all of them.)
 const char* kShooterVertex = R"(
 layout(location = POSITION_LOCATION) in vec3 position;
 layout(location = ITEM_LOCATION) in uint item;
