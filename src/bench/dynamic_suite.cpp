@@ -210,19 +210,21 @@ DynamicResult runDynamicCase(const DynamicCase& c, const DynamicOptions& o) {
   r.msMedian = median(timed);
   r.msP95 = percentile95(timed);
   r.shotsPerFrame = median(shots);
-  for (const std::vector<PhaseTime>& frame : framePhases)
-    for (const PhaseTime& p : frame)
-      if (std::none_of(r.phases.begin(), r.phases.end(), [&](const PhaseTime& q) { return q.name == p.name; }))
+  // Each phase's times over the timed frames, 0 where a frame did not run it, in the order first seen.
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> times;  // GPU, CPU; as r.phases
+  for (size_t f = 0; f < framePhases.size(); ++f)
+    for (const PhaseTime& p : framePhases[f]) {
+      size_t i = 0;
+      while (i < r.phases.size() && r.phases[i].name != p.name) ++i;
+      if (i == r.phases.size()) {
         r.phases.push_back({p.name, 0, 0.0, 0.0});
-  for (PhaseTime& p : r.phases) {
-    std::vector<double> gpu, cpu;
-    for (const std::vector<PhaseTime>& frame : framePhases) {
-      const auto it = std::find_if(frame.begin(), frame.end(), [&](const PhaseTime& q) { return q.name == p.name; });
-      p.count += it != frame.end() ? 1 : 0;
-      gpu.push_back(it != frame.end() ? it->secondsGpu : 0.0), cpu.push_back(it != frame.end() ? it->secondsCpu : 0.0);
+        times.emplace_back(std::vector<double>(framePhases.size()), std::vector<double>(framePhases.size()));
+      }
+      ++r.phases[i].count;
+      times[i].first[f] = p.secondsGpu, times[i].second[f] = p.secondsCpu;
     }
-    p.secondsGpu = median(gpu), p.secondsCpu = median(cpu);
-  }
+  for (size_t i = 0; i < r.phases.size(); ++i)
+    r.phases[i].secondsGpu = median(times[i].first), r.phases[i].secondsCpu = median(times[i].second);
   // Progressive computes every factor it shoots with; GL's dynamic methods render hemicubes and
   // count no factors.
   if (c.method != "progressive" && c.backend == "cpu") r.factorsPerFrame = median(factors);

@@ -604,10 +604,7 @@ void CrossRedistribution::begin(std::span<const uint32_t> objects) {
   // A set of gather hemicubes per batch where they fit, drawing what the first draws.
   imagesKept_ = false;
   size_t batches = 0;
-  for (const GatherRule& rule : rules_) {
-    const size_t perBatch = size_t(std::max(gatherCapacity_ / rule.samples, 1));
-    batches += (rule.elements.size() + perBatch - 1) / perBatch;
-  }
+  for (const GatherRule& rule : rules_) batches += (rule.elements.size() + perBatch(rule) - 1) / perBatch(rule);
   const size_t setBytes = size_t(5 * gatherCapacity_) * size_t(s_.gatherResolution) * size_t(s_.gatherResolution) *
                           (sizeof(uint32_t) + 2 * sizeof(float));  // item, distance, depth
   keepGathers_ = s_.keepGathers && batches * setBytes <= kMostGatherBytes;
@@ -659,22 +656,19 @@ void CrossRedistribution::projectBehind(int count, int samples) {
 
 void CrossRedistribution::setReconstructionUniforms(GLuint program, int emitterSide) {
   reconstruction_ = program;
-  if (behindProgram_) {
-    const GLuint behind = behindProgram_->id();
-    glUseProgram(behind);
-    glUniform1i(glGetUniformLocation(behind, "backResolution"), s_.backResolution);
-    glUniform1i(glGetUniformLocation(behind, "crossGrid"), s_.grid);
-    glUniform1f(glGetUniformLocation(behind, "backNear"), back_->nearPlane());
-    glUniform1f(glGetUniformLocation(behind, "backFar"), back_->farPlane());
+  // The back hemicubes' march, in both programs that cast rays through them.
+  for (const GLuint p : {program, behindProgram_ ? behindProgram_->id() : 0u}) {
+    if (!p) continue;
+    glUseProgram(p);
+    glUniform1i(glGetUniformLocation(p, "backResolution"), s_.backResolution);
+    glUniform1i(glGetUniformLocation(p, "crossGrid"), s_.grid);
+    glUniform1f(glGetUniformLocation(p, "backNear"), back_->nearPlane());
+    glUniform1f(glGetUniformLocation(p, "backFar"), back_->farPlane());
   }
   glUseProgram(program);
   glUniform1ui(glGetUniformLocation(program, "crossPatchCount"), behindProgram_ ? GLuint(sys_.patchCount()) : 0u);
   glUniform1i(glGetUniformLocation(program, "crossEmitterSide"), emitterSide);
   glUniform1ui(glGetUniformLocation(program, "crossEmitterCount"), 0u);
-  glUniform1i(glGetUniformLocation(program, "backResolution"), s_.backResolution);
-  glUniform1i(glGetUniformLocation(program, "crossGrid"), s_.grid);
-  glUniform1f(glGetUniformLocation(program, "backNear"), back_->nearPlane());
-  glUniform1f(glGetUniformLocation(program, "backFar"), back_->farPlane());
   for (const GatherRule& rule : rules_) {
     rule.integrate->use();
     glUniform1i(glGetUniformLocation(rule.integrate->id(), "crossEmitterSide"), emitterSide);
@@ -696,10 +690,9 @@ void CrossRedistribution::gatherMoved(float sign, GLuint elements, GLuint patche
   size_t batch = 0;
   for (const GatherRule& rule : rules_) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRedistributionListBinding, rule.list);
-    const size_t perBatch = size_t(std::max(gatherCapacity_ / rule.samples, 1));
-    for (size_t first = 0; first < rule.elements.size(); first += perBatch, ++batch) {
+    for (size_t first = 0; first < rule.elements.size(); first += perBatch(rule), ++batch) {
       LayeredHemicubes& gather = *gathers_[keepGathers_ ? batch : 0];
-      const int count = int(std::min(perBatch, rule.elements.size() - first));
+      const int count = int(std::min(perBatch(rule), rule.elements.size() - first));
       timeline.mark("gather: eyes");
       rule.eyes->use();
       glUniform1ui(glGetUniformLocation(rule.eyes->id(), "first"), GLuint(first));

@@ -47,6 +47,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -146,6 +147,7 @@ class CrossRedistribution {
     std::unique_ptr<ShaderProgram> eyes, integrate;
   };
   GatherRule rules_[2] = {{.samples = 1}, {.samples = 4}};
+  size_t perBatch(const GatherRule& rule) const { return size_t(std::max(gatherCapacity_ / rule.samples, 1)); }
   int gatherCapacity_ = 0;  // hemicubes a gather batch
   std::unique_ptr<LayeredHemicubes> back_;
   // The gather batches' hemicubes, one set a batch where they fit kMostGatherBytes (else one for

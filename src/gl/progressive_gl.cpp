@@ -700,6 +700,7 @@ class GlProgressiveSolver final : public Solver {
       ++units;
       timeline_.mark("shoot: read state");
       const GpuSolverState s = readState();  // the only read-back while shooting: a few bytes every few passes
+      timeline_.collect();  // what the read-back waited for: keeps a long step's open queries few
       Context::check("GPU progressive refinement");
       shots_ = s.shots;
       unshotFraction_ = sourcePower_ > 0.0 ? s.unshotPower / sourcePower_ : 0.0;
