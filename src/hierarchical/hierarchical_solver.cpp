@@ -20,6 +20,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "cluster/cluster_visibility.h"
 #include "cluster/face_cluster_cache.h"
 #include "cluster/face_cluster_tree.h"
 #include "core/content_hash.h"
@@ -70,6 +71,11 @@ struct HierarchicalSettings {
   // Changes of the analytic light are followed from the last solution (sourcesChanged), or solved
   // again from scratch.
   bool followLight = true;
+  // The links' visibility: exact rays (Embree), or the hierarchy's multiresolution visibility
+  // (cluster/cluster_visibility.h), whose descent stops at clusters whose shadow is smaller than
+  // `visibilityStop` times the receiver's point spacing.
+  bool clusterVisibility = false;
+  float visibilityStop = 1.0f;
 };
 
 // Vector irradiance of one element: per basis function, per channel, a vector (Gobbetti et al.
@@ -141,6 +147,10 @@ class HierarchicalSolver final : public Solver {
     if (!cached.warning.empty()) warnings_.push_back(cached.warning);
     points_ = std::make_unique<ClusterPoints>(tree_, sys.surfaces);
     rayOffset_ = rayOffsetFor(sys.surfaces.sceneExtent);
+    // Boxes padded by a tenth of the rays' offset: a ray leaving a flat cluster has left its box
+    // before its first point, so the walk does not descend the cluster it starts on.
+    if (s.clusterVisibility)
+      clusterVisibility_ = std::make_unique<ClusterVisibility>(tree_, sys.surfaces, 0.1f * rayOffset_);
     const size_t nodes = tree_.nodeCount(), ne = sys.elementCount();
     // The emitting surfaces' direct light, per element as the analytic lights' is: through the
     // hierarchy's links it was the largest error where lamps are surfaces (docs/algorithms.md,
@@ -458,11 +468,14 @@ class HierarchicalSolver final : public Solver {
   // (with a small ridge for clusters too thin to tell u from v).
   struct Receiver {
     std::vector<SurfacePoint> points;
+    float spacing = 0.0f;           // between its points: sqrt(area / points)
     std::vector<float> projection;  // basis x points
     std::vector<float> basisAt;     // points x basis: the functions at each point
   };
-  void prepareReceiver(uint32_t i, const OrientedBox& box, Receiver& r) const {
+  void prepareReceiver(uint32_t i, const FaceCluster& c, Receiver& r) const {
+    const OrientedBox& box = c.box;
     points_->points(i, s_.receiverSide, r.points);
+    r.spacing = std::sqrt(c.area / float(std::max<size_t>(1, r.points.size())));
     const int nb = s_.basis;
     const size_t np = r.points.size();
     r.basisAt.resize(np * size_t(nb));
@@ -573,7 +586,7 @@ class HierarchicalSolver final : public Solver {
     std::vector<RTCRay> rays;     // one per receiver x emitter point pair; flags 1: not traced
     std::vector<RTCRay> traced;   // the pairs that can exchange light, as one stream
     std::vector<size_t> where;    // each traced ray's pair
-    std::vector<uint8_t> visible; // per pair
+    std::vector<float> visible;   // per pair: the share of light that passes
     std::vector<uint8_t> sees;    // per receiver point: some emitter point is above its horizon
     std::vector<float> projection;  // the receiver's projection restricted to the points that see
     // Per receiver point, per channel: the vector irradiance the emitter's unshot radiosity
@@ -678,13 +691,25 @@ class HierarchicalSolver final : public Solver {
     traced.clear(), where.clear();
     for (size_t k = 0; k < s.rays.size(); ++k)
       if (s.rays[k].flags == 0) traced.push_back(s.rays[k]), where.push_back(k);
-    if (!traced.empty()) tracer_->occluded(traced);
-    std::vector<uint8_t>& visible = s.visible;
-    visible.assign(s.rays.size(), 0);
-    size_t blocked = 0;
-    for (size_t k = 0; k < traced.size(); ++k) {
-      visible[where[k]] = !isOccluded(traced[k]);
-      blocked += isOccluded(traced[k]);
+    std::vector<float>& visible = s.visible;
+    visible.assign(s.rays.size(), 0.0f);
+    float blocked = 0.0f;
+    if (clusterVisibility_) {
+      const float stop = s_.visibilityStop * r.spacing;
+      for (size_t k = 0; k < traced.size(); ++k) {
+        const RTCRay& ray = traced[k];
+        const float passed = clusterVisibility_->transmittance(Vec3(ray.org_x, ray.org_y, ray.org_z),
+                                                               Vec3(ray.dir_x, ray.dir_y, ray.dir_z), ray.tnear,
+                                                               ray.tfar, stop);
+        visible[where[k]] = passed;
+        blocked += 1.0f - passed;
+      }
+    } else {
+      if (!traced.empty()) tracer_->occluded(traced);
+      for (size_t k = 0; k < traced.size(); ++k) {
+        visible[where[k]] = isOccluded(traced[k]) ? 0.0f : 1.0f;
+        blocked += isOccluded(traced[k]) ? 1.0f : 0.0f;
+      }
     }
     const bool leaf = b.leaf();
     const Element* el = leaf ? &sys_.surfaces.elements[j] : nullptr;
@@ -704,7 +729,7 @@ class HierarchicalSolver final : public Solver {
           const float r2 = glm::dot(d, d);
           const float w = glm::dot(x.normal, d) * -glm::dot(q[k].normal, d) / (r2 * r2);
           all += w;
-          if (visible[idx]) seen += w;
+          seen += visible[idx] * w;
         }
         const Vec3 m = all > 0.0f ? (seen / all) * phi : phi;
         for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] = unshot[ch] * m, s.direct[p][size_t(ch)] = emitted[ch] * m;
@@ -732,24 +757,26 @@ class HierarchicalSolver final : public Solver {
         }
       for (size_t k = 0; k < q.size(); ++k) {
         const size_t idx = p * q.size() + k;
-        const bool counts = !s.rays[idx].flags && visible[idx];
+        // With multiresolution visibility a ray passes a share of the light.
+        const float passes = s.rays[idx].flags ? 0.0f : visible[idx];
+        const bool counts = passes > 0.0f;
         const bool hidden = asHarmonics && s.rays[idx].flags == 2 && seenAbove > 0.0f;
         if (!counts && !hidden) continue;
         const float a = q[k].weight * b.area;
         const Polygon square = squareAround(q[k], a, b.box);
         const Rgb unshot = emitterUnshot(redistributions_ > 0 ? j : q[k].element), emitted = emitterEmission(q[k].element);
         if (counts) {
-          const Vec3 m = polygonIrradianceVector(x.position, x.normal, square, q[k].normal);
+          const Vec3 m = passes * polygonIrradianceVector(x.position, x.normal, square, q[k].normal);
           for (int ch = 0; ch < 3; ++ch) s.transport[p][size_t(ch)] += unshot[ch] * m, s.direct[p][size_t(ch)] += emitted[ch] * m;
-          if (record) addIncident(p, square, q[k].normal, 1.0f, unshot);
+          if (record) addIncident(p, square, q[k].normal, passes, unshot);
         }
         if (asHarmonics) {
-          const float seen = counts ? 1.0f : seenAbove / tracedAbove;
+          const float seen = counts ? passes : seenAbove / tracedAbove;
           addHarmonics(p, seen * polygonIrradianceVector(x.position, -q[k].normal, square, q[k].normal), unshot, emitted);
         }
       }
     }
-    return traced.empty() ? 0.0f : float(blocked) / float(traced.size());
+    return traced.empty() ? 0.0f : blocked / float(traced.size());
   }
 
   // Splits receiver element i: its children become elements, its field goes down to them.
@@ -762,7 +789,7 @@ class HierarchicalSolver final : public Solver {
       const uint32_t g = newField();
       if (f != kNever) {
         const FaceCluster below = node(child);
-        prepareReceiver(child, below.box, r);
+        prepareReceiver(child, below, r);
         push(fields_[f], c.box, r, below.vectorArea, fields_[g]);
         push(fields_[f + 1], c.box, r, below.vectorArea, fields_[g + 1]);
       }
@@ -804,7 +831,7 @@ class HierarchicalSolver final : public Solver {
                       std::vector<uint32_t> shooters, bool selfLinked = false) {
     const FaceCluster c = node(i);
     Receiver r;
-    prepareReceiver(i, c.box, r);
+    prepareReceiver(i, c, r);
     Field total, direct;
     if (inheritedTotal) {
       const OrientedBox above = tree_.joined(parent).box;  // a parent has children: never a leaf
@@ -1075,6 +1102,7 @@ class HierarchicalSolver final : public Solver {
   HierarchicalSettings s_;
   RayTracer* tracer_ = nullptr;
   FaceClusterTree tree_;
+  std::unique_ptr<ClusterVisibility> clusterVisibility_;  // the links' rays, when not Embree's
   bool treeLoaded_ = false;             // read from the disk cache
   FaceClusterTree::Depth treeDepth_;
   std::vector<std::string> warnings_;
@@ -1157,11 +1185,19 @@ void registerCpuHierarchical(SolverRegistry& registry) {
   o.push_back(flagOption("follow-light", true,
                          "after a light is moved or recoloured, shoot the difference from the last solution "
                          "(false: solve again from scratch)"));
+  o.push_back(choiceOption("visibility", "rays", {"rays", "clusters"},
+                           "the links' visibility: exact rays, or seed 002's multiresolution visibility (rays stop at "
+                           "clusters whose shadow is too small to resolve and pass them by their opacity)"));
+  o.push_back(realOption("visibility-stop", 1.0, 0.0, 1e6,
+                         "with visibility=clusters: a cluster whose shadow on the receiver is smaller than this "
+                         "times the spacing of the receiver's points stands for its faces (0: exact)"));
   for (SolverOption& a : analyticLightOptions()) o.push_back(std::move(a));
   e.make = [](const SolverResources& r, const SolverOptionValues& v) -> std::unique_ptr<Solver> {
     HierarchicalSettings s{basisSize(v.choice("basis")), v.real("error"),           v.real("unshot"),
                            v.integer("iterations"),       v.integer("receiver-points"), v.integer("emitter-points"),
                            v.flag("cache"),               v.choice("emitter-light") == "elements", v.flag("follow-light")};
+    s.clusterVisibility = v.choice("visibility") == "clusters";
+    s.visibilityStop = float(v.real("visibility-stop"));
     return std::make_unique<HierarchicalSolver>(r.system, r.transport, s,
                                                 std::static_pointer_cast<CachedFaceClusterTree>(r.prepared));
   };
