@@ -66,15 +66,34 @@ bool hitsPolygon(Vec3 org, Vec3 dir, float tnear, float tfar, const Polygon& pol
 }  // namespace
 
 ClusterVisibility::ClusterVisibility(const FaceClusterTree& tree, const SurfaceSet& surfaces, float padding)
-    : tree_(tree), padding_(padding), leaves_(tree.elementCount()) {
+    : padding_(padding), leaves_(tree.elementCount()) {
   polygons_.reserve(leaves_);
   for (size_t e = 0; e < leaves_; ++e) polygons_.push_back(surfaces.elements[e].polygon);
+  // The joined nodes in the walk's own order, depth first from the root (the tree keeps them
+  // bottom up, a node's children anywhere before it): a walk then reads nearby memory.
+  slot_.assign(tree.inner.size(), 0);
+  if (tree.root != kNoCluster && !tree.isLeaf(tree.root)) {
+    std::vector<uint32_t> pending = {tree.root};
+    uint32_t next = 0;
+    while (!pending.empty()) {
+      const uint32_t i = pending.back();
+      pending.pop_back();
+      slot_[i - leaves_] = next++;
+      for (int k = 1; k >= 0; --k)
+        if (!tree.isLeaf(tree.joined(i).child[size_t(k)])) pending.push_back(tree.joined(i).child[size_t(k)]);
+    }
+    root_ = walkId(tree.root);
+  } else {
+    root_ = tree.root;
+  }
   nodes_.resize(tree.inner.size());
+  shapes_.resize(tree.inner.size());
   // Each node's faces are a run of the tree's order: every level scans them all once.
   tbb::parallel_for(size_t(0), tree.inner.size(), [&](size_t k) {
     const FaceCluster& c = tree.inner[k];
-    WalkNode& n = nodes_[k];
-    n.child = c.child;
+    WalkNode& n = nodes_[slot_[k]];
+    NodeShape& shape = shapes_[slot_[k]];
+    n.child = {walkId(c.child[0]), walkId(c.child[1])};
     n.connected = c.connected;
     // Two boxes measured: along the tree's axes (the normal and its calipers) and along the
     // world's; the one with less surface, so less mean projected area, is kept (a closed cube's
@@ -102,22 +121,24 @@ ClusterVisibility::ClusterVisibility(const FaceClusterTree& tree, const SurfaceS
       return h.x * h.y + h.y * h.z + h.z * h.x;
     };
     const size_t b = surface(1) <= surface(0) ? 1 : 0;
-    n.axis = axes[b];
-    n.axisAreas = areas[b];
+    shape.axis = axes[b];
+    shape.axisAreas = areas[b];
     const Vec3 half = 0.5f * (hi[b] - lo[b]), mid = 0.5f * (lo[b] + hi[b]);
-    n.centre = mid.x * n.axis[0] + mid.y * n.axis[1] + mid.z * n.axis[2];
+    shape.centre = mid.x * shape.axis[0] + mid.y * shape.axis[1] + mid.z * shape.axis[2];
+    shape.half = half + Vec3(padding);
     n.diagonal = 2.0f * glm::length(half);
-    n.half = half + Vec3(padding);
     // The oriented box's extent along each world axis.
     Vec3 extent(0.0f);
-    for (int j = 0; j < 3; ++j) extent += glm::abs(n.axis[size_t(j)]) * n.half[j];
-    n.lo = n.centre - extent, n.hi = n.centre + extent;
+    for (int j = 0; j < 3; ++j) extent += glm::abs(shape.axis[size_t(j)]) * shape.half[j];
+    n.lo = shape.centre - extent, n.hi = shape.centre + extent;
     n.aligned = b == 1;
   });
 }
 
-float ClusterVisibility::opacity(uint32_t node, Vec3 r) const {
-  const WalkNode& n = walkNode(node);
+float ClusterVisibility::opacity(uint32_t node, Vec3 r) const { return opacityAt(walkId(node), r); }
+
+float ClusterVisibility::opacityAt(uint32_t i, Vec3 r) const {
+  const NodeShape& n = shape(i);
   float boxArea = 0.0f, front = 0.0f, back = 0.0f;
   for (int j = 0; j < 3; ++j) {
     const float c = glm::dot(r, n.axis[size_t(j)]);
@@ -132,7 +153,7 @@ float ClusterVisibility::opacity(uint32_t node, Vec3 r) const {
 }
 
 float ClusterVisibility::transmittance(Vec3 org, Vec3 dir, float tnear, float tfar, float stopSize) const {
-  if (tree_.root == kNoCluster || !(tfar > tnear)) return 1.0f;
+  if (root_ == kNoCluster || !(tfar > tnear)) return 1.0f;
   // A zero component divided would give 0 * inf = NaN where org lies on a box's face: a tiny one
   // keeps the products finite or infinite.
   Vec3 invDir;
@@ -142,19 +163,22 @@ float ClusterVisibility::transmittance(Vec3 org, Vec3 dir, float tnear, float tf
   // (docs/performance.md), so the stack grows rather than being fixed.
   thread_local std::vector<uint32_t> stack;
   stack.clear();
-  stack.push_back(tree_.root);
+  stack.push_back(root_);
   float passed = 1.0f;
   while (!stack.empty()) {
     const uint32_t i = stack.back();
     stack.pop_back();
-    if (tree_.isLeaf(i)) {
+    if (i < leaves_) {
       if (hitsPolygon(org, dir, tnear, tfar, polygons_[i])) return 0.0f;
       continue;
     }
     const WalkNode& n = walkNode(i);
     Span s = alignedSlabs(n.lo, n.hi, org, invDir);
     if (std::max(s.lo, tnear) > std::min(s.hi, tfar)) continue;
-    if (!n.aligned) s = orientedSlabs(n.centre, n.axis, n.half, org, dir);
+    if (!n.aligned) {
+      const NodeShape& box = shape(i);
+      s = orientedSlabs(box.centre, box.axis, box.half, org, dir);
+    }
     const float enter = std::max(s.lo, tnear), leave = std::min(s.hi, tfar);
     if (enter > leave) continue;
     // A cluster stands for its faces only where its shadow is too small to tell apart on the
@@ -163,7 +187,11 @@ float ClusterVisibility::transmittance(Vec3 org, Vec3 dir, float tnear, float tf
     // reaches, nor a join of pieces that share no edge, whose parts are separate occluders.
     const bool endsInside = !(s.lo > tnear) || !(s.hi < tfar);
     if (n.connected && !endsInside && n.diagonal < stopSize * std::max(1.0f - leave, 1e-6f)) {
-      passed *= 1.0f - opacity(i, unitDir);
+      // The faces lie in the box unpadded: a ray that passes only through the padding (along a
+      // flat cluster, just off its plane) meets none of them, and its opacity does not apply.
+      const NodeShape& box = shape(i);
+      const Span faces = orientedSlabs(box.centre, box.axis, box.half - Vec3(padding_), org, dir);
+      if (std::max(faces.lo, tnear) <= std::min(faces.hi, tfar)) passed *= 1.0f - opacityAt(i, unitDir);
       if (passed <= 0.0f) return 0.0f;
       continue;
     }

@@ -17,7 +17,7 @@ namespace luxel {
 
 class ClusterVisibility {
  public:
-  // `tree` built over `surfaces.elements`, which must outlive this. `padding` grows every box
+  // `tree` built over `surfaces.elements` (read here, not kept). `padding` grows every box
   // against rounding (and decides when a ray's end lies in one): best below the rays' offset
   // from the surfaces they leave, so that a ray leaving a flat cluster leaves its box before its
   // first point and the walk need not descend it.
@@ -38,25 +38,38 @@ class ClusterVisibility {
  private:
   // What the walk reads of a joined node. The tree's own boxes and projected areas are bounds
   // made from its children's, looser at every level up (the root's box of a unit ball has a half
-  // extent of 6): here they are measured again from the node's faces. Its box as an axis-aligned
-  // one (the first, cheap test) and as the oriented one (tighter, for boxes not along the axes),
-  // both padded; its projected areas along the oriented box's axes, D+_j and D-_j.
+  // extent of 6): here they are measured again from the node's faces. What every visit reads is
+  // kept apart from what only some do, so that the walk's nodes stay in cache: the box as an
+  // axis-aligned one (the first, cheap test), padded.
   struct WalkNode {
     Vec3 lo, hi;
+    std::array<uint32_t, 2> child;
+    float diagonal;     // of the box unpadded, for the shadow's size
+    uint8_t aligned;    // the oriented box is the axis-aligned one: no second test
+    uint8_t connected;
+  };
+  // The oriented box (tighter, for boxes not along the axes), padded, and the projected areas
+  // along its axes, D+_j and D-_j, for the opacity.
+  struct NodeShape {
     Vec3 centre;
     std::array<Vec3, 3> axis;
-    Vec3 half;          // padded
-    float diagonal;     // of the box unpadded, for the shadow's size
+    Vec3 half;
     std::array<float, 6> axisAreas;
-    std::array<uint32_t, 2> child;
-    bool aligned;       // the oriented box is the axis-aligned one: no second test
-    bool connected;
   };
+  // Node ids of the walk: a leaf's is its element's, as in the tree; joined nodes follow the
+  // leaves in the walk's order.
+  uint32_t walkId(uint32_t treeNode) const {
+    return treeNode < leaves_ ? treeNode : uint32_t(leaves_) + slot_[treeNode - leaves_];
+  }
+  float opacityAt(uint32_t i, Vec3 r) const;
   const WalkNode& walkNode(uint32_t i) const { return nodes_[i - leaves_]; }
+  const NodeShape& shape(uint32_t i) const { return shapes_[i - leaves_]; }
 
-  const FaceClusterTree& tree_;
   float padding_;
   std::vector<WalkNode> nodes_;     // per joined node
+  std::vector<NodeShape> shapes_;   // per joined node
+  std::vector<uint32_t> slot_;      // per joined node of the tree: its place in nodes_
+  uint32_t root_ = kNoCluster;      // a walk id
   std::vector<Polygon> polygons_;  // per leaf: its element's polygon
   size_t leaves_ = 0;
 };

@@ -94,24 +94,24 @@ TEST(ClusterVisibility, AFlatClustersOpacityIsTheShareOfItsBoxItCovers) {
   Scene scene;
   scene.materials.push_back(Material{});
   Mesh comb;
-  // The spine: y in [0, 0.2], x in [0, 4]; teeth: x in [k, k + 0.5], y in [0.2, 1].
+  // The spine: y in [0, 0.25], x in [0, 4]; teeth: x in [k, k + 0.5], y in [0.25, 1].
   auto quad = [&](float x0, float y0, float x1, float y1) {
     const uint32_t b = uint32_t(comb.positions.size());
     comb.positions.insert(comb.positions.end(), {Vec3(x0, y0, 0), Vec3(x1, y0, 0), Vec3(x1, y1, 0), Vec3(x0, y1, 0)});
     comb.faces.push_back(Face{{b, b + 1, b + 2, b + 3}});
   };
   for (int k = 0; k < 4; ++k) {
-    quad(float(k), 0.0f, float(k) + 0.5f, 0.2f);
-    quad(float(k) + 0.5f, 0.0f, float(k) + 1.0f, 0.2f);
-    quad(float(k), 0.2f, float(k) + 0.5f, 1.0f);
+    quad(float(k), 0.0f, float(k) + 0.5f, 0.25f);
+    quad(float(k) + 0.5f, 0.0f, float(k) + 1.0f, 0.25f);
+    quad(float(k), 0.25f, float(k) + 0.5f, 1.0f);
   }
   scene.meshes.push_back(std::move(comb));
   const SurfaceSet set = elementsOf(scene);
   const FaceClusterTree tree = buildFaceClusterTree(set);
   ASSERT_TRUE(tree.joined(tree.root).connected) << "the comb's faces share edges";
   const ClusterVisibility vis(tree, set, 1e-5f);
-  // Covered: the spine 4 x 0.2 and four teeth 0.5 x 0.8, 2.4 of the box's 4 x 1.
-  const float covered = 2.4f / 4.0f;
+  // Covered: the spine 4 x 0.25 and four teeth 0.5 x 0.75, 2.5 of the box's 4 x 1.
+  const float covered = 2.5f / 4.0f;
   EXPECT_NEAR(vis.opacity(tree.root, Vec3(0, 0, 1)), covered, 1e-4f);
   EXPECT_NEAR(vis.opacity(tree.root, glm::normalize(Vec3(0.3f, -0.2f, 1))), covered, 1e-4f);
 
