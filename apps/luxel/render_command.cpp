@@ -60,6 +60,7 @@ RenderOptions renderOptionsFor(const Scene& scene, const ViewArgs& a) {
   ro.seed = a.renderSeed;
   ro.gatherBounces = a.gatherBounces;
   ro.gatherElements = a.gatherElements;
+  ro.glossyRays = a.glossyRays;
   ro.mode = parseRenderMode(a.mode);
   validateRenderOptions(ro);
   return ro;
@@ -114,6 +115,11 @@ void addViewOptions(CLI::App& c, ViewArgs& a) {
                "hq's vertex gather runs on the solved elements split (each into 4, as often as it takes) until "
                "they are nearest this many; 0 or fewer than solved: on the solved elements")
       ->check(CLI::Range(size_t(0), size_t(100000000)))
+      ->capture_default_str();
+  c.add_option("--glossy-rays", a.glossyRays,
+               "hq mode: rays per camera sample drawn from a glossy material's highlight (specular and shininess), "
+               "reading the light where they land; 0: no highlights")
+      ->check(CLI::Range(0, 65536))
       ->capture_default_str();
   c.add_option("--render-seed", a.renderSeed,
                "Seed of the image's samples (pixel jitter, light points, gather rays); the solver's is --set seed=N")

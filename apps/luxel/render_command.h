@@ -28,6 +28,7 @@ struct ViewArgs {
   uint32_t renderSeed = RenderOptions{}.seed;  // the image's samples (not the solver's)
   int gatherBounces = RenderOptions{}.gatherBounces;
   size_t gatherElements = RenderOptions{}.gatherElements;
+  int glossyRays = RenderOptions{}.glossyRays;  // per camera sample on glossy materials
   std::string mode = "hq";
   std::string toneCurve = "filmic";
   float exposure = 0.0f;

@@ -17,6 +17,7 @@
 #include "hdr_target.h"
 #include "luxel/error.h"
 #include "mesh/corner_groups.h"
+#include "render/corner_values.h"
 #include "scene/texture_decode.h"
 #include "shadow_casters.h"
 #include "view_shaders.h"
@@ -211,9 +212,7 @@ void SceneRenderer::setGeometry(const Scene& scene, const SurfaceSet& surfaces) 
     const uint32_t base = uint32_t(vertices.size());
     for (int k = 0; k < 4; ++k) {
       const int c = std::min(k, el.polygon.count - 1);
-      Vec3 smooth(0.0f);
-      for (uint32_t m : groups.at(e, c)) smooth += surfaces.elements[m].area * surfaces.elements[m].normal;
-      smooth = glm::length(smooth) > 0.0f ? glm::normalize(smooth) : el.normal;
+      const Vec3 smooth = smoothCornerNormal(surfaces, groups, e, c);
       vertices.push_back({el.polygon.v[size_t(c)], el.normal, smooth, face.uv(el.param[size_t(c)]),
                           triangle ? kTriangleCorners[k] : kQuadCorners[k], e, flags});
       lo = glm::min(lo, el.polygon.v[size_t(c)]);

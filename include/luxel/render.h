@@ -17,6 +17,8 @@ namespace luxel {
 inline constexpr size_t kDefaultGatherElements = 10000;
 inline constexpr size_t kHqSolveElements = 2500;
 
+inline constexpr int kDefaultGlossyRays = 4;
+
 struct RenderOptions {
   enum class Mode {
     // The seeds' display: all light, direct included, interpolated from the element solution.
@@ -76,6 +78,11 @@ struct RenderOptions {
   // are nearest this many, so that the solve can run on fewer elements than the picture
   // interpolates over (render/gather_mesh.h). 0, or no more than the solved elements: as solved.
   size_t gatherElements = kDefaultGatherElements;
+  // hq mode, on glossy materials (Material::specular, shininess): rays per camera sample drawn
+  // from the highlight's lobe (render/glossy_lobe.h), which read the light of emitting surfaces,
+  // skies and lit surfaces where they land; lamps, spots and suns add theirs by a shadow ray each.
+  // 0 draws no highlights (the picture then is the diffuse solution's alone).
+  int glossyRays = kDefaultGlossyRays;
   uint32_t seed = 7;
 };
 
@@ -88,8 +95,8 @@ inline constexpr int kMaxImageSide = 32768;
 inline constexpr uint64_t kMaxImagePixels = uint64_t(16384) * 16384;
 
 // Throws Error when the options are absurd: a side outside [1, kMaxImageSide], more than
-// kMaxImagePixels pixels, samples outside [1, 65536], gather rays outside [0, 65536] (or, per pixel
-// sample, their product with the samples over 2^20), gather bounces other than 1 or 2, a field of
+// kMaxImagePixels pixels, samples outside [1, 65536], gather or glossy rays outside [0, 65536] (or,
+// per pixel sample, their product with the samples over 2^20), gather bounces other than 1 or 2, a field of
 // view outside (0, 180) degrees, a camera whose eye, target and up do not span a frame or lie
 // beyond kMaxCoordinate. render() calls it; a caller can call it before the solve, to fail early.
 void validateRenderOptions(const RenderOptions& options);

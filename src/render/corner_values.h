@@ -24,6 +24,15 @@ inline std::array<float, 4> cornerWeights(int count, float u, float v) {
   return {(1.0f - u) * (1.0f - v), u * (1.0f - v), u * v, (1.0f - u) * v};
 }
 
+// The normal of the smooth surface at corner c of element e: the area-weighted mean of the normals
+// of the elements its corner group joins (`groups` built from `surfaces`), the element's own where
+// they cancel. What a highlight follows on a curved mesh, whose facets the light does not show.
+inline Vec3 smoothCornerNormal(const SurfaceSet& surfaces, const CornerGroups& groups, uint32_t e, int c) {
+  Vec3 smooth(0.0f);
+  for (uint32_t m : groups.at(e, c)) smooth += surfaces.elements[m].area * surfaces.elements[m].normal;
+  return glm::length(smooth) > 0.0f ? glm::normalize(smooth) : surfaces.elements[e].normal;
+}
+
 // elementCornerValues (luxel/render.h) over `groups`, built from the same surfaces.
 std::vector<Rgb> elementCornerValues(const SurfaceSet& surfaces, const CornerGroups& groups, const std::vector<Rgb>& perElement);
 

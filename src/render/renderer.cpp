@@ -30,6 +30,7 @@
 #include "render/gather_mesh.h"
 #include "render/gather_pipeline.h"
 #include "render/gather_refinement.h"
+#include "render/glossy_lobe.h"
 #include "render/normal_map.h"
 #include "trace/hemisphere_rays.h"
 #include "trace/ray_tracer.h"
@@ -44,7 +45,7 @@ constexpr int kMaxGatherRays = 65536;
 constexpr uint64_t kMaxGatherRaysPerPixel = uint64_t(1) << 20;
 
 // Salts of a pixel's sample patterns (core/multi_jitter.h), one per use.
-enum PatternUse : uint32_t { kPixelFootprint = 1, kLightPoints = 2, kGatherDirections = 3 };
+enum PatternUse : uint32_t { kPixelFootprint = 1, kLightPoints = 2, kGatherDirections = 3, kGlossyDirections = 4 };
 
 // Light points per camera sample in interior pixels (render(), lightsPerCamera).
 constexpr int kLightsPerCameraSample = 4;
@@ -131,6 +132,12 @@ void validateRenderOptions(const RenderOptions& o) {
       uint64_t(o.gatherRays) * uint64_t(o.samplesPerPixel) > kMaxGatherRaysPerPixel)
     throw Error(fmt::format("{} gather rays at {} samples per pixel is {} rays a pixel, over the limit of {}",
                             o.gatherRays, o.samplesPerPixel, uint64_t(o.gatherRays) * uint64_t(o.samplesPerPixel),
+                            kMaxGatherRaysPerPixel));
+  if (o.glossyRays < 0 || o.glossyRays > kMaxGatherRays)
+    throw Error(fmt::format("glossy rays {} must be between 0 and {}", o.glossyRays, kMaxGatherRays));
+  if (uint64_t(o.glossyRays) * uint64_t(o.samplesPerPixel) > kMaxGatherRaysPerPixel)
+    throw Error(fmt::format("{} glossy rays at {} samples per pixel is {} rays a pixel, over the limit of {}",
+                            o.glossyRays, o.samplesPerPixel, uint64_t(o.glossyRays) * uint64_t(o.samplesPerPixel),
                             kMaxGatherRaysPerPixel));
   const Camera& c = o.camera;
   if (!(c.fovY > 0.0f && c.fovY < 180.0f))
@@ -232,6 +239,22 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const int tileCount = tilesX * tilesY;
   const int spp = options.samplesPerPixel;
   const MultiJitter pixelPattern{uint32_t(spp)}, gatherPattern{uint32_t(spp) * uint32_t(gatherRays)};
+  int glossyRays = 0;
+  if (hq)
+    for (const Material& m : scene.materials) glossyRays = m.hasSpecular() ? options.glossyRays : glossyRays;
+  // Highlights follow the smooth surface, as the viewer's do: per corner of each glossy element,
+  // the normal of the surface its corner group makes (a coarse sphere's highlight shows no facets).
+  std::vector<Vec3> smoothNormals;
+  if (glossyRays > 0) {
+    const CornerGroups groups(shown, kDefaultCreaseCosine);
+    smoothNormals.resize(shown.elements.size() * 4);
+    tbb::parallel_for(uint32_t(0), uint32_t(shown.elements.size()), [&](uint32_t e) {
+      const Element& el = shown.elements[e];
+      if (!scene.materials[el.material].hasSpecular()) return;
+      for (int c = 0; c < el.polygon.count; ++c) smoothNormals[size_t(e) * 4 + size_t(c)] = smoothCornerNormal(shown, groups, e, c);
+    });
+  }
+  const MultiJitter glossyPattern{uint32_t(spp) * uint32_t(std::max(1, glossyRays))};
   // Interior pixels (smoothPixels) take spp / lightsPerCamera camera samples, each with
   // lightsPerCamera of the pixel's spp light points: the light points are what a penumbra needs,
   // and the camera samples only cost there. Not with a per-pixel gather (its rays go with the camera
@@ -260,6 +283,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     std::vector<RTCRayHit> gathers;
     std::vector<Rgb> gatherWeights;  // what a gather ray's radiance is multiplied by
     std::vector<Rgb*> gatherTargets;
+    std::vector<RTCRayHit> glossy;  // rays drawn from glossy lobes
+    std::vector<Rgb> glossyWeights;
+    std::vector<Rgb*> glossyTargets;
     std::vector<uint16_t> active;  // the tile's pixels (y * kTile + x) that take sample s
     const std::vector<uint8_t> interior = lightsPerCamera > 1
                                               ? interiorPixels(tracer, shown, scene, cam, options, x0, y0, x1, y1)
@@ -288,6 +314,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
       gathers.clear();
       gatherWeights.clear();
       gatherTargets.clear();
+      glossy.clear();
+      glossyWeights.clear();
+      glossyTargets.clear();
       for (size_t i = 0; i < active.size(); ++i) {
         const size_t t = active[i];
         const int x = x0 + int(t % kTile), y = y0 + int(t / kTile);
@@ -341,6 +370,34 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
           shadowTargets.push_back(&sum);
         }
 
+        // A glossy material's highlight (render/glossy_lobe.h): lamps, spots and suns by a shadow
+        // ray each towards a point of them; everything else (emitting surfaces, skies, the light
+        // surfaces reflect) by rays drawn from the lobe, which read it where they land.
+        if (glossyRays > 0 && m.hasSpecular()) {
+          const Vec3 smooth = m.normalTexture >= 0 ? shading : glm::normalize(interpolateCorners(&smoothNormals[size_t(e) * 4], count, u, v));
+          const GlossyLobe lobe(smooth, -glm::normalize(dir), m.shininess);
+          const Vec3 from = p + el.normal * rayOffset;
+          for (const Light& light : scene.lights) {
+            if (isSkyLight(light)) continue;
+            const LightSample ls = sampleLight(light, from, el.normal, Sides::Front, up, rng.next(), rng.next());
+            const float f = ls.valid() ? lobe.value(glm::normalize(ls.direction)) : 0.0f;  // a ray's, not unit
+            if (!(f > 0.0f)) continue;
+            shadowRays.push_back(makeRay(from, ls.direction, 0.0f, ls.tfar));
+            shadowValues.push_back((float(weight) * f) * m.specular * ls.irradiance);
+            shadowTargets.push_back(&sum);
+          }
+          for (int r = 0; r < glossyRays; ++r) {
+            const Vec2 g = glossyPattern(uint32_t(s) * uint32_t(glossyRays) + uint32_t(r),
+                                         hashCombine(pattern, kGlossyDirections));
+            const GlossyLobe::Sample ls = lobe.sample(g.x, g.y);
+            // Rays leave the geometric surface, whatever a normal map tilts.
+            if (ls.weight <= 0.0f || glm::dot(el.normal, ls.toLight) <= 0.0f) continue;
+            glossy.emplace_back().ray = makeRay(from, ls.toLight, 0.0f, std::numeric_limits<float>::infinity());
+            glossyWeights.push_back(m.specular * (float(weight) * ls.weight / float(glossyRays)));
+            glossyTargets.push_back(&sum);
+          }
+        }
+
         // Cosine-distributed about the geometric normal, so the estimate of rho / pi * H is
         // rho * L; a normal map's cosine enters as the ratio max(0, shading . d) / (n . d).
         // (FinalGather::add multiplies by rho / pi at the hit; the weights carry the rest.)
@@ -366,6 +423,22 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
         if (!isOccluded(shadowRays[k])) *shadowTargets[k] += shadowValues[k] * shadowThrough[k];
       if (!gathers.empty())
         finalGather.add(gathers, gatherWeights, gatherTargets, hashCombine(uint32_t(tile) * 0x9E3779B9u, uint32_t(s)));
+      if (!glossy.empty()) {
+        // The light surfaces reflect where the rays land (none with --indirect none), then what a
+        // gather leaves to the pixel's own direct light: emission met, and the skies past the scene.
+        if (indirect == Indirect::None) tracer.intersect(glossy, false);
+        else finalGather.add(glossy, glossyWeights, glossyTargets, hashCombine(uint32_t(tile) * 0x85EBCA6Bu, uint32_t(s)));
+        for (size_t k = 0; k < glossy.size(); ++k) {
+          const RTCRayHit& rh = glossy[k];
+          const Vec3 d(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+          if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+            for (const Light* sky : skies) *glossyTargets[k] += glossyWeights[k] * skyRadiance(*sky, d, up);
+            continue;
+          }
+          const Element& hit = shown.elements[rh.hit.primID];
+          if (glm::dot(hit.normal, d) < 0.0f) *glossyTargets[k] += glossyWeights[k] * (kInvPi * hit.exitance);
+        }
+      }
     }
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
