@@ -1,11 +1,11 @@
 #include "cluster/cluster_visibility.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
-
-#include <tbb/parallel_for.h>
 
 namespace luxel {
 namespace {
@@ -65,7 +65,8 @@ bool hitsPolygon(Vec3 org, Vec3 dir, float tnear, float tfar, const Polygon& pol
 
 }  // namespace
 
-ClusterVisibility::ClusterVisibility(const FaceClusterTree& tree, const SurfaceSet& surfaces, float padding)
+ClusterVisibility::ClusterVisibility(const FaceClusterTree& tree, const SurfaceSet& surfaces,
+                                     float padding)
     : padding_(padding), leaves_(tree.elementCount()) {
   polygons_.reserve(leaves_);
   for (size_t e = 0; e < leaves_; ++e) polygons_.push_back(surfaces.elements[e].polygon);
@@ -80,7 +81,8 @@ ClusterVisibility::ClusterVisibility(const FaceClusterTree& tree, const SurfaceS
       pending.pop_back();
       slot_[i - leaves_] = next++;
       for (int k = 1; k >= 0; --k)
-        if (!tree.isLeaf(tree.joined(i).child[size_t(k)])) pending.push_back(tree.joined(i).child[size_t(k)]);
+        if (!tree.isLeaf(tree.joined(i).child[size_t(k)]))
+          pending.push_back(tree.joined(i).child[size_t(k)]);
     }
     root_ = walkId(tree.root);
   } else {
@@ -98,10 +100,12 @@ ClusterVisibility::ClusterVisibility(const FaceClusterTree& tree, const SurfaceS
     // Two boxes measured: along the tree's axes (the normal and its calipers) and along the
     // world's; the one with less surface, so less mean projected area, is kept (a closed cube's
     // vector area is zero, and its tree box turns any way).
-    const std::array<std::array<Vec3, 3>, 2> axes = {c.box.axis, std::array<Vec3, 3>{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}};
+    const std::array<std::array<Vec3, 3>, 2> axes = {
+        c.box.axis, std::array<Vec3, 3>{Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}};
     std::array<Vec3, 2> lo, hi;
     std::array<std::array<float, 6>, 2> areas{};
-    lo.fill(Vec3(std::numeric_limits<float>::max())), hi.fill(Vec3(-std::numeric_limits<float>::max()));
+    lo.fill(Vec3(std::numeric_limits<float>::max())),
+        hi.fill(Vec3(-std::numeric_limits<float>::max()));
     for (uint32_t i = c.begin; i < c.begin + c.count; ++i) {
       const Element& e = surfaces.elements[tree.order[i]];
       for (size_t b = 0; b < 2; ++b) {
@@ -152,12 +156,14 @@ float ClusterVisibility::opacityAt(uint32_t i, Vec3 r) const {
   return std::min(1.0f, std::max(front, back) / boxArea);
 }
 
-float ClusterVisibility::transmittance(Vec3 org, Vec3 dir, float tnear, float tfar, float stopSize) const {
+float ClusterVisibility::transmittance(Vec3 org, Vec3 dir, float tnear, float tfar,
+                                       float stopSize) const {
   if (root_ == kNoCluster || !(tfar > tnear)) return 1.0f;
   // A zero component divided would give 0 * inf = NaN where org lies on a box's face: a tiny one
   // keeps the products finite or infinite.
   Vec3 invDir;
-  for (int k = 0; k < 3; ++k) invDir[k] = 1.0f / (std::abs(dir[k]) < 1e-30f ? std::copysign(1e-30f, dir[k]) : dir[k]);
+  for (int k = 0; k < 3; ++k)
+    invDir[k] = 1.0f / (std::abs(dir[k]) < 1e-30f ? std::copysign(1e-30f, dir[k]) : dir[k]);
   const Vec3 unitDir = glm::normalize(dir);
   // A depth-first walk; a tree's depth bounds the stack, and trees of hundreds of levels exist
   // (docs/performance.md), so the stack grows rather than being fixed.
@@ -191,7 +197,8 @@ float ClusterVisibility::transmittance(Vec3 org, Vec3 dir, float tnear, float tf
       // flat cluster, just off its plane) meets none of them, and its opacity does not apply.
       const NodeShape& box = shape(i);
       const Span faces = orientedSlabs(box.centre, box.axis, box.half - Vec3(padding_), org, dir);
-      if (std::max(faces.lo, tnear) <= std::min(faces.hi, tfar)) passed *= 1.0f - opacityAt(i, unitDir);
+      if (std::max(faces.lo, tnear) <= std::min(faces.hi, tfar))
+        passed *= 1.0f - opacityAt(i, unitDir);
       if (passed <= 0.0f) return 0.0f;
       continue;
     }

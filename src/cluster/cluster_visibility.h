@@ -44,8 +44,8 @@ class ClusterVisibility {
   struct WalkNode {
     Vec3 lo, hi;
     std::array<uint32_t, 2> child;
-    float diagonal;     // of the box unpadded, for the shadow's size
-    uint8_t aligned;    // the oriented box is the axis-aligned one: no second test
+    float diagonal;   // of the box unpadded, for the shadow's size
+    uint8_t aligned;  // the oriented box is the axis-aligned one: no second test
     uint8_t connected;
   };
   // The oriented box (tighter, for boxes not along the axes), padded, and the projected areas
@@ -66,10 +66,10 @@ class ClusterVisibility {
   const NodeShape& shape(uint32_t i) const { return shapes_[i - leaves_]; }
 
   float padding_;
-  std::vector<WalkNode> nodes_;     // per joined node
-  std::vector<NodeShape> shapes_;   // per joined node
-  std::vector<uint32_t> slot_;      // per joined node of the tree: its place in nodes_
-  uint32_t root_ = kNoCluster;      // a walk id
+  std::vector<WalkNode> nodes_;    // per joined node
+  std::vector<NodeShape> shapes_;  // per joined node
+  std::vector<uint32_t> slot_;     // per joined node of the tree: its place in nodes_
+  uint32_t root_ = kNoCluster;     // a walk id
   std::vector<Polygon> polygons_;  // per leaf: its element's polygon
   size_t leaves_ = 0;
 };

@@ -20,20 +20,22 @@ namespace luxel {
 class GlossyLobe {
  public:
   // `normal` and `toEye` unit; `shininess` > 0.
-  GlossyLobe(Vec3 normal, Vec3 toEye, float shininess) : frame_(normal), toEye_(toEye), shininess_(shininess) {}
+  GlossyLobe(Vec3 normal, Vec3 toEye, float shininess)
+      : frame_(normal), toEye_(toEye), shininess_(shininess) {}
 
   // pow(max(N.H, 0), s) / pi for light from unit direction `toLight`: f over the specular colour.
   float value(Vec3 toLight) const {
     const Vec3 h = toLight + toEye_;
     const float len = glm::length(h);
     if (!(len > 0.0f)) return 0.0f;
-    return std::pow(std::max(0.0f, glm::dot(frame_.n, h / len)), shininess_) * std::numbers::inv_pi_v<float>;
+    return std::pow(std::max(0.0f, glm::dot(frame_.n, h / len)), shininess_) *
+           std::numbers::inv_pi_v<float>;
   }
 
   // A direction towards the light drawn from (u1, u2) in [0,1)^2, and f cos / pdf for it over the
   // specular colour: the half vector H from pdf (s + 2) / (2 pi) (N.H)^(s + 1), mirrored about it,
-  // so pdf(l) = that / (4 V.H) and f cos / pdf = 8 (V.H) (N.l) / ((s + 2) (N.H)). Weight 0 where the
-  // direction falls below the surface.
+  // so pdf(l) = that / (4 V.H) and f cos / pdf = 8 (V.H) (N.l) / ((s + 2) (N.H)). Weight 0 where
+  // the direction falls below the surface.
   struct Sample {
     Vec3 toLight;
     float weight;

@@ -251,7 +251,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
     tbb::parallel_for(uint32_t(0), uint32_t(shown.elements.size()), [&](uint32_t e) {
       const Element& el = shown.elements[e];
       if (!scene.materials[el.material].hasSpecular()) return;
-      for (int c = 0; c < el.polygon.count; ++c) smoothNormals[size_t(e) * 4 + size_t(c)] = smoothCornerNormal(shown, groups, e, c);
+      for (int c = 0; c < el.polygon.count; ++c)
+        smoothNormals[size_t(e) * 4 + size_t(c)] = smoothCornerNormal(shown, groups, e, c);
     });
   }
   const MultiJitter glossyPattern{uint32_t(spp) * uint32_t(std::max(1, glossyRays))};
@@ -374,7 +375,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
         // ray each towards a point of them; everything else (emitting surfaces, skies, the light
         // surfaces reflect) by rays drawn from the lobe, which read it where they land.
         if (glossyRays > 0 && m.hasSpecular()) {
-          const Vec3 smooth = m.normalTexture >= 0 ? shading : glm::normalize(interpolateCorners(&smoothNormals[size_t(e) * 4], count, u, v));
+          const Vec3 smooth = m.normalTexture >= 0
+                                  ? shading
+                                  : glm::normalize(interpolateCorners(&smoothNormals[size_t(e) * 4], count, u, v));
           const GlossyLobe lobe(smooth, -glm::normalize(dir), m.shininess);
           const Vec3 from = p + el.normal * rayOffset;
           for (const Light& light : scene.lights) {
@@ -427,7 +430,8 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
         // The light surfaces reflect where the rays land (none with --indirect none), then what a
         // gather leaves to the pixel's own direct light: emission met, and the skies past the scene.
         if (indirect == Indirect::None) tracer.intersect(glossy, false);
-        else finalGather.add(glossy, glossyWeights, glossyTargets, hashCombine(uint32_t(tile) * 0x85EBCA6Bu, uint32_t(s)));
+        else
+          finalGather.add(glossy, glossyWeights, glossyTargets, hashCombine(uint32_t(tile) * 0x85EBCA6Bu, uint32_t(s)));
         for (size_t k = 0; k < glossy.size(); ++k) {
           const RTCRayHit& rh = glossy[k];
           const Vec3 d(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);

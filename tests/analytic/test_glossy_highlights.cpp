@@ -50,7 +50,8 @@ TEST(GlossyLobe, SamplingIntegratesTheLobe) {
         sum += s.weight, sum2 += double(s.weight) * s.weight;
       }
       const double mean = sum / count, sigma = std::sqrt((sum2 / count - mean * mean) / count);
-      EXPECT_NEAR(mean, lobeAlbedo(lobe, n), 4.0 * sigma + 1e-4) << "shininess " << shininess << ", view " << viewAngle;
+      EXPECT_NEAR(mean, lobeAlbedo(lobe, n), 4.0 * sigma + 1e-4)
+          << "shininess " << shininess << ", view " << viewAngle;
     }
 }
 
@@ -73,7 +74,8 @@ Scene glossyFloor(float specular, float shininess) {
 }
 
 // One pixel, a narrow view of the point `at` from `eye`.
-Rgb renderPixel(const Scene& scene, Vec3 eye, Vec3 at, int spp, int glossyRays = kDefaultGlossyRays, uint32_t seed = 7) {
+Rgb renderPixel(const Scene& scene, Vec3 eye, Vec3 at, int spp, int glossyRays = kDefaultGlossyRays,
+                uint32_t seed = 7) {
   SurfaceSet surfaces = discretise(scene, DiscretiseOptions{});
   SolveOptions so;
   so.method = "progressive";
@@ -120,7 +122,8 @@ TEST(GlossyRender, AnEmittersHighlightIsTheLobeOverIt) {
   light.emission = Rgb(0.6f);  // radiance
   scene.materials.push_back(light);
   Mesh square;
-  square.positions = {Vec3(-1.5f, -0.5f, 3), Vec3(-1.5f, 0.5f, 3), Vec3(-0.5f, 0.5f, 3), Vec3(-0.5f, -0.5f, 3)};
+  square.positions = {Vec3(-1.5f, -0.5f, 3), Vec3(-1.5f, 0.5f, 3), Vec3(-0.5f, 0.5f, 3),
+                      Vec3(-0.5f, -0.5f, 3)};
   square.faces.push_back(Face{{0, 1, 2, 3}});
   square.material = 1;
   scene.meshes.push_back(std::move(square));
@@ -137,12 +140,14 @@ TEST(GlossyRender, AnEmittersHighlightIsTheLobeOverIt) {
       const float r2 = glm::dot(d, d), r = std::sqrt(r2);
       const Vec3 l = d / r;
       const float f = 0.8f / kPi * std::pow(glm::normalize(l + toEye).z, 10.0f);
-      expected += double(f * le * l.z * l.z / r2) / (double(steps) * steps);  // cos at x, cos at y, dA
+      expected +=
+          double(f * le * l.z * l.z / r2) / (double(steps) * steps);  // cos at x, cos at y, dA
     }
   // 65,536 samples, a quarter of them camera samples (the pixel sees one untextured face) with four
   // lobe rays each: one image is within about 2% (measured over seeds), the mean of four within 1%.
   double got = 0.0;
-  for (uint32_t seed : {1u, 2u, 3u, 4u}) got += renderPixel(scene, eye, at, 65536, kDefaultGlossyRays, seed).g / 4.0;
+  for (uint32_t seed : {1u, 2u, 3u, 4u})
+    got += renderPixel(scene, eye, at, 65536, kDefaultGlossyRays, seed).g / 4.0;
   EXPECT_NEAR(got, expected, 0.03 * expected);
 }
 

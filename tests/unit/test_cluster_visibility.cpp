@@ -32,7 +32,8 @@ Vec3 randomUnit(std::mt19937& rng) {
 }
 
 // Exact occlusion of each segment by the elements, from Embree.
-std::vector<float> exactPassed(const SurfaceSet& set, const std::vector<std::pair<Vec3, Vec3>>& segments) {
+std::vector<float> exactPassed(const SurfaceSet& set,
+                               const std::vector<std::pair<Vec3, Vec3>>& segments) {
   std::vector<Polygon> polygons;
   for (const Element& e : set.elements) polygons.push_back(e.polygon);
   const RayTracer tracer(polygons);
@@ -65,7 +66,8 @@ TEST(ClusterVisibility, ARayOutsideEveryBoxPassesWhole) {
     // Segments in the plane x = 2, beyond the ball (radius at most 1.2) and its box.
     const Vec3 a(2.0f, 4.0f * randomUnit(rng).y, 4.0f * randomUnit(rng).z);
     const Vec3 b(2.0f, 4.0f * randomUnit(rng).y, 4.0f * randomUnit(rng).z);
-    for (float stop : {0.0f, 0.1f, 1e6f}) EXPECT_EQ(vis.transmittance(a, b - a, 0.0f, 1.0f, stop), 1.0f);
+    for (float stop : {0.0f, 0.1f, 1e6f})
+      EXPECT_EQ(vis.transmittance(a, b - a, 0.0f, 1.0f, stop), 1.0f);
   }
 }
 
@@ -74,9 +76,16 @@ TEST(ClusterVisibility, AClosedCubeIsOpaqueFromEveryDirection) {
   Scene scene;
   scene.materials.push_back(Material{});
   Mesh cube;
-  for (int i = 0; i < 8; ++i) cube.positions.push_back(Vec3(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f));
+  for (int i = 0; i < 8; ++i)
+    cube.positions.push_back(
+        Vec3(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f));
   // Outward, counter-clockwise seen from outside.
-  for (const auto& f : {std::array<uint32_t, 4>{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}})
+  for (const auto& f : {std::array<uint32_t, 4>{0, 2, 3, 1},
+                        {4, 5, 7, 6},
+                        {0, 1, 5, 4},
+                        {2, 6, 7, 3},
+                        {0, 4, 6, 2},
+                        {1, 3, 7, 5}})
     cube.faces.push_back(Face{f});
   scene.meshes.push_back(std::move(cube));
   const SurfaceSet set = elementsOf(scene, 0.25f);
@@ -97,7 +106,8 @@ TEST(ClusterVisibility, AFlatClustersOpacityIsTheShareOfItsBoxItCovers) {
   // The spine: y in [0, 0.25], x in [0, 4]; teeth: x in [k, k + 0.5], y in [0.25, 1].
   auto quad = [&](float x0, float y0, float x1, float y1) {
     const uint32_t b = uint32_t(comb.positions.size());
-    comb.positions.insert(comb.positions.end(), {Vec3(x0, y0, 0), Vec3(x1, y0, 0), Vec3(x1, y1, 0), Vec3(x0, y1, 0)});
+    comb.positions.insert(comb.positions.end(),
+                          {Vec3(x0, y0, 0), Vec3(x1, y0, 0), Vec3(x1, y1, 0), Vec3(x0, y1, 0)});
     comb.faces.push_back(Face{{b, b + 1, b + 2, b + 3}});
   };
   for (int k = 0; k < 4; ++k) {
@@ -174,7 +184,9 @@ TEST(ClusterVisibility, TheHierarchicalSolverAgreesWithItsExactRays) {
     SurfaceSet surfaces = discretise(scene, DiscretiseOptions{});
     SolveOptions o;
     o.method = "hierarchical";
-    o.settings.set("cache", false).set("visibility", std::string(visibility)).set("visibility-stop", stop);
+    o.settings.set("cache", false)
+        .set("visibility", std::string(visibility))
+        .set("visibility-stop", stop);
     return solve(scene, surfaces, o);
   };
   const Solution rays = solveWith("rays", 1.0);
