@@ -39,6 +39,10 @@ class GatherPipeline {
   const std::vector<Rgb>& corners() const { return corners_; }
   // What a vertex or pixel gather's rays read: the solution, or the last coarse gather.
   const FinalGather& finalGather() const;
+  // What reads the solution itself where rays land (its indirect light at the corners, the hits'
+  // direct light), whatever the coarse gathers above it: for rays whose answer is blurred anyway
+  // (a glossy lobe's), where reading a coarse gather would gather its vertices on demand.
+  const FinalGather& solutionGather() const { return *gather_; }
 
  private:
   std::optional<GatherMesh> mesh_;
