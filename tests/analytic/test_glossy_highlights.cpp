@@ -55,7 +55,7 @@ TEST(GlossyLobe, SamplingIntegratesTheLobe) {
     }
 }
 
-// A black glossy floor (the quad z = 0, 40 units a side) and, with `lamp`, a point lamp above it.
+// A black glossy floor: the quad z = 0, 40 units a side, reflectance 0, with a highlight.
 Scene glossyFloor(float specular, float shininess) {
   Scene scene;
   scene.name = "glossy-floor";
