@@ -10,18 +10,17 @@
 namespace luxel {
 namespace {
 
-// Where the line org + t dir meets a box: t in [lo, hi], empty when lo > hi. An oriented box by
-// its centre, axes and half extents; an axis-aligned one by its corners and the ray's inverse
-// direction.
+// Where the line org + t dir meets a box: t in [lo, hi], empty when lo > hi. An oriented box grown
+// by `pad` each way; an axis-aligned one by its corners and the ray's inverse direction.
 struct Span {
   float lo, hi;
 };
-Span orientedSlabs(Vec3 centre, const std::array<Vec3, 3>& axis, Vec3 half, Vec3 org, Vec3 dir) {
+Span orientedSlabs(const OrientedBox& box, float pad, Vec3 org, Vec3 dir) {
   Span s{-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
-  const Vec3 o = org - centre;
+  const Vec3 o = org - box.centre;
   for (int k = 0; k < 3; ++k) {
-    const float ok = glm::dot(o, axis[size_t(k)]), dk = glm::dot(dir, axis[size_t(k)]);
-    const float h = half[k];
+    const float ok = glm::dot(o, box.axis[size_t(k)]), dk = glm::dot(dir, box.axis[size_t(k)]);
+    const float h = box.half[k] + pad;
     if (std::abs(dk) < 1e-30f) {
       if (std::abs(ok) > h) return {1.0f, 0.0f};
       continue;
@@ -125,16 +124,17 @@ ClusterVisibility::ClusterVisibility(const FaceClusterTree& tree, const SurfaceS
       return h.x * h.y + h.y * h.z + h.z * h.x;
     };
     const size_t b = surface(1) <= surface(0) ? 1 : 0;
-    shape.axis = axes[b];
+    OrientedBox& box = shape.box;
+    box.axis = axes[b];
     shape.axisAreas = areas[b];
-    const Vec3 half = 0.5f * (hi[b] - lo[b]), mid = 0.5f * (lo[b] + hi[b]);
-    shape.centre = mid.x * shape.axis[0] + mid.y * shape.axis[1] + mid.z * shape.axis[2];
-    shape.half = half + Vec3(padding);
-    n.diagonal = 2.0f * glm::length(half);
-    // The oriented box's extent along each world axis.
+    const Vec3 mid = 0.5f * (lo[b] + hi[b]);
+    box.centre = mid.x * box.axis[0] + mid.y * box.axis[1] + mid.z * box.axis[2];
+    box.half = 0.5f * (hi[b] - lo[b]);
+    n.diagonal = 2.0f * glm::length(box.half);
+    // The padded oriented box's extent along each world axis.
     Vec3 extent(0.0f);
-    for (int j = 0; j < 3; ++j) extent += glm::abs(shape.axis[size_t(j)]) * shape.half[j];
-    n.lo = shape.centre - extent, n.hi = shape.centre + extent;
+    for (int j = 0; j < 3; ++j) extent += glm::abs(box.axis[size_t(j)]) * (box.half[j] + padding);
+    n.lo = box.centre - extent, n.hi = box.centre + extent;
     n.aligned = b == 1;
   });
 }
@@ -143,16 +143,15 @@ float ClusterVisibility::opacity(uint32_t node, Vec3 r) const { return opacityAt
 
 float ClusterVisibility::opacityAt(uint32_t i, Vec3 r) const {
   const NodeShape& n = shape(i);
-  float boxArea = 0.0f, front = 0.0f, back = 0.0f;
-  for (int j = 0; j < 3; ++j) {
-    const float c = glm::dot(r, n.axis[size_t(j)]);
-    const Vec3 half = n.half - Vec3(padding_);
-    boxArea += std::abs(c) * 4.0f * half[(j + 1) % 3] * half[(j + 2) % 3];
-    // Willmott's bound from the six samples (cluster/cluster_geometry.h), along r and along -r.
-    front += c > 0.0f ? c * n.axisAreas[size_t(j)] : -c * n.axisAreas[size_t(j) + 3];
-    back += c > 0.0f ? c * n.axisAreas[size_t(j) + 3] : -c * n.axisAreas[size_t(j)];
-  }
+  const Vec3 half = n.box.half;
+  float boxArea = 0.0f;
+  for (int j = 0; j < 3; ++j)
+    boxArea +=
+        std::abs(glm::dot(r, n.box.axis[size_t(j)])) * 4.0f * half[(j + 1) % 3] * half[(j + 2) % 3];
   if (!(boxArea > 0.0f)) return 0.0f;  // a box seen edge-on: the ray grazes a flat cluster
+  // Willmott's bound from the six samples (cluster/cluster_geometry.h), along r and along -r.
+  const float front = maxProjectedArea(n.box, n.axisAreas, r),
+              back = maxProjectedArea(n.box, n.axisAreas, -r);
   return std::min(1.0f, std::max(front, back) / boxArea);
 }
 
@@ -182,8 +181,7 @@ float ClusterVisibility::transmittance(Vec3 org, Vec3 dir, float tnear, float tf
     Span s = alignedSlabs(n.lo, n.hi, org, invDir);
     if (std::max(s.lo, tnear) > std::min(s.hi, tfar)) continue;
     if (!n.aligned) {
-      const NodeShape& box = shape(i);
-      s = orientedSlabs(box.centre, box.axis, box.half, org, dir);
+      s = orientedSlabs(shape(i).box, padding_, org, dir);
     }
     const float enter = std::max(s.lo, tnear), leave = std::min(s.hi, tfar);
     if (enter > leave) continue;
@@ -195,8 +193,7 @@ float ClusterVisibility::transmittance(Vec3 org, Vec3 dir, float tnear, float tf
     if (n.connected && !endsInside && n.diagonal < stopSize * std::max(1.0f - leave, 1e-6f)) {
       // The faces lie in the box unpadded: a ray that passes only through the padding (along a
       // flat cluster, just off its plane) meets none of them, and its opacity does not apply.
-      const NodeShape& box = shape(i);
-      const Span faces = orientedSlabs(box.centre, box.axis, box.half - Vec3(padding_), org, dir);
+      const Span faces = orientedSlabs(shape(i).box, 0.0f, org, dir);
       if (std::max(faces.lo, tnear) <= std::min(faces.hi, tfar))
         passed *= 1.0f - opacityAt(i, unitDir);
       if (passed <= 0.0f) return 0.0f;

@@ -48,12 +48,10 @@ class ClusterVisibility {
     uint8_t aligned;  // the oriented box is the axis-aligned one: no second test
     uint8_t connected;
   };
-  // The oriented box (tighter, for boxes not along the axes), padded, and the projected areas
-  // along its axes, D+_j and D-_j, for the opacity.
+  // The oriented box as measured, unpadded (tighter than the axis-aligned one, for boxes not
+  // along the axes), and the projected areas along its axes, D+_j and D-_j, for the opacity.
   struct NodeShape {
-    Vec3 centre;
-    std::array<Vec3, 3> axis;
-    Vec3 half;
+    OrientedBox box;
     std::array<float, 6> axisAreas;
   };
   // Node ids of the walk: a leaf's is its element's, as in the tree; joined nodes follow the

@@ -693,23 +693,17 @@ class HierarchicalSolver final : public Solver {
       if (s.rays[k].flags == 0) traced.push_back(s.rays[k]), where.push_back(k);
     std::vector<float>& visible = s.visible;
     visible.assign(s.rays.size(), 0.0f);
+    if (!clusterVisibility_ && !traced.empty()) tracer_->occluded(traced);
+    const float stop = s_.visibilityStop * r.spacing;
     float blocked = 0.0f;
-    if (clusterVisibility_) {
-      const float stop = s_.visibilityStop * r.spacing;
-      for (size_t k = 0; k < traced.size(); ++k) {
-        const RTCRay& ray = traced[k];
-        const float passed = clusterVisibility_->transmittance(Vec3(ray.org_x, ray.org_y, ray.org_z),
-                                                               Vec3(ray.dir_x, ray.dir_y, ray.dir_z), ray.tnear,
-                                                               ray.tfar, stop);
-        visible[where[k]] = passed;
-        blocked += 1.0f - passed;
-      }
-    } else {
-      if (!traced.empty()) tracer_->occluded(traced);
-      for (size_t k = 0; k < traced.size(); ++k) {
-        visible[where[k]] = isOccluded(traced[k]) ? 0.0f : 1.0f;
-        blocked += isOccluded(traced[k]) ? 1.0f : 0.0f;
-      }
+    for (size_t k = 0; k < traced.size(); ++k) {
+      const RTCRay& ray = traced[k];
+      const float passed = !clusterVisibility_ ? (isOccluded(ray) ? 0.0f : 1.0f)
+                                               : clusterVisibility_->transmittance(
+                                                     Vec3(ray.org_x, ray.org_y, ray.org_z),
+                                                     Vec3(ray.dir_x, ray.dir_y, ray.dir_z), ray.tnear, ray.tfar, stop);
+      visible[where[k]] = passed;
+      blocked += 1.0f - passed;
     }
     const bool leaf = b.leaf();
     const Element* el = leaf ? &sys_.surfaces.elements[j] : nullptr;

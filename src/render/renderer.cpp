@@ -239,9 +239,9 @@ Image render(const Scene& scene, const SurfaceSet& surfaces, const Solution& sol
   const int tileCount = tilesX * tilesY;
   const int spp = options.samplesPerPixel;
   const MultiJitter pixelPattern{uint32_t(spp)}, gatherPattern{uint32_t(spp) * uint32_t(gatherRays)};
-  int glossyRays = 0;
-  if (hq)
-    for (const Material& m : scene.materials) glossyRays = m.hasSpecular() ? options.glossyRays : glossyRays;
+  const bool anyGlossy = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                    [](const Material& m) { return m.hasSpecular(); });
+  const int glossyRays = hq && anyGlossy ? options.glossyRays : 0;
   // Highlights follow the smooth surface, as the viewer's do: per corner of each glossy element,
   // the normal of the surface its corner group makes (a coarse sphere's highlight shows no facets).
   std::vector<Vec3> smoothNormals;
